@@ -1,0 +1,48 @@
+#pragma once
+// The workspace of the algorithms, sized once from a Model: solves write here and
+// never allocate. Outputs are the public members in the "results" block.
+#include <vector>
+
+#include "achd/case.hpp"
+#include "achd/model.hpp"
+
+namespace achd {
+
+using ConstraintForceMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxConstraints>;
+using CouplingMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraints, kMaxConstraints>;
+
+struct Data {
+  explicit Data(const Model& model);
+
+  // ---- results of the last hybrid_dynamics() ----
+  Eigen::VectorXd qdd;                 // joint accelerations
+  Eigen::VectorXd constraint_torques;  // KDL's -S^T E nu
+  Eigen::VectorXd total_torques;       // KDL's D qdd
+  Eigen::VectorXd joint_torques;       // ff - J^T alpha nu = RNEA(q, qd, qdd)
+  ConstraintVector nu;                 // constraint force magnitudes
+  Vector6 constraint_wrench;           // alpha nu: what the tip exerts on the constraint
+  std::vector<Vector6> link_accelerations;  // root link first, then Model::links
+  int rank = 0;                  // of the coupling matrix K = -M_0 (nc x nc)
+  double sigma_min = 0;          // its smallest singular value (0 when nc = 0)
+  CouplingMatrix dropped;        // nc x k: constraint-space directions truncated/damped
+
+  // ---- per body workspace (Featherstone's names; index = body) ----
+  std::vector<Transform> Xup;    // parent body frame -> body frame at the current q
+  std::vector<Transform> X0;     // base frame -> body frame (pose in the base)
+  std::vector<Vector6> v, c, a;  // velocity, velocity-product acceleration, acceleration
+  std::vector<Matrix6> IA;       // articulated-body inertia
+  std::vector<Vector6> pA;       // articulated-body bias force
+  std::vector<Vector6> U;        // IA S
+  std::vector<double> D, u;      // S^T IA S (+ rotor), tau - S^T pA
+  std::vector<ConstraintForceMatrix> E;  // unit constraint forces seen at each body
+  std::vector<ConstraintVector> EZ;      // E^T S
+  ConstraintForceMatrix alpha_body;      // alpha at the tip body's origin, body frame
+  ConstraintForceMatrix E0;              // the unit constraint forces seen at the base
+  CouplingMatrix M0;                     // acceleration-energy coupling at the base
+  ConstraintVector G0;                   // acceleration energy of the bias terms
+  ConstraintVector rhs;                  // E_0^T a_0 + G_0 - beta
+  Eigen::VectorXd tau;                   // joint torques fed to the sweeps
+};
+
+}  // namespace achd

@@ -1,0 +1,66 @@
+#pragma once
+// The robot model: an immutable serial chain of rigid bodies between a root and a tip
+// link. Fixed joints are merged into their parent body, so a Body is one movable joint
+// plus everything rigidly attached after it; every URDF link keeps its own frame in
+// `links` so that wrenches, accelerations and the tip stay where the user named them.
+#include <string>
+#include <vector>
+
+#include "achd/spatial.hpp"
+
+namespace achd {
+
+enum class JointType { Revolute, Continuous, Prismatic };
+
+const char* joint_type_name(JointType type);
+
+struct JointLimits {
+  double lower = -1e300, upper = 1e300;  // rad or m; continuous joints: unbounded
+  double velocity = 0, effort = 0;       // 0 = not given
+};
+
+// One movable joint and the rigid body it moves (the joint's child link merged with
+// the links attached to it by fixed joints).
+struct Body {
+  std::string joint_name;  // the URDF joint
+  std::string link_name;   // the URDF child link; its frame is the body frame
+  int parent = -1;         // body index of the parent, -1 = the root (fixed base)
+  JointType type = JointType::Revolute;
+  Vector3 axis = Vector3::UnitZ();  // unit joint axis in the body frame
+  Transform X_tree;                 // parent body frame -> body frame at q = 0
+  Matrix6 inertia = Matrix6::Zero();  // spatial inertia about the body origin, merged
+  double damping = 0;                 // N m s/rad or N s/m, from URDF <dynamics>
+  double friction = 0;                // Coulomb friction torque or force, URDF <dynamics>
+  double rotor_inertia = 0;           // armature, kg m^2 or kg; set from C++
+  JointLimits limits;
+};
+
+// A URDF link after the root: it rides on body `body` (-1: rigidly fixed to the root)
+// at the constant pose `offset` relative to that body's frame.
+struct Link {
+  std::string name;
+  int body = -1;
+  Transform offset;
+};
+
+struct Model {
+  std::string root_name, tip_name;
+  std::vector<Body> bodies;  // movable joints, root to tip
+  std::vector<Link> links;   // every link after the root, root to tip (tip last)
+
+  int num_joints() const { return static_cast<int>(bodies.size()); }
+  int num_links() const { return static_cast<int>(links.size()); }
+  const Link& tip() const { return links.back(); }
+
+  // Set the rotor (armature) inertia of a movable joint, by index; checked.
+  void set_rotor_inertia(int joint, double value);
+  int joint_index(const std::string& joint_name) const;  // -1 if absent
+  int link_index(const std::string& link_name) const;    // -1 if absent
+};
+
+// Checks a model built in code: axes unit, inertias physical, every joint with
+// something to move (D > 0 at every configuration). Throws achd::Error naming the
+// joint or link. The URDF loader calls it; call it after building a Model by hand.
+void validate(const Model& model);
+
+}  // namespace achd

@@ -1,0 +1,45 @@
+#pragma once
+// What a solve computes: the acceleration convention, the effects it includes, and the
+// policy for a singular constraint coupling matrix.
+#include <cstdint>
+
+namespace achd {
+
+// Effects as bits (MuJoCo's disable bits, inverted): a cleared bit means the term is
+// not computed at all, and the outputs stay defined.
+enum Effect : std::uint32_t {
+  kGravity = 1u << 0,           // uniform gravity (as a fictitious base acceleration)
+  kVelocityProducts = 1u << 1,  // Coriolis and centrifugal terms; off = approximation
+  kExternalWrenches = 1u << 2,  // the case's f_ext
+  kDamping = 1u << 3,           // -damping * qd per joint (URDF <dynamics damping>)
+  kFriction = 1u << 4,          // smoothed Coulomb friction (URDF <dynamics friction>)
+  kRotorInertia = 1u << 5,      // armature added to each joint's D
+  kConstraints = 1u << 6,       // the tip acceleration constraints alpha, beta
+};
+// What a plain solve includes: everything in the case, no joint-level passive terms
+// (KDL's solver and RNEA have none; the simulator turns damping and friction on).
+constexpr std::uint32_t kDefaultEffects =
+    kGravity | kVelocityProducts | kExternalWrenches | kRotorInertia | kConstraints;
+constexpr std::uint32_t kAllEffects = kDefaultEffects | kDamping | kFriction;
+
+enum class Convention {
+  Physical,  // beta and link accelerations are real accelerations (default)
+  Kdl,       // KDL's numbers: beta_kdl = beta - alpha_lin^T g, a_kdl = a - [g; 0]
+};
+
+enum class SingularityPolicy {
+  Truncate,  // pseudo-inverse dropping singular values below the tolerance (default)
+  Damped,    // damped least squares: nu = (K^2 + lambda^2)^-1 K b, lambda = damping * sigma_max
+};
+
+struct Options {
+  Convention convention = Convention::Physical;
+  std::uint32_t effects = kDefaultEffects;
+  SingularityPolicy policy = SingularityPolicy::Truncate;
+  double tolerance = 1e-12;         // truncate: sigma < tolerance * sigma_max is dropped
+  bool absolute_tolerance = false;  // true: sigma < tolerance (KDL: 1e-14, absolute)
+  double damping = 1e-6;            // damped policy: lambda relative to sigma_max
+  double friction_velocity = 0.05;  // friction = F tanh(qd / friction_velocity)
+};
+
+}  // namespace achd

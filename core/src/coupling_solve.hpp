@@ -1,0 +1,13 @@
+#pragma once
+// The constraint solve at the base: K nu = rhs for the nc x nc coupling matrix
+// K = -M_0 (symmetric positive semi-definite), by the singularity policy of Options.
+#include "achd/data.hpp"
+#include "achd/options.hpp"
+
+namespace achd {
+
+// Writes data.nu, data.rank, data.sigma_min and data.dropped from data.M0 (holding K)
+// and data.rhs. No allocation: every matrix has at most kMaxConstraints rows.
+void solve_coupling(Data& data, const Options& options);
+
+}  // namespace achd

@@ -1,0 +1,37 @@
+// Composite-rigid-body algorithm for the joint-space mass matrix (RBDA table 6.2).
+#include "achd/dynamics.hpp"
+#include "achd/error.hpp"
+#include "achd/kinematics.hpp"
+#include "joint.hpp"
+
+namespace achd {
+
+Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia) {
+  const int n = model.num_joints();
+  if (q.size() != n) throw Error("crba: q must have " + std::to_string(n) + " values");
+  std::vector<Transform> Xup(n);
+  std::vector<Matrix6> Ic(n);
+  for (int i = 0; i < n; ++i) {
+    Xup[i] = joint_transform(model.bodies[i], q[i]);
+    Ic[i] = model.bodies[i].inertia;
+  }
+  // Ic_p += X^T Ic_i X, from the tip inward.
+  for (int i = n - 1; i >= 0; --i)
+    if (model.bodies[i].parent >= 0)
+      Ic[model.bodies[i].parent] += inertia_to_parent(Xup[i], Ic[i]);
+  // M_ii = S_i^T Ic_i S_i;  M_ij = S_j^T (X^T ... F),  F = Ic_i S_i carried to each ancestor j.
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    const Body& b = model.bodies[i];
+    Vector6 F = inertia_times_subspace(b, Ic[i]);
+    M(i, i) = subspace_dot(b, F) + (rotor_inertia ? b.rotor_inertia : 0.0);
+    for (int j = i; model.bodies[j].parent >= 0;) {
+      F = Xup[j].force_to_parent(F);
+      j = model.bodies[j].parent;
+      M(i, j) = M(j, i) = subspace_dot(model.bodies[j], F);
+    }
+  }
+  return M;
+}
+
+}  // namespace achd

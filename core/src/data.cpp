@@ -1,0 +1,26 @@
+#include "achd/data.hpp"
+
+namespace achd {
+
+Data::Data(const Model& model) {
+  const int n = model.num_joints();
+  qdd = constraint_torques = total_torques = joint_torques = tau = Eigen::VectorXd::Zero(n);
+  nu.resize(0);
+  constraint_wrench.setZero();
+  link_accelerations.assign(model.num_links() + 1, Vector6::Zero());
+  dropped.resize(0, 0);
+  Xup.resize(n);
+  X0.resize(n);
+  v.assign(n, Vector6::Zero());
+  c.assign(n, Vector6::Zero());
+  a.assign(n, Vector6::Zero());
+  IA.assign(n, Matrix6::Zero());
+  pA.assign(n, Vector6::Zero());
+  U.assign(n, Vector6::Zero());
+  D.assign(n, 0.0);
+  u.assign(n, 0.0);
+  E.assign(n, ConstraintForceMatrix(6, 0));
+  EZ.assign(n, ConstraintVector(0));
+}
+
+}  // namespace achd

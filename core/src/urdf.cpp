@@ -1,0 +1,199 @@
+// URDF -> Model through urdfdom: walk from the tip up to the root, then build the
+// chain root -> tip, merging links behind fixed joints into the body before them.
+#include "achd/urdf.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "achd/error.hpp"
+
+namespace achd {
+namespace {
+
+// Collects urdfdom's console messages so that a parse failure can say why.
+class CaptureHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error.empty()) first_error = text;
+  }
+  std::string first_error;
+};
+
+urdf::ModelInterfaceSharedPtr parse(const std::string& xml, std::string& why) {
+  static std::mutex mutex;  // console_bridge's handler is process-global
+  std::lock_guard<std::mutex> lock(mutex);
+  CaptureHandler handler;
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    handler.first_error = e.what();
+    model.reset();
+  }
+  console_bridge::restorePreviousOutputHandler();
+  why = handler.first_error;
+  return model;
+}
+
+bool finite3(double x, double y, double z) {
+  return std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
+}
+
+Transform to_transform(const urdf::Pose& pose, const std::string& where) {
+  const urdf::Vector3& p = pose.position;
+  const urdf::Rotation& r = pose.rotation;
+  if (!finite3(p.x, p.y, p.z) || !finite3(r.x, r.y, r.z) || !std::isfinite(r.w))
+    throw Error(where + ": origin is not finite");
+  Transform t;
+  t.R = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
+  t.p = Vector3(p.x, p.y, p.z);
+  return t;
+}
+
+// Spatial inertia of a URDF link about the link frame origin. Checks mass >= 0, the
+// rotational inertia at the COM positive semi-definite and the triangle inequality
+// (each principal moment <= the sum of the other two) to 1e-9 relative.
+Matrix6 link_inertia(const urdf::Link& link) {
+  if (!link.inertial) return Matrix6::Zero();  // massless link: valid
+  const urdf::Inertial& in = *link.inertial;
+  const std::string where = "link '" + link.name + "'";
+  if (!std::isfinite(in.mass)) throw Error(where + ": mass is not finite");
+  if (in.mass < 0) throw Error(where + ": negative mass " + std::to_string(in.mass));
+  const double v[6] = {in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
+  for (double x : v)
+    if (!std::isfinite(x)) throw Error(where + ": inertia is not finite");
+  Matrix3 Ic;
+  Ic << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  const Eigen::SelfAdjointEigenSolver<Matrix3> eig(Ic, Eigen::EigenvaluesOnly);
+  const Vector3 m = eig.eigenvalues();
+  const double tol = 1e-9 * std::max(m.cwiseAbs().maxCoeff(), 1e-300);
+  if (m.minCoeff() < -tol) throw Error(where + ": inertia is not positive semi-definite");
+  if (m[0] + m[1] < m[2] - tol)
+    throw Error(where + ": inertia violates the triangle inequality (principal moments " +
+                std::to_string(m[0]) + ", " + std::to_string(m[1]) + ", " + std::to_string(m[2]) +
+                ")");
+  const Transform com = to_transform(in.origin, where + " <inertial>");
+  return spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
+}
+
+Body make_body(const urdf::Joint& j, const Transform& X_tree, int index) {
+  const std::string where = "joint '" + j.name + "'";
+  Body b;
+  b.joint_name = j.name;
+  b.link_name = j.child_link_name;
+  b.parent = index - 1;
+  b.X_tree = X_tree;
+  switch (j.type) {
+    case urdf::Joint::REVOLUTE: b.type = JointType::Revolute; break;
+    case urdf::Joint::CONTINUOUS: b.type = JointType::Continuous; break;
+    case urdf::Joint::PRISMATIC: b.type = JointType::Prismatic; break;
+    default: throw Error(where + ": unsupported joint type (achd supports revolute, continuous, prismatic, fixed)");
+  }
+  const urdf::Vector3& a = j.axis;
+  if (!finite3(a.x, a.y, a.z)) throw Error(where + ": axis is not finite");
+  const Vector3 axis(a.x, a.y, a.z);
+  if (axis.norm() < 1e-12) throw Error(where + ": axis is zero");
+  b.axis = axis.normalized();
+  if (j.limits && b.type != JointType::Continuous) {
+    const urdf::JointLimits& l = *j.limits;
+    if (!std::isfinite(l.lower) || !std::isfinite(l.upper) || !std::isfinite(l.velocity) ||
+        !std::isfinite(l.effort))
+      throw Error(where + ": <limit> is not finite");
+    if (l.lower > l.upper) throw Error(where + ": <limit> lower > upper");
+    b.limits = {l.lower, l.upper, l.velocity, l.effort};
+  } else if (j.limits) {
+    b.limits.velocity = j.limits->velocity;
+    b.limits.effort = j.limits->effort;
+  }
+  if (j.dynamics) {
+    b.damping = j.dynamics->damping;
+    b.friction = j.dynamics->friction;
+    if (!std::isfinite(b.damping) || b.damping < 0)
+      throw Error(where + ": <dynamics damping> must be finite and >= 0");
+    if (!std::isfinite(b.friction) || b.friction < 0)
+      throw Error(where + ": <dynamics friction> must be finite and >= 0");
+  }
+  return b;
+}
+
+Model build(const urdf::ModelInterface& urdf_model, const std::string& root, const std::string& tip,
+            const std::string& source) {
+  const auto root_link = urdf_model.getLink(root);
+  if (!root_link) throw Error(source + ": unknown root link '" + root + "'");
+  const auto tip_link = urdf_model.getLink(tip);
+  if (!tip_link) throw Error(source + ": unknown tip link '" + tip + "'");
+  if (root == tip) throw Error(source + ": root and tip are the same link '" + root + "'");
+
+  // Joints from the tip up to the root.
+  std::vector<urdf::JointConstSharedPtr> joints;
+  for (auto link = tip_link; link->name != root;) {
+    if (!link->parent_joint)
+      throw Error(source + ": tip link '" + tip + "' is not below root link '" + root + "'");
+    joints.push_back(link->parent_joint);
+    link = urdf_model.getLink(link->parent_joint->parent_link_name);
+    if (!link || joints.size() > urdf_model.links_.size())
+      throw Error(source + ": tip link '" + tip + "' is not below root link '" + root + "'");
+  }
+
+  Model model;
+  model.root_name = root;
+  model.tip_name = tip;
+  Transform offset;  // current link's frame relative to the current body (or the root)
+  int body = -1;
+  for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
+    const urdf::Joint& j = **it;
+    const Transform X = offset * to_transform(j.parent_to_joint_origin_transform,
+                                              "joint '" + j.name + "'");
+    const auto child = urdf_model.getLink(j.child_link_name);
+    const Matrix6 inertia = link_inertia(*child);
+    if (j.type == urdf::Joint::FIXED) {
+      offset = X;  // the child rides on the current body
+      if (body >= 0) model.bodies[body].inertia += inertia_to_parent(offset, inertia);
+    } else {
+      model.bodies.push_back(make_body(j, X, static_cast<int>(model.bodies.size())));
+      body = model.num_joints() - 1;
+      model.bodies[body].inertia = inertia;
+      offset = Transform();
+    }
+    model.links.push_back({child->name, body, offset});
+  }
+  validate(model);
+  return model;
+}
+
+// Every message starts with the source (file path or "URDF").
+Model load(const std::string& xml, const std::string& root, const std::string& tip,
+           const std::string& source) {
+  std::string why;
+  const auto parsed = parse(xml, why);
+  if (!parsed) throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
+  try {
+    return build(*parsed, root, tip, source);
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    throw Error(msg.rfind(source + ":", 0) == 0 ? msg : source + ": " + msg);
+  }
+}
+
+}  // namespace
+
+Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip) {
+  return load(xml, root, tip, "URDF");
+}
+
+Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load(text.str(), root, tip, path);
+}
+
+}  // namespace achd

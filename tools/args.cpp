@@ -1,0 +1,78 @@
+#include "args.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace achd::cli {
+
+const std::set<std::string> kSolverValued = {"--convention", "--policy", "--tolerance", "--damping"};
+const std::set<std::string> kSolverFlags = {"--absolute-tolerance"};
+
+Args::Args(int argc, char** argv, const std::set<std::string>& valued,
+           const std::set<std::string>& flags) {
+  for (int i = 0; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
+      if (flags.count(a)) {
+        values_[a] = "1";
+      } else if (valued.count(a)) {
+        if (i + 1 >= argc) throw Error("option " + a + " needs a value");
+        values_[a] = argv[++i];
+      } else {
+        throw Error("unknown option " + a);
+      }
+    } else {
+      positional_.push_back(a);
+    }
+  }
+}
+
+std::string Args::get(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) throw Error("missing option " + name);
+  return it->second;
+}
+
+std::string Args::get(const std::string& name, const std::string& fallback) const {
+  return has(name) ? get(name) : fallback;
+}
+
+double Args::number(const std::string& name, double fallback) const {
+  if (!has(name)) return fallback;
+  const std::string s = get(name);
+  char* end = nullptr;
+  const double x = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(x))
+    throw Error("option " + name + ": '" + s + "' is not a finite number");
+  return x;
+}
+
+long Args::integer(const std::string& name, long fallback) const {
+  if (!has(name)) return fallback;
+  const std::string s = get(name);
+  char* end = nullptr;
+  const long x = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || x < 1)
+    throw Error("option " + name + ": '" + s + "' is not a positive integer");
+  return x;
+}
+
+Options solver_options(const Args& args) {
+  Options o;
+  const std::string conv = args.get("--convention", "physical");
+  if (conv == "physical") o.convention = Convention::Physical;
+  else if (conv == "kdl") o.convention = Convention::Kdl;
+  else throw Error("option --convention: expected 'physical' or 'kdl', got '" + conv + "'");
+  const std::string policy = args.get("--policy", "truncate");
+  if (policy == "truncate") o.policy = SingularityPolicy::Truncate;
+  else if (policy == "damped") o.policy = SingularityPolicy::Damped;
+  else throw Error("option --policy: expected 'truncate' or 'damped', got '" + policy + "'");
+  o.tolerance = args.number("--tolerance", o.tolerance);
+  o.damping = args.number("--damping", o.damping);
+  if (o.tolerance < 0) throw Error("option --tolerance must be >= 0");
+  if (o.damping < 0) throw Error("option --damping must be >= 0");
+  o.absolute_tolerance = args.has("--absolute-tolerance");
+  return o;
+}
+
+}  // namespace achd::cli

@@ -1,0 +1,36 @@
+#pragma once
+// A small command-line parser: positional arguments and `--name value` / `--flag`
+// options; anything unknown or missing is an achd::Error naming the option.
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "achd/achd.hpp"
+
+namespace achd::cli {
+
+class Args {
+ public:
+  // `valued`: options that take a value; `flags`: options that do not.
+  Args(int argc, char** argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
+
+  const std::vector<std::string>& positional() const { return positional_; }
+  bool has(const std::string& name) const { return values_.count(name) > 0; }
+  std::string get(const std::string& name) const;  // throws if absent
+  std::string get(const std::string& name, const std::string& fallback) const;
+  double number(const std::string& name, double fallback) const;  // finite, else throws
+  long integer(const std::string& name, long fallback) const;     // >= 1, else throws
+
+ private:
+  std::vector<std::string> positional_;
+  std::map<std::string, std::string> values_;
+};
+
+// --convention, --policy, --tolerance, --absolute-tolerance, --damping into Options.
+Options solver_options(const Args& args);
+// The option names solver_options() reads.
+extern const std::set<std::string> kSolverValued;
+extern const std::set<std::string> kSolverFlags;
+
+}  // namespace achd::cli

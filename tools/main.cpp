@@ -1,0 +1,44 @@
+// The `achd` command line. stdout carries only results; an error is one line
+// "achd: error: ..." on stderr and exit code 2.
+#include <cstring>
+#include <iostream>
+#include <string>
+
+#include "achd/error.hpp"
+#include "commands.hpp"
+
+namespace {
+
+const char* kUsage =
+    "usage: achd <command> [arguments]\n"
+    "  solve ROBOT.urdf --root LINK --tip LINK --case CASE.json\n"
+    "        [--convention physical|kdl] [--policy truncate|damped]\n"
+    "        [--tolerance X] [--absolute-tolerance] [--damping X]\n"
+    "                  solve one case, print the result JSON\n"
+    "  help            this text\n";
+
+struct Command {
+  const char* name;
+  int (*run)(int, char**);
+};
+
+const Command kCommands[] = {
+    {"solve", achd::cli::cmd_solve},
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help")) {
+    std::cout << kUsage;
+    return argc < 2 ? 2 : 0;
+  }
+  try {
+    for (const Command& c : kCommands)
+      if (argv[1] == std::string(c.name)) return c.run(argc - 2, argv + 2);
+    throw achd::Error(std::string("unknown command '") + argv[1] + "' (see `achd help`)");
+  } catch (const std::exception& e) {
+    std::cerr << "achd: error: " << e.what() << "\n";
+    return 2;
+  }
+}
