@@ -4,5 +4,6 @@
 namespace achd::cli {
 
 int cmd_solve(int argc, char** argv);
+int cmd_bench(int argc, char** argv);
 
 }  // namespace achd::cli

@@ -15,6 +15,10 @@ const char* kUsage =
     "        [--convention physical|kdl] [--policy truncate|damped]\n"
     "        [--tolerance X] [--absolute-tolerance] [--damping X]\n"
     "                  solve one case, print the result JSON\n"
+    "  bench ROBOT.urdf --root LINK --tip LINK --case CASE.json\n"
+    "        [--iterations N] [--repeats R] [--against kdl] [solver options]\n"
+    "                  ns per solve (median of R repeats of N calls), with\n"
+    "                  --against kdl also KDL's solver in the same run\n"
     "  help            this text\n";
 
 struct Command {
@@ -24,6 +28,7 @@ struct Command {
 
 const Command kCommands[] = {
     {"solve", achd::cli::cmd_solve},
+    {"bench", achd::cli::cmd_bench},
 };
 
 }  // namespace

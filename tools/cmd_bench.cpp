@@ -1,0 +1,72 @@
+// achd bench ROBOT.urdf --root LINK --tip LINK --case CASE.json [--iterations N]
+//            [--repeats R] [--against kdl] [solver options]
+// Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R repeats of N
+// calls after a warm-up; with --against kdl also KDL's ChainHdSolver_Vereshchagin on the
+// same chain and case, timed in the same rounds, "ratio" = achd / KDL, and the relative
+// difference of the two qdd (a check that both solved the same problem).
+#include <cstdio>
+#include <iostream>
+
+#include "args.hpp"
+#include "case_json.hpp"
+#include "commands.hpp"
+#include "timing.hpp"
+#ifdef ACHD_HAVE_KDL
+#include "kdl_problem.hpp"
+#endif
+
+namespace achd::cli {
+
+int cmd_bench(int argc, char** argv) {
+  std::set<std::string> valued = {"--root", "--tip", "--case", "--iterations", "--repeats", "--against"};
+  valued.insert(kSolverValued.begin(), kSolverValued.end());
+  const Args args(argc, argv, valued, kSolverFlags);
+  if (args.positional().size() != 1) throw Error("bench: expected one URDF file, see `achd help`");
+  const Options options = solver_options(args);
+  const std::string urdf = args.positional()[0];
+  const std::string root = args.get("--root"), tip = args.get("--tip");
+  const Model model = load_urdf_file(urdf, root, tip);
+  const std::string case_path = args.get("--case");
+  const Case c = parse_case(case_path == "-" ? read_file("/dev/stdin") : read_file(case_path), model,
+                            case_path);
+  const int repeats = static_cast<int>(args.integer("--repeats", 15));
+  const std::string against = args.get("--against", "");
+  if (!against.empty() && against != "kdl")
+    throw Error("option --against: expected 'kdl', got '" + against + "'");
+
+  Data data(model);
+  std::vector<std::function<void()>> fns = {[&] { hybrid_dynamics(model, data, c, options); }};
+#ifdef ACHD_HAVE_KDL
+  std::unique_ptr<KdlProblem> kdl;
+  if (!against.empty()) {
+    kdl = std::make_unique<KdlProblem>(urdf, false, root, tip, c);
+    fns.push_back([&] { kdl->solve(); });
+  }
+#else
+  if (!against.empty()) throw Error("--against kdl: this achd was built without KDL");
+#endif
+  std::vector<long> iterations;
+  for (const auto& fn : fns)
+    iterations.push_back(args.has("--iterations") ? args.integer("--iterations", 1)
+                                                  : calibrate_iterations(fn, 2e7));
+  const std::vector<double> ns = median_ns(fns, iterations, repeats);
+
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "{\"achd_ns\": %.1f, \"iterations\": %ld, \"repeats\": %d", ns[0],
+                iterations[0], repeats);
+  std::string out = buf;
+#ifdef ACHD_HAVE_KDL
+  if (kdl) {
+    const Eigen::VectorXd q_kdl = kdl->qdd();
+    const double diff = (data.qdd - q_kdl).cwiseAbs().maxCoeff() / std::max(1.0, q_kdl.cwiseAbs().maxCoeff());
+    std::snprintf(buf, sizeof buf,
+                  ", \"kdl_ns\": %.1f, \"kdl_iterations\": %ld, \"ratio\": %.4f, \"qdd_rel_diff\": %.3g",
+                  ns[1], iterations[1], ns[0] / ns[1], diff);
+    out += buf;
+  }
+#endif
+  std::cout << out << "}\n";
+  return 0;
+}
+
+}  // namespace achd::cli
