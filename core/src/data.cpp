@@ -19,7 +19,8 @@ Data::Data(const Model& model) {
   U.assign(n, Vector6::Zero());
   D.assign(n, 0.0);
   u.assign(n, 0.0);
-  E.assign(n, ConstraintForceMatrix(6, 0));
+  E.resize(6, 0);
+  Ea.resize(6, 0);
   EZ.assign(n, ConstraintVector(0));
 }
 

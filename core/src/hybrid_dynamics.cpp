@@ -84,9 +84,9 @@ void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc
   }
 }
 
-// Step 2, for i = n-1 .. 0.
-void inward_sweep(const Model& model, Data& d, int nc, bool rotor) {
-  ConstraintForceMatrix Ea(6, nc);
+// Step 2, for i = n-1 .. 0. IA_i and pA_i are overwritten with Ia_i and pa_i (what the
+// parent receives); E holds the unit constraint forces at body i, rolled towards the base.
+void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) {
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     // U = IA S,  D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
@@ -97,25 +97,34 @@ void inward_sweep(const Model& model, Data& d, int nc, bool rotor) {
       throw Error("joint '" + b.joint_name + "': nothing to move (D = S^T IA S = " +
                   std::to_string(d.D[i]) + ")");
     const double Dinv = 1.0 / d.D[i];
+    const Vector6 Ud = d.U[i] * Dinv;
     const int p = b.parent;
     if (p >= 0) {
       // Ia = IA - U U^T / D;  pa = pA + Ia c + U u / D;  the parent adds X^T Ia X, X^T pa
-      const Matrix6 Ia = d.IA[i] - (d.U[i] * Dinv) * d.U[i].transpose();
-      const Vector6 pa = d.pA[i] + Ia * d.c[i] + d.U[i] * (d.u[i] * Dinv);
-      d.IA[p] += inertia_to_parent(d.Xup[i], Ia);
-      d.pA[p] += d.Xup[i].force_to_parent(pa);
+      d.IA[i].noalias() -= Ud * d.U[i].transpose();
+      if (moving) d.pA[i].noalias() += d.IA[i] * d.c[i];
+      d.pA[i] += Ud * d.u[i];
+      add_inertia_to_parent(d.Xup[i], d.IA[i], d.IA[p]);
+      d.pA[p] += d.Xup[i].force_to_parent(d.pA[i]);
     }
     if (!nc) continue;
     // EZ = E^T S;  Ea = E - U EZ^T / D                        (eq. c)
     // G  += Ea^T c + EZ u / D;  M -= EZ EZ^T / D               (eqs. e, d)
-    d.EZ[i].resize(nc);
-    for (int k = 0; k < nc; ++k) d.EZ[i][k] = subspace_dot(b, d.E[i].col(k));
-    Ea.noalias() = d.E[i] - (d.U[i] * Dinv) * d.EZ[i].transpose();
-    d.G0.noalias() += Ea.transpose() * d.c[i] + d.EZ[i] * (d.u[i] * Dinv);
-    d.M0.noalias() -= (d.EZ[i] * Dinv) * d.EZ[i].transpose();
-    ConstraintForceMatrix& E_parent = p >= 0 ? d.E[p] : d.E0;
-    E_parent.resize(6, nc);
-    for (int k = 0; k < nc; ++k) E_parent.col(k) = d.Xup[i].force_to_parent(Ea.col(k));
+    ConstraintVector& EZ = d.EZ[i];
+    EZ.resize(nc);
+    for (int k = 0; k < nc; ++k) EZ[k] = subspace_dot(b, d.E.col(k));
+    d.E.noalias() -= Ud * EZ.transpose();
+    if (moving) d.G0.noalias() += d.E.transpose() * d.c[i];
+    d.G0 += EZ * (d.u[i] * Dinv);
+    d.M0.noalias() -= (EZ * Dinv) * EZ.transpose();
+    // E_parent = X^T Ea: f_P = R f, n_P = R n + p x f_P, all columns at once
+    const Matrix3& R = d.Xup[i].R;
+    d.Ea.resize(6, nc);
+    d.Ea.topRows<3>().noalias() = R * d.E.topRows<3>();
+    d.Ea.bottomRows<3>().noalias() = R * d.E.bottomRows<3>();
+    for (int k = 0; k < nc; ++k)
+      d.Ea.col(k).tail<3>() += d.Xup[i].p.cross(Vector3(d.Ea.col(k).head<3>()));
+    d.E.swap(d.Ea);
   }
 }
 
@@ -182,16 +191,16 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   d.G0.setZero(nc);
   if (nc) {
     constraint_forces_at_tip(model, d, c, nc);
-    d.E[model.tip().body] = d.alpha_body;
+    d.E = d.alpha_body;
   }
-  inward_sweep(model, d, nc, o.effects & kRotorInertia);
+  inward_sweep(model, d, nc, moving, o.effects & kRotorInertia);
 
   Vector6 a0 = Vector6::Zero();  // base acceleration: [-g; 0]
   if (gravity) a0.head<3>() = -c.gravity;
   d.nu.setZero(nc);
   if (nc) {
     // K nu = E_0^T a_0 + G_0 - beta_kdl, with beta_kdl = beta - alpha_lin^T g (physical).
-    d.rhs.noalias() = d.E0.transpose() * a0 + d.G0 - c.beta;
+    d.rhs.noalias() = d.E.transpose() * a0 + d.G0 - c.beta;
     if (o.convention == Convention::Physical && gravity)
       d.rhs.noalias() += c.alpha.topRows<3>().transpose() * c.gravity;
     d.M0 = -d.M0;

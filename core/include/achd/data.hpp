@@ -31,14 +31,14 @@ struct Data {
   std::vector<Transform> Xup;    // parent body frame -> body frame at the current q
   std::vector<Transform> X0;     // base frame -> body frame (pose in the base)
   std::vector<Vector6> v, c, a;  // velocity, velocity-product acceleration, acceleration
-  std::vector<Matrix6> IA;       // articulated-body inertia
-  std::vector<Vector6> pA;       // articulated-body bias force
+  std::vector<Matrix6> IA;       // articulated-body inertia; after the sweep Ia = IA - U U^T / D
+  std::vector<Vector6> pA;       // articulated-body bias force; after the sweep pa
   std::vector<Vector6> U;        // IA S
   std::vector<double> D, u;      // S^T IA S (+ rotor), tau - S^T pA
-  std::vector<ConstraintForceMatrix> E;  // unit constraint forces seen at each body
-  std::vector<ConstraintVector> EZ;      // E^T S
+  std::vector<ConstraintVector> EZ;      // E^T S at each body
+  ConstraintForceMatrix E, Ea;           // unit constraint forces at the body being swept
+                                         // (after the sweep: at the base, E_0)
   ConstraintForceMatrix alpha_body;      // alpha at the tip body's origin, body frame
-  ConstraintForceMatrix E0;              // the unit constraint forces seen at the base
   CouplingMatrix M0;                     // acceleration-energy coupling at the base
   ConstraintVector G0;                   // acceleration energy of the bias terms
   ConstraintVector rhs;                  // E_0^T a_0 + G_0 - beta

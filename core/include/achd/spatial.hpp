@@ -90,5 +90,7 @@ Matrix6 spatial_inertia(double mass, const Vector3& com, const Matrix3& inertia_
 // X^T I X: a 6x6 inertia given in C (about C's origin) expressed in P (about P's
 // origin), by blocks: rotate, then shift by p (RBDA 2.66 with linear-first order).
 Matrix6 inertia_to_parent(const Transform& X, const Matrix6& I_child);
+// I_parent += X^T I_child X without a temporary 6x6 (the inward sweep's hot spot).
+void add_inertia_to_parent(const Transform& X, const Matrix6& I_child, Matrix6& I_parent);
 
 }  // namespace achd
