@@ -1,0 +1,249 @@
+// The 3D view: the chain as simple solids between consecutive link frames (from forward
+// kinematics), spheres at movable joints, the tip frame's axes, and the held or
+// accelerated tip directions as glyphs. z is up, as in URDF.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { DIRECTIONS } from './settings.js';
+
+export const DIRECTION_COLORS = {
+  x: '#d9443a', y: '#2e9e4f', z: '#2f6fdf', rx: '#e58a1f', ry: '#1a9aa0', rz: '#8b4fd1',
+};
+const AXES = {
+  x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1),
+  rx: new THREE.Vector3(1, 0, 0), ry: new THREE.Vector3(0, 1, 0), rz: new THREE.Vector3(0, 0, 1),
+};
+const UP = new THREE.Vector3(0, 1, 0);  // three's cylinders are built along +y
+
+// Checked up front: three logs a console error when it cannot get a context, and a
+// machine without WebGL should get a message in the view instead.
+function webglAvailable() {
+  const canvas = document.createElement('canvas');
+  return Boolean(canvas.getContext('webgl2'));
+}
+
+// Pose of a link as a THREE.Matrix4 from {position:[3], rotation:[9 row-major]}.
+export function poseMatrix(link, out = new THREE.Matrix4()) {
+  const r = link.rotation;
+  const p = link.position;
+  return out.set(r[0], r[1], r[2], p[0], r[3], r[4], r[5], p[1], r[6], r[7], r[8], p[2], 0, 0, 0, 1);
+}
+
+export class ChainView {
+  constructor(container) {
+    this.container = container;
+    this.enabled = webglAvailable();
+    if (!this.enabled) {
+      const note = document.createElement('p');
+      note.className = 'view-message';
+      note.textContent = 'This browser has no WebGL 2: the 3D view is off; the simulation and its numbers still run.';
+      container.append(note);
+      return;
+    }
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    container.append(this.renderer.domElement);
+
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color('#fbfcfd');
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 200);
+    this.camera.up.set(0, 0, 1);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.enableDamping = true;
+
+    this.scene.add(new THREE.HemisphereLight('#ffffff', '#8090a0', 2.2));
+    const sun = new THREE.DirectionalLight('#ffffff', 1.6);
+    sun.position.set(2, -3, 5);
+    this.scene.add(sun);
+
+    this.grid = new THREE.GridHelper(4, 40, '#b8c0cc', '#e3e7ed');
+    this.grid.rotation.x = Math.PI / 2;  // GridHelper lies in xz; URDF's floor is xy
+    this.scene.add(this.grid);
+
+    this.robotGroup = new THREE.Group();
+    this.scene.add(this.robotGroup);
+    this.glyphs = this.makeGlyphs();
+    this.scene.add(this.glyphs.group);
+    this.pushLine = new THREE.Line(
+      new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
+      new THREE.LineBasicMaterial({ color: '#d9443a' }),
+    );
+    this.pushLine.visible = false;
+    this.scene.add(this.pushLine);
+
+    this.raycaster = new THREE.Raycaster();
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+  }
+
+  resize() {
+    const w = this.container.clientWidth;
+    const h = this.container.clientHeight;
+    if (!w || !h) return;
+    this.renderer.setSize(w, h);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+  }
+
+  // Builds the solids for a chain. links: FK output at the initial pose (root first);
+  // movable[i]: whether link i hangs on a movable joint. Frames the camera on the chain.
+  setChain(links, movable) {
+    if (!this.enabled) return;
+    for (const child of [...this.robotGroup.children]) {
+      child.geometry.dispose();
+      child.material.dispose();
+      this.robotGroup.remove(child);
+    }
+    const origins = links.map((l) => new THREE.Vector3(...l.position));
+    const box = new THREE.Box3().setFromPoints(origins);
+    const size = Math.max(box.getSize(new THREE.Vector3()).length(), 0.2);
+    const radius = Math.min(0.06, Math.max(0.004, size * 0.022));
+    this.radius = radius;
+
+    const linkMaterials = [
+      new THREE.MeshStandardMaterial({ color: '#9aa7b8', roughness: 0.55, metalness: 0.1 }),
+      new THREE.MeshStandardMaterial({ color: '#e8a33d', roughness: 0.5, metalness: 0.1 }),
+    ];
+    const jointMaterial = new THREE.MeshStandardMaterial({ color: '#3c4658', roughness: 0.4 });
+    const cylinder = new THREE.CylinderGeometry(radius, radius, 1, 20);
+    const sphere = new THREE.SphereGeometry(radius * 1.45, 20, 14);
+
+    // Segment i runs from link i's origin to link i+1's: it is link i's body, so a push
+    // on it acts on link i. The root's segment is the fixed base.
+    this.segments = [];
+    for (let i = 0; i + 1 < links.length; i++) {
+      const mesh = new THREE.Mesh(cylinder, i === 0 ? jointMaterial : linkMaterials[i % 2]);
+      mesh.userData.link = i;
+      this.segments.push(mesh);
+      this.robotGroup.add(mesh);
+    }
+    this.joints = [];
+    links.forEach((_, i) => {
+      if (!movable[i]) return;
+      const mesh = new THREE.Mesh(sphere, jointMaterial);
+      mesh.userData.link = i;
+      mesh.userData.jointOf = i;
+      this.joints.push(mesh);
+      this.robotGroup.add(mesh);
+    });
+    // The tip link has no segment after it: a small block stands for it.
+    this.tipBlock = new THREE.Mesh(new THREE.BoxGeometry(radius * 2.6, radius * 2.6, radius * 1.6), linkMaterials[1]);
+    this.tipBlock.userData.link = links.length - 1;
+    this.robotGroup.add(this.tipBlock);
+    this.tipAxes = new THREE.AxesHelper(radius * 7);
+    this.tipAxes.matrixAutoUpdate = false;
+    this.robotGroup.add(this.tipAxes);
+
+    this.glyphs.group.scale.setScalar(radius * 8);
+    this.grid.scale.setScalar(Math.max(size, 0.5) / 2);
+
+    const center = box.getCenter(new THREE.Vector3());
+    this.controls.target.copy(center);
+    this.camera.position.copy(center).add(new THREE.Vector3(1.3, -1.9, 0.9).multiplyScalar(size));
+    this.camera.near = size / 200;
+    this.camera.far = size * 50;
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+  }
+
+  // One glyph group per direction, in a unit frame at the tip, scaled with the robot.
+  makeGlyphs() {
+    const group = new THREE.Group();
+    const byName = {};
+    for (const name of DIRECTIONS) {
+      const color = DIRECTION_COLORS[name];
+      const material = new THREE.MeshStandardMaterial({ color, roughness: 0.5 });
+      const axis = AXES[name];
+      const hold = new THREE.Group();
+      if (name.startsWith('r')) {
+        // A held rotation: a ring around the axis with stops, "no turning about e".
+        const ring = new THREE.Mesh(new THREE.TorusGeometry(0.55, 0.045, 10, 40), material);
+        ring.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), axis);
+        hold.add(ring);
+      } else {
+        // A held translation: a rail along the axis with a block on it, "no moving along e".
+        const rail = new THREE.Mesh(new THREE.CylinderGeometry(0.03, 0.03, 2.2, 10), material);
+        rail.quaternion.setFromUnitVectors(UP, axis);
+        const stop = new THREE.Mesh(new THREE.BoxGeometry(0.22, 0.22, 0.22), material);
+        hold.add(rail, stop);
+      }
+      // An acceleration setpoint: an arrow along +e or -e.
+      const accelerate = new THREE.ArrowHelper(axis, new THREE.Vector3(), 1.2, color, 0.35, 0.2);
+      group.add(hold, accelerate);
+      byName[name] = { hold, accelerate, axis };
+    }
+    return { group, byName };
+  }
+
+  // Moves the chain to the poses in `links`; directions: name -> mode; push: the drag
+  // line {from, to} in world coordinates, or null.
+  update(links, directions, push) {
+    if (!this.enabled || !this.segments) return;
+    const a = new THREE.Vector3();
+    const b = new THREE.Vector3();
+    this.segments.forEach((mesh, i) => {
+      a.fromArray(links[i].position);
+      b.fromArray(links[i + 1].position);
+      const length = a.distanceTo(b);
+      mesh.visible = length > 1e-6;
+      if (!mesh.visible) return;
+      mesh.position.copy(a).add(b).multiplyScalar(0.5);
+      mesh.quaternion.setFromUnitVectors(UP, b.sub(a).divideScalar(length));
+      mesh.scale.set(1, length, 1);
+    });
+    for (const mesh of this.joints) mesh.position.fromArray(links[mesh.userData.jointOf].position);
+
+    const tip = links[links.length - 1];
+    const tipPose = poseMatrix(tip);
+    this.tipAxes.matrix.copy(tipPose);
+    this.tipBlock.position.fromArray(tip.position);
+    this.tipBlock.quaternion.setFromRotationMatrix(tipPose);
+
+    this.glyphs.group.position.fromArray(tip.position);
+    for (const name of DIRECTIONS) {
+      const glyph = this.glyphs.byName[name];
+      const mode = directions[name];
+      glyph.hold.visible = mode === 'hold';
+      glyph.accelerate.visible = typeof mode === 'number';
+      if (typeof mode === 'number') {
+        glyph.accelerate.setDirection(mode < 0 ? glyph.axis.clone().negate() : glyph.axis);
+      }
+    }
+
+    this.pushLine.visible = Boolean(push);
+    if (push) {
+      this.pushLine.geometry.setFromPoints([push.from, push.to]);
+    }
+  }
+
+  render() {
+    if (!this.enabled) return;
+    this.controls.update();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  ray(clientX, clientY) {
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(
+      ((clientX - rect.left) / rect.width) * 2 - 1,
+      -((clientY - rect.top) / rect.height) * 2 + 1,
+    );
+    this.raycaster.setFromCamera(ndc, this.camera);
+    return this.raycaster.ray;
+  }
+
+  // The link under the pointer and the world point hit, or null.
+  pick(clientX, clientY) {
+    if (!this.enabled || !this.segments) return null;
+    this.ray(clientX, clientY);
+    const hits = this.raycaster.intersectObjects(this.robotGroup.children.filter((o) => o.isMesh), false);
+    return hits.length ? { link: hits[0].object.userData.link, point: hits[0].point.clone() } : null;
+  }
+
+  // Where the pointer's ray meets the plane through `point` facing the camera.
+  pointerOnPlane(clientX, clientY, point) {
+    const ray = this.ray(clientX, clientY);
+    const normal = this.camera.getWorldDirection(new THREE.Vector3());
+    const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, point);
+    return ray.intersectPlane(plane, new THREE.Vector3());
+  }
+}

@@ -1,0 +1,325 @@
+// The page's first module: assigns window.achdDemo before anything waits, then loads the
+// wasm module, the robot index and the robot from the URL hash (or the default), and
+// simulates in real time: each animation frame steps as many dt as wall time elapsed.
+import { ChainView } from './chain_view.js';
+import { Controls } from './controls.js';
+import { PushDrag } from './push_drag.js';
+import { Readouts } from './readouts.js';
+import { checkDirection, defaultSettings, formatHash, parseHash } from './settings.js';
+import { Simulation } from './simulation.js';
+import { UrdfUpload } from './urdf_upload.js';
+
+// At most this much simulated time per frame: after a stall (a hidden tab, a slow
+// frame) the simulation resumes instead of trying to catch up all at once.
+const MAX_FRAME_SECONDS = 0.1;
+const NUMBERS_EVERY_MS = 200;
+const SOLVE_TIMING_EVERY_MS = 1000;
+const RATE_WINDOW_MS = 1000;
+const CUSTOM = 'custom';
+
+const page = {
+  achd: null,
+  index: null,
+  sim: null,
+  links: null,
+  settings: null,
+  playing: true,
+  owed: 0,
+  lastFrame: null,
+  lastNumbers: 0,
+  lastSolveTiming: -Infinity,
+  rate: { wall: 0, sim: 0, shown: null },
+  pushedLink: null,
+  writtenHash: '',
+};
+
+let markReady;
+let failReady;
+const ready = new Promise((resolve, reject) => {
+  markReady = resolve;
+  failReady = reject;
+});
+// Awaiting `ready` still sees a failure; this only keeps an unobserved one off the console.
+ready.catch(() => {});
+let isReady = false;
+
+// Lines the wasm module prints (urdfdom's parse errors): kept for the page's message
+// instead of the console.
+const moduleLog = [];
+
+window.achdDemo = {
+  ready,
+  state() {
+    if (!page.sim) throw new Error('achdDemo.state: no robot loaded yet (await achdDemo.ready)');
+    const s = page.sim.snapshot();
+    // Only held directions have a residual; free and accelerated ones report null.
+    for (const d of Object.keys(s.residuals)) if (s.directions[d] !== 'hold') s.residuals[d] = null;
+    return s;
+  },
+  setDirection(name, mode) {
+    checkDirection(name, mode);
+    if (!page.sim) throw new Error('achdDemo.setDirection: no robot loaded yet (await achdDemo.ready)');
+    setDirection(name, mode);
+  },
+  play() {
+    setPlaying(true);
+  },
+  pause() {
+    setPlaying(false);
+  },
+  step(n = 1) {
+    if (!Number.isInteger(n) || n < 1) throw new Error(`achdDemo.step: n must be a positive integer, got ${n}`);
+    if (!page.sim) throw new Error('achdDemo.step: no robot loaded yet (await achdDemo.ready)');
+    stepSimulation(n);
+  },
+  async loadURDF(text, root, tip) {
+    await ready;
+    loadRobot({ name: CUSTOM, text: String(text), root, tip });
+  },
+};
+
+const errorBox = document.getElementById('page-error');
+const errorText = document.getElementById('page-error-text');
+document.getElementById('page-error-close').addEventListener('click', () => {
+  errorBox.hidden = true;
+});
+function showError(message) {
+  errorText.textContent = message;
+  errorBox.hidden = false;
+}
+
+const view = new ChainView(document.getElementById('view'));
+const readouts = new Readouts(document.getElementById('numbers'), document.getElementById('plots'));
+const push = new PushDrag(view, {
+  canPush: (link) => Boolean(page.sim) && link > 0 && page.settings.effects.externalWrenches,
+  linkPose: (link) => page.links[link],
+  stiffness: () => page.sim.pushStiffness(),
+});
+const controls = new Controls({
+  playPause: () => setPlaying(!page.playing),
+  step: () => {
+    setPlaying(false);
+    if (page.sim) stepSimulation(1);
+  },
+  reset: () => {
+    if (!page.sim) return;
+    page.sim.reset();
+    page.owed = 0;
+  },
+  integrator: (v) => changeSetting(() => (page.settings.integrator = v), true),
+  dt: (v) => changeSetting(() => (page.settings.dt = v), false),
+  direction: (name, mode) => setDirection(name, mode),
+  effect: (key, on) => changeSetting(() => (page.settings.effects[key] = on), true),
+});
+const upload = new UrdfUpload({
+  onLoad: (text, root, tip, fileName) => {
+    try {
+      loadRobot({ name: CUSTOM, text, root, tip });
+      upload.hide();
+    } catch (err) {
+      showError(`${fileName}: ${err.message}`);
+    }
+  },
+  onError: (err) => showError(err.message),
+});
+const robotSelect = document.getElementById('robot-select');
+robotSelect.addEventListener('change', () => selectRobot(robotSelect.value));
+
+function setPlaying(on) {
+  page.playing = on;
+  page.lastFrame = null;
+  page.owed = 0;
+  if (page.settings) controls.show(page.settings, on);
+}
+
+function setDirection(name, mode) {
+  page.settings.directions[name] = mode;
+  if (page.sim) page.sim.applyDirection(name);
+  controls.show(page.settings, page.playing);
+  writeHash();
+}
+
+// Effects and the integrator are fixed in a simulator: changing them rebuilds it from
+// the current state (held directions hold where the tip is then).
+function changeSetting(apply, rebuild) {
+  apply();
+  if (page.sim && rebuild) {
+    push.release();
+    page.pushedLink = null;
+    page.sim.rebuild();
+  }
+  controls.show(page.settings, page.playing);
+  writeHash();
+}
+
+function writeHash() {
+  page.writtenHash = formatHash(page.settings);
+  if (location.hash !== page.writtenHash) history.replaceState(null, '', page.writtenHash);
+}
+
+// Replaces the robot; on failure the previous one keeps running and the Error (with
+// what urdfdom printed) propagates to the caller, which shows it.
+function loadRobot(source) {
+  moduleLog.length = 0;
+  let sim;
+  try {
+    sim = new Simulation(page.achd, source, page.settings);
+  } catch (err) {
+    const detail = moduleLog.filter((line) => !err.message.includes(line.trim())).join('\n');
+    const message = `could not load the robot: ${err.message}${detail ? '\n' + detail : ''}`;
+    showError(message);
+    throw new Error(message);
+  }
+  push.release();
+  page.pushedLink = null;
+  page.sim?.delete();
+  page.sim = sim;
+  page.settings.robot = source.name;
+  page.links = sim.links();
+  page.owed = 0;
+  page.lastFrame = null;
+  page.lastSolveTiming = -Infinity;
+  page.rate = { wall: 0, sim: 0, shown: null };
+  view.setChain(page.links, sim.movable);
+  if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
+    robotSelect.add(new Option(`own URDF`, CUSTOM));
+  }
+  robotSelect.value = source.name;
+  errorBox.hidden = true;
+  writeHash();
+}
+
+async function fetchText(path) {
+  // Index paths are relative to the repository root, one level above web/.
+  const response = await fetch(new URL(`../${path}`, import.meta.url));
+  if (!response.ok) throw new Error(`${path}: HTTP ${response.status}`);
+  return response.text();
+}
+
+async function selectRobot(name) {
+  const entry = page.index.robots.find((r) => r.name === name);
+  if (!entry) return;
+  try {
+    const text = await fetchText(entry.urdf);
+    loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 });
+  } catch (err) {
+    robotSelect.value = page.settings.robot;
+    showError(`${entry.name}: ${err.message}`);
+  }
+}
+
+function stepSimulation(n) {
+  const p = push.current();
+  if (p) {
+    page.sim.setPush(p.link, p.wrench);
+    page.pushedLink = p.link;
+  } else if (page.pushedLink !== null) {
+    page.sim.setPush(page.pushedLink, null);
+    page.pushedLink = null;
+  }
+  page.sim.step(n);
+  if (!isReady) {
+    isReady = true;
+    // The moment the page started stepping, for anyone timing the page's start-up.
+    performance.mark('achd:stepping');
+    markReady();
+  }
+}
+
+function frame(now) {
+  requestAnimationFrame(frame);
+  const sim = page.sim;
+  if (!sim) return;
+  try {
+    if (page.playing) {
+      if (page.lastFrame !== null) {
+        const wall = Math.min((now - page.lastFrame) / 1000, MAX_FRAME_SECONDS);
+        page.owed += wall;
+        const dt = page.settings.dt;
+        const n = Math.floor(page.owed / dt);
+        if (n > 0) {
+          const t0 = sim.t;
+          stepSimulation(n);
+          page.owed -= n * dt;
+          page.rate.sim += sim.t - t0;
+        }
+        page.rate.wall += (now - page.lastFrame) / 1000;
+        if (page.rate.wall * 1000 >= RATE_WINDOW_MS) {
+          page.rate.shown = page.rate.sim / page.rate.wall;
+          page.rate.wall = 0;
+          page.rate.sim = 0;
+        }
+      }
+      page.lastFrame = now;
+    }
+    if (now - page.lastSolveTiming >= SOLVE_TIMING_EVERY_MS) {
+      sim.measureSolve();
+      page.lastSolveTiming = now;
+    }
+    page.links = sim.links();
+    const p = push.current();
+    view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to });
+    view.render();
+    readouts.sample(sim);
+    readouts.drawCharts();
+    if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
+      page.lastNumbers = now;
+      readouts.showNumbers();
+      document.getElementById('readout-time').textContent = `t = ${sim.t.toFixed(2)} s`;
+      document.getElementById('readout-rtf').textContent = !page.playing ? 'paused'
+        : page.rate.shown === null ? '' : `running at ${page.rate.shown.toFixed(2)}× real time`;
+    }
+  } catch (err) {
+    setPlaying(false);
+    showError(`the simulation stopped: ${err.message}`);
+  }
+}
+
+// A shared link edited by hand (or the back button) applies without a reload.
+window.addEventListener('hashchange', () => {
+  if (!page.index || location.hash === page.writtenHash) return;
+  const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default));
+  const robot = settings.robot;
+  settings.robot = page.settings.robot;
+  Object.assign(page.settings, settings);
+  page.sim?.rebuild();
+  controls.show(page.settings, page.playing);
+  if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
+  if (robot !== page.settings.robot) selectRobot(robot);
+  else writeHash();
+});
+
+async function loadModule() {
+  let createAchd;
+  try {
+    ({ default: createAchd } = await import('./dist/achd.mjs'));
+  } catch (err) {
+    throw new Error(`web/dist/achd.mjs did not load (${err.message}); build it with ` +
+      '`cmake --preset wasm && cmake --build --preset wasm`');
+  }
+  return createAchd({ print: (line) => moduleLog.push(line), printErr: (line) => moduleLog.push(line) });
+}
+
+async function start() {
+  const [achd, indexText] = await Promise.all([loadModule(), fetchText('robots/index.json')]);
+  page.achd = achd;
+  page.index = JSON.parse(indexText);
+  for (const r of page.index.robots) robotSelect.add(new Option(r.title, r.name));
+
+  const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default));
+  if (!page.index.robots.some((r) => r.name === settings.robot)) {
+    problems.push(`robot "${settings.robot}" is not in robots/index.json (an own URDF cannot be shared by link)`);
+    settings.robot = page.index.default;
+  }
+  page.settings = settings;
+  controls.show(settings, page.playing);
+  const entry = page.index.robots.find((r) => r.name === settings.robot);
+  loadRobot({ name: entry.name, text: await fetchText(entry.urdf), root: entry.root, tip: entry.tip, q0: entry.q0 });
+  if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
+  requestAnimationFrame(frame);
+}
+
+start().catch((err) => {
+  showError(`the page could not start: ${err.message}`);
+  failReady(err);
+});

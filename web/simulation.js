@@ -1,0 +1,160 @@
+// One robot stepping on the page: the achd robot and simulator built from the page's
+// settings, the initial pose, the measured time per step and per solve, and plain
+// snapshots of the state. Effects and the integrator are fixed when a simulator is
+// created, so changing them builds a new one from the current state.
+import { DIRECTIONS } from './settings.js';
+import { chainLinks, isMovable, urdfTree } from './urdf_tree.js';
+
+const GRAVITY = [0, 0, -9.81];
+// The time per step shown is the mean over at least this much wall time: one frame's
+// worth of steps is below the browser's timer resolution on a fast robot.
+const TIMING_WINDOW_MS = 250;
+const SOLVE_TIMING_CALLS = 300;
+// Spring of the push, per kg of the chain: a 1/3 m drag then weighs about the robot.
+const PUSH_STIFFNESS_PER_KG = 30;
+
+function unitRow(name) {
+  const row = [0, 0, 0, 0, 0, 0];
+  row[DIRECTIONS.indexOf(name)] = 1;
+  return row;
+}
+
+export class Simulation {
+  // source: {name, text, root, tip, q0 (optional)}. Throws an Error naming the problem
+  // and owns nothing in that case.
+  constructor(achd, source, settings) {
+    this.name = source.name;
+    this.robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip });
+    try {
+      const tree = urdfTree(source.text);
+      const chain = chainLinks(tree, this.robot.root, this.robot.tip) ?? [];
+      this.movable = [false, ...this.robot.linkNames.map((l) => isMovable(tree, l))];
+      this.mass = chain.reduce((sum, l) => sum + (tree.mass.get(l) ?? 0), 0);
+      this.q0 = source.q0 ?? this.robot.limits.map((l) => (l.lower <= 0 && 0 <= l.upper ? 0 : (l.lower + l.upper) / 2));
+      if (this.q0.length !== this.robot.numJoints) {
+        throw new Error(`q0 has ${this.q0.length} values, the chain ${this.robot.numJoints} joints`);
+      }
+      this.settings = settings;
+      this.tOffset = 0;
+      this.sim = null;
+      this.solver = null;
+      this.build(this.q0, null);
+    } catch (err) {
+      this.delete();
+      throw err;
+    }
+    this.stepWindow = { ms: 0, steps: 0 };
+    this.stepMicros = null;
+    this.solveMicros = null;
+  }
+
+  // (Re)creates the simulator for the current settings, starting from q, qd.
+  build(q, qd) {
+    const t = this.t;
+    this.sim?.delete();
+    this.solver?.delete();
+    this.sim = null;
+    this.solver = null;
+    const effects = { ...this.settings.effects, rotorInertia: true, constraints: true };
+    this.sim = this.robot.createSimulator({ integrator: this.settings.integrator, effects, gravity: GRAVITY });
+    this.sim.reset(q, qd ?? undefined);
+    this.tOffset = t ?? 0;
+    // The solver mirrors the simulator's solve so that its time can be measured alone.
+    this.solver = this.robot.createSolver({ effects });
+    this.solver.useExternalWrenches = this.settings.effects.externalWrenches;
+    for (const name of DIRECTIONS) this.applyDirection(name);
+  }
+
+  get t() {
+    return this.sim ? this.tOffset + this.sim.t : undefined;
+  }
+
+  rebuild() {
+    this.build(Array.from(this.sim.q), Array.from(this.sim.qd));
+  }
+
+  // Applies settings.directions[name]; a held direction holds where the tip is now.
+  applyDirection(name) {
+    this.sim.setDirection(name, this.settings.directions[name]);
+  }
+
+  reset() {
+    this.tOffset = 0;
+    this.sim.reset(this.q0);
+    // reset() releases every direction; the page keeps the user's toggles.
+    for (const name of DIRECTIONS) this.applyDirection(name);
+  }
+
+  step(n) {
+    const start = performance.now();
+    this.sim.step(n, this.settings.dt);
+    const w = this.stepWindow;
+    w.ms += performance.now() - start;
+    w.steps += n;
+    if (w.ms >= TIMING_WINDOW_MS) {
+      this.stepMicros = (1000 * w.ms) / w.steps;
+      w.ms = 0;
+      w.steps = 0;
+    }
+  }
+
+  // The mean of the last full timing window, or of the steps so far before that.
+  currentStepMicros() {
+    const w = this.stepWindow;
+    return this.stepMicros ?? (w.steps ? (1000 * w.ms) / w.steps : null);
+  }
+
+  // Times the solve the simulator does at its current state, alone: one hybrid dynamics
+  // call with the held and accelerated directions as constraints.
+  measureSolve() {
+    const s = this.solver;
+    s.q.set(this.sim.q);
+    s.qd.set(this.sim.qd);
+    s.gravity.set(GRAVITY);
+    const constrained = DIRECTIONS.filter((d) => this.settings.directions[d] !== 'free');
+    s.numConstraints = constrained.length;
+    constrained.forEach((d, k) => {
+      s.alpha.set(unitRow(d), 6 * k);
+      s.beta[k] = 0;
+    });
+    s.f_ext.set(this.sim.f_ext);
+    const start = performance.now();
+    for (let i = 0; i < SOLVE_TIMING_CALLS; i++) s.solve();
+    this.solveMicros = (1000 * (performance.now() - start)) / SOLVE_TIMING_CALLS;
+  }
+
+  pushStiffness() {
+    return PUSH_STIFFNESS_PER_KG * Math.max(this.mass, 0.1);
+  }
+
+  // fkIndex: index into links() (root = 0); wrench null clears it.
+  setPush(fkIndex, wrench) {
+    this.sim.setExternalWrench(fkIndex - 1, wrench ?? [0, 0, 0, 0, 0, 0]);
+  }
+
+  // Every link's pose, root first (forward kinematics lists the links after the root).
+  links() {
+    const root = { name: this.robot.root, position: [0, 0, 0], rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1] };
+    return [root, ...this.robot.forwardKinematics(this.sim.q)];
+  }
+
+  snapshot() {
+    return {
+      robot: this.name,
+      t: this.t,
+      q: Array.from(this.sim.q),
+      qd: Array.from(this.sim.qd),
+      directions: { ...this.settings.directions },
+      residuals: this.sim.residuals(),
+      stepMicros: this.currentStepMicros(),
+    };
+  }
+
+  delete() {
+    this.solver?.delete();
+    this.sim?.delete();
+    if (!this.robot.deleted) this.robot.delete();
+    this.solver = null;
+    this.sim = null;
+  }
+}
