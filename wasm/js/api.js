@@ -1,0 +1,508 @@
+// The JavaScript API of achd (--post-js: runs inside the Emscripten module factory, so
+// it calls the wasm exports and reads HEAPF64 directly). `await createAchd()` resolves
+// to the module with loadURDF() on it. Plain objects and arrays returned by the API are
+// copies; the Float64Array properties of solvers and simulators are views on wasm
+// memory, re-created automatically when memory grows. See wasm/achd.d.ts.
+
+// achd::Effect bits (core/include/achd/options.hpp).
+const ACHD_EFFECT_BITS = {
+  gravity: 1, velocityProducts: 2, externalWrenches: 4, damping: 8,
+  friction: 16, rotorInertia: 32, constraints: 64,
+};
+const ACHD_DEFAULT_EFFECTS = 1 | 2 | 4 | 32 | 64;  // kDefaultEffects: no damping, friction
+const ACHD_ALL_EFFECTS = 127;
+const ACHD_MAX_CONSTRAINTS = 6;
+const ACHD_DIRECTIONS = ['x', 'y', 'z', 'rx', 'ry', 'rz'];
+const ACHD_INTEGRATORS = { euler: 0, 'semi-implicit': 1, rk4: 2 };
+
+function achdLastError() {
+  return new Error(UTF8ToString(_achd_last_error()));
+}
+
+function achdIsArrayLike(v) {
+  return Array.isArray(v) || (ArrayBuffer.isView(v) && !(v instanceof DataView));
+}
+
+// Checks n finite numbers, with the messages of tools/case_json.cpp: "q: expected 7
+// values, got 6", "q[3] is not finite"; achdWriteVector then stores them into HEAPF64 at
+// double index `at`.
+function achdCheckVector(value, field, n) {
+  if (!achdIsArrayLike(value)) throw new Error(`${field} must be an array of ${n} numbers`);
+  if (value.length !== n) throw new Error(`${field}: expected ${n} values, got ${value.length}`);
+  for (let i = 0; i < n; ++i) {
+    const x = value[i];
+    if (typeof x !== 'number') throw new Error(`${field}[${i}] must be a number`);
+    if (!Number.isFinite(x)) throw new Error(`${field}[${i}] is not finite`);
+  }
+}
+
+function achdWriteVector(value, field, n, at) {
+  achdCheckVector(value, field, n);
+  HEAPF64.set(value, at);
+}
+
+// A list of 6-vectors (alpha columns, f_ext wrenches) into HEAPF64 at double index `at`.
+function achdWriteSpatialList(value, field, count, at, what) {
+  if (!Array.isArray(value)) throw new Error(`${field} must be an array of 6-element ${what}`);
+  for (let k = 0; k < count; ++k) achdWriteVector(value[k], `${field}[${k}]`, 6, at + 6 * k);
+}
+
+function achdCheckObject(value, name, known) {
+  if (value === null || typeof value !== 'object' || Array.isArray(value))
+    throw new Error(`${name} must be an object`);
+  for (const key of Object.keys(value))
+    if (!known.includes(key)) throw new Error(`${name}: unknown field '${key}'`);
+}
+
+// Effects: an object of booleans over `defaults`, or the raw achd::Effect bit mask.
+function achdEffectBits(effects, defaults, name) {
+  if (effects === undefined) return defaults;
+  if (typeof effects === 'number') {
+    if (!Number.isInteger(effects) || effects < 0 || effects > ACHD_ALL_EFFECTS)
+      throw new Error(`${name} must be an integer bit mask in [0, ${ACHD_ALL_EFFECTS}], got ${effects}`);
+    return effects;
+  }
+  achdCheckObject(effects, name, Object.keys(ACHD_EFFECT_BITS));
+  let bits = defaults;
+  for (const key of Object.keys(effects)) {
+    const on = effects[key];
+    if (typeof on !== 'boolean') throw new Error(`${name}.${key} must be true or false`);
+    bits = on ? bits | ACHD_EFFECT_BITS[key] : bits & ~ACHD_EFFECT_BITS[key];
+  }
+  return bits;
+}
+
+function achdNonNegative(value, fallback, name) {
+  if (value === undefined) return fallback;
+  if (typeof value !== 'number' || !Number.isFinite(value) || value < 0)
+    throw new Error(`${name} must be a finite number >= 0, got ${value}`);
+  return value;
+}
+
+function achdChoice(value, choices, fallback, name) {
+  if (value === undefined) return fallback;
+  const i = choices.indexOf(value);
+  if (i < 0) throw new Error(`${name}: expected ${choices.map((c) => `'${c}'`).join(' or ')}, got '${value}'`);
+  return i;
+}
+
+// Solver options (achd::Options) -> the arguments of achd_solver_set_options.
+function achdSolverOptions(options) {
+  if (options === undefined || options === null) options = {};
+  achdCheckObject(options, 'options', ['convention', 'policy', 'tolerance', 'absoluteTolerance',
+    'damping', 'effects', 'frictionVelocity', 'maxConstraints']);
+  if (options.absoluteTolerance !== undefined && typeof options.absoluteTolerance !== 'boolean')
+    throw new Error('options.absoluteTolerance must be true or false');
+  return [
+    achdChoice(options.convention, ['physical', 'kdl'], 0, 'options.convention'),
+    achdChoice(options.policy, ['truncate', 'damped'], 0, 'options.policy'),
+    achdNonNegative(options.tolerance, 1e-12, 'options.tolerance'),
+    options.absoluteTolerance ? 1 : 0,
+    achdNonNegative(options.damping, 1e-6, 'options.damping'),
+    achdEffectBits(options.effects, ACHD_DEFAULT_EFFECTS, 'options.effects'),
+    achdNonNegative(options.frictionVelocity, 0.05, 'options.frictionVelocity'),
+  ];
+}
+
+// Copies `n` doubles starting at byte address `ptr` into a plain array.
+function achdCopy(ptr, n) {
+  return Array.from(HEAPF64.subarray(ptr >> 3, (ptr >> 3) + n));
+}
+
+function achdChunks(flat, size) {
+  const out = [];
+  for (let i = 0; i < flat.length; i += size) out.push(flat.slice(i, i + size));
+  return out;
+}
+
+// Runs fn(p) with p the double index of `n` scratch doubles in wasm memory.
+function achdWithScratch(n, fn) {
+  const bytes = _malloc(8 * Math.max(n, 1));
+  try {
+    return fn(bytes >> 3);
+  } finally {
+    _free(bytes);
+  }
+}
+
+function achdWithString(text, fn) {
+  const size = lengthBytesUTF8(text) + 1;
+  const p = _malloc(size);
+  try {
+    stringToUTF8(text, p, size);
+    return fn(p);
+  } finally {
+    _free(p);
+  }
+}
+
+// The part every wasm-owning object shares: a pointer, delete(), and Float64Array views
+// re-created whenever the wasm memory buffer has been replaced by growth.
+class AchdHandle {
+  constructor(kind, ptr, free) {
+    this._kind = kind;
+    this._ptr = ptr;
+    this._free = free;
+    this._buffer = null;
+    this._views = null;
+  }
+  _live() {
+    if (this._ptr === 0) throw new Error(`${this._kind} has been deleted`);
+    return this._ptr;
+  }
+  // _layout(): [name, buffer index, length]; _bufferOf(ptr, index): its byte address.
+  _view(name) {
+    if (this._ptr === 0) throw new Error(`${this._kind} has been deleted`);
+    if (this._buffer !== HEAPF64.buffer) this._mapViews();
+    return this._views[name];
+  }
+  _mapViews() {
+    this._buffer = HEAPF64.buffer;
+    this._views = {};
+    for (const v of this._layout())  // v = [name, buffer index, length]
+      this._views[v[0]] = new Float64Array(this._buffer, this._bufferOf(this._ptr, v[1]), v[2]);
+  }
+  get deleted() { return this._ptr === 0; }
+  delete() {
+    this._live();
+    this._free(this._ptr);
+    this._ptr = 0;
+    this._views = null;
+    this._buffer = null;
+  }
+}
+
+// The zero-copy solver: write the views, call solve(), read the views.
+class Solver extends AchdHandle {
+  constructor(robot, ptr, maxConstraints) {
+    super('Solver', ptr, _achd_solver_delete);
+    this.numJoints = robot.numJoints;
+    this.numLinks = robot.numLinks;
+    this.maxConstraints = maxConstraints;
+    this._nc = 0;
+    this._external = false;
+  }
+  _bufferOf(ptr, index) { return _achd_solver_buffer(ptr, index); }
+  _layout() {
+    const nj = this.numJoints, nl = this.numLinks, mc = this.maxConstraints;
+    return [['q', 0, nj], ['qd', 1, nj], ['ff_torques', 2, nj], ['gravity', 3, 3],
+      ['alpha', 4, 6 * mc], ['beta', 5, mc], ['f_ext', 6, 6 * nl], ['qdd', 7, nj],
+      ['nu', 8, this._nc], ['joint_torques', 9, nj], ['constraint_torques', 10, nj],
+      ['total_torques', 11, nj], ['link_accelerations', 12, 6 * (nl + 1)],
+      ['constraint_wrench', 13, 6]];
+  }
+  get q() { return this._view('q'); }
+  get qd() { return this._view('qd'); }
+  get ff_torques() { return this._view('ff_torques'); }
+  get gravity() { return this._view('gravity'); }
+  get alpha() { return this._view('alpha'); }
+  get beta() { return this._view('beta'); }
+  get f_ext() { return this._view('f_ext'); }
+  get qdd() { return this._view('qdd'); }
+  get nu() { return this._view('nu'); }
+  get joint_torques() { return this._view('joint_torques'); }
+  get constraint_torques() { return this._view('constraint_torques'); }
+  get total_torques() { return this._view('total_torques'); }
+  get link_accelerations() { return this._view('link_accelerations'); }
+  get constraint_wrench() { return this._view('constraint_wrench'); }
+  get rank() { return _achd_solver_rank(this._live()); }
+  get sigma_min() { return _achd_solver_sigma_min(this._live()); }
+  get numConstraints() { this._live(); return this._nc; }
+  set numConstraints(nc) {
+    if (!Number.isInteger(nc)) throw new Error(`numConstraints must be an integer, got ${nc}`);
+    if (_achd_solver_set_num_constraints(this._live(), nc)) throw achdLastError();
+    this._nc = nc;
+    this._buffer = null;  // the nu view's length changed
+  }
+  get useExternalWrenches() { this._live(); return this._external; }
+  set useExternalWrenches(on) {
+    if (typeof on !== 'boolean') throw new Error('useExternalWrenches must be true or false');
+    _achd_solver_use_external_wrenches(this._live(), on ? 1 : 0);
+    this._external = on;
+  }
+  setOptions(options) {
+    const ptr = this._live();
+    _achd_solver_set_options(ptr, ...achdSolverOptions(options));
+  }
+  // hybrid_dynamics on the views, in place: no allocation, no copy.
+  solve() {
+    if (_achd_solver_solve(this._ptr === 0 ? this._live() : this._ptr)) throw achdLastError();
+  }
+  // The outputs of the last solve as plain arrays (DESIGN.md's result object; a copy).
+  result() {
+    const ptr = this._live();
+    const nj = this.numJoints, nc = _achd_solver_nu_size(ptr);
+    const rows = _achd_solver_dropped_rows(ptr), cols = _achd_solver_dropped_cols(ptr);
+    return {
+      qdd: achdCopy(_achd_solver_buffer(ptr, 7), nj),
+      constraint_torques: achdCopy(_achd_solver_buffer(ptr, 10), nj),
+      total_torques: achdCopy(_achd_solver_buffer(ptr, 11), nj),
+      nu: achdCopy(_achd_solver_buffer(ptr, 8), nc),
+      joint_torques: achdCopy(_achd_solver_buffer(ptr, 9), nj),
+      constraint_wrench: achdCopy(_achd_solver_buffer(ptr, 13), 6),
+      link_accelerations: achdChunks(achdCopy(_achd_solver_buffer(ptr, 12), 6 * (this.numLinks + 1)), 6),
+      rank: _achd_solver_rank(ptr),
+      sigma_min: _achd_solver_sigma_min(ptr),
+      dropped: rows ? achdChunks(achdCopy(_achd_solver_buffer(ptr, 14), rows * cols), rows) : [],
+    };
+  }
+}
+
+// Time stepping; q, qd, ff_torques, f_ext are views on the simulator's state.
+class Simulator extends AchdHandle {
+  constructor(robot, ptr) {
+    super('Simulator', ptr, _achd_sim_delete);
+    this.numJoints = robot.numJoints;
+    this.numLinks = robot.numLinks;
+    this._linkNames = robot.linkNames;
+  }
+  _bufferOf(ptr, index) { return _achd_sim_buffer(ptr, index); }
+  _layout() {
+    return [['q', 0, this.numJoints], ['qd', 1, this.numJoints], ['t', 2, 1],
+      ['ff_torques', 3, this.numJoints], ['f_ext', 4, 6 * this.numLinks]];
+  }
+  get q() { return this._view('q'); }
+  get qd() { return this._view('qd'); }
+  get ff_torques() { return this._view('ff_torques'); }
+  get f_ext() { return this._view('f_ext'); }
+  get t() { return this._view('t')[0]; }
+  step(n = 1, dt = 1e-3) {
+    const ptr = this._live();
+    if (!Number.isInteger(n) || n < 0) throw new Error(`step: n must be an integer >= 0, got ${n}`);
+    if (typeof dt !== 'number' || !Number.isFinite(dt) || dt <= 0)
+      throw new Error(`step: dt must be a finite number > 0, got ${dt}`);
+    if (_achd_sim_run(ptr, n, dt)) throw achdLastError();
+  }
+  reset(q, qd) {
+    const ptr = this._live(), n = this.numJoints;
+    achdWithScratch(2 * n, (p) => {
+      achdWriteVector(q, 'q', n, p);
+      if (qd === undefined) HEAPF64.fill(0, p + n, p + 2 * n);
+      else achdWriteVector(qd, 'qd', n, p + n);
+      if (_achd_sim_reset(ptr, 8 * p, 8 * (p + n))) throw achdLastError();
+    });
+    this._buffer = null;  // reset() may have given q and qd new buffers
+  }
+  // name: x y z rx ry rz; mode: 'hold', 'free' or a number (classical acceleration setpoint).
+  setDirection(name, mode) {
+    const ptr = this._live();
+    const index = ACHD_DIRECTIONS.indexOf(name);
+    if (index < 0) throw new Error(`setDirection: unknown direction '${name}' (x, y, z, rx, ry, rz)`);
+    let code, setpoint = 0;
+    if (mode === 'free') code = 0;
+    else if (mode === 'hold') code = 1;
+    else if (typeof mode === 'number' && Number.isFinite(mode)) { code = 2; setpoint = mode; }
+    else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${mode}`);
+    if (_achd_sim_set_direction(ptr, index, code, setpoint)) throw achdLastError();
+  }
+  // Held-direction residuals (m or rad); null for free directions.
+  residuals() {
+    const ptr = this._live();
+    return achdWithScratch(6, (p) => {
+      _achd_sim_residuals(ptr, 8 * p);
+      const out = {};
+      ACHD_DIRECTIONS.forEach((name, k) => {
+        out[name] = _achd_sim_direction_mode(ptr, k) === 0 ? null : HEAPF64[p + k];
+      });
+      return out;
+    });
+  }
+  energy() {
+    const ptr = this._live();
+    const kinetic = _achd_sim_kinetic_energy(ptr), potential = _achd_sim_potential_energy(ptr);
+    return { kinetic, potential, total: kinetic + potential };
+  }
+  nu() { const ptr = this._live(); return achdCopy(_achd_sim_result(ptr, 0), _achd_sim_nu_size(ptr)); }
+  jointTorques() { return achdCopy(_achd_sim_result(this._live(), 1), this.numJoints); }
+  qdd() { return achdCopy(_achd_sim_result(this._live(), 2), this.numJoints); }
+  // The wrench on one link (index after the root, or its name), base orientation.
+  setExternalWrench(link, wrench) {
+    this._live();
+    const index = typeof link === 'string' ? this._linkNames.indexOf(link) : link;
+    if (!Number.isInteger(index) || index < 0 || index >= this.numLinks)
+      throw new Error(`setExternalWrench: unknown link ${JSON.stringify(link)} (index 0..${this.numLinks - 1} or a link name)`);
+    achdCheckVector(wrench, 'wrench', 6);
+    this.f_ext.set(wrench, 6 * index);
+  }
+}
+
+class Robot extends AchdHandle {
+  constructor(ptr) {
+    super('Robot', ptr, _achd_robot_delete);
+    const info = JSON.parse(UTF8ToString(_achd_robot_info(ptr)));
+    const bound = (x) => (Math.abs(x) >= 1e300 ? Math.sign(x) * Infinity : x);
+    this.root = info.root;
+    this.tip = info.tip;
+    this.numJoints = info.joints.length;
+    this.numLinks = info.links.length;
+    this.jointNames = info.joints.map((j) => j.name);
+    this.jointTypes = info.joints.map((j) => j.type);
+    this.limits = info.joints.map((j) => ({
+      lower: bound(j.lower), upper: bound(j.upper), velocity: j.velocity, effort: j.effort,
+    }));
+    this.damping = info.joints.map((j) => j.damping);
+    this.friction = info.joints.map((j) => j.friction);
+    this.linkNames = info.links;
+    this._solver = null;  // the solver behind solve(), created on first use
+  }
+  delete() {
+    if (this._solver) this._solver.delete();
+    this._solver = null;
+    super.delete();
+  }
+  createSolver(options) {
+    const ptr = this._live();
+    if (options === undefined || options === null) options = {};
+    achdCheckObject(options, 'options', ['convention', 'policy', 'tolerance', 'absoluteTolerance',
+      'damping', 'effects', 'frictionVelocity', 'maxConstraints']);
+    const mc = options.maxConstraints === undefined ? ACHD_MAX_CONSTRAINTS : options.maxConstraints;
+    if (!Number.isInteger(mc))
+      throw new Error(`options.maxConstraints must be an integer in [0, ${ACHD_MAX_CONSTRAINTS}], got ${mc}`);
+    const args = achdSolverOptions(options);
+    const s = _achd_solver_create(ptr, mc);
+    if (!s) throw achdLastError();
+    const solver = new Solver(this, s, mc);
+    _achd_solver_set_options(s, ...args);
+    const g = solver.gravity;
+    g[0] = 0; g[1] = 0; g[2] = -9.81;
+    return solver;
+  }
+  // DESIGN.md's case object in, its result object out (plain arrays: copies).
+  solve(c, options) {
+    this._live();
+    achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques']);
+    if (!('q' in c)) throw new Error("missing required field 'q'");
+    if (!('gravity' in c)) throw new Error("missing required field 'gravity'");
+    const args = achdSolverOptions(options);
+    if (!this._solver) this._solver = this.createSolver();
+    const s = this._solver, ptr = s._ptr, nj = this.numJoints, nl = this.numLinks;
+    const at = (index) => _achd_solver_buffer(ptr, index) >> 3;
+    achdWriteVector(c.q, 'q', nj, at(0));
+    achdWriteVector(c.gravity, 'gravity', 3, at(3));
+    if (c.qd === undefined) HEAPF64.fill(0, at(1), at(1) + nj);
+    else achdWriteVector(c.qd, 'qd', nj, at(1));
+    if (c.ff_torques === undefined) HEAPF64.fill(0, at(2), at(2) + nj);
+    else achdWriteVector(c.ff_torques, 'ff_torques', nj, at(2));
+    let nc = 0;
+    if (c.alpha !== undefined) {
+      if (!Array.isArray(c.alpha)) throw new Error('alpha must be an array of 6-element columns');
+      if (c.alpha.length > ACHD_MAX_CONSTRAINTS)
+        throw new Error(`alpha: at most ${ACHD_MAX_CONSTRAINTS} constraints, got ${c.alpha.length}`);
+      nc = c.alpha.length;
+      achdWriteSpatialList(c.alpha, 'alpha', nc, at(4), 'columns');
+    }
+    if (c.beta !== undefined) {
+      if (!achdIsArrayLike(c.beta)) throw new Error('beta must be an array of numbers');
+      if (c.beta.length !== nc)
+        throw new Error(`beta: expected ${nc} values (one per alpha column), got ${c.beta.length}`);
+      achdWriteVector(c.beta, 'beta', nc, at(5));
+    } else {
+      HEAPF64.fill(0, at(5), at(5) + nc);
+    }
+    if (c.f_ext !== undefined) {
+      if (!Array.isArray(c.f_ext)) throw new Error('f_ext must be an array of 6-element wrenches');
+      if (c.f_ext.length !== nl)
+        throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${c.f_ext.length}`);
+      s.useExternalWrenches = true;
+      achdWriteSpatialList(c.f_ext, 'f_ext', nl, at(6), 'wrenches');
+    } else {
+      s.useExternalWrenches = false;
+    }
+    s.numConstraints = nc;
+    _achd_solver_set_options(ptr, ...args);
+    s.solve();
+    return s.result();
+  }
+  _q(q, p) { achdWriteVector(q, 'q', this.numJoints, p); }
+  // [{name, position: [x, y, z], rotation: [9, row-major]}] per link after the root.
+  forwardKinematics(q) {
+    const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
+    return achdWithScratch(nj + 12 * nl, (p) => {
+      this._q(q, p);
+      if (_achd_robot_forward_kinematics(ptr, 8 * p, 8 * (p + nj))) throw achdLastError();
+      return this.linkNames.map((name, l) => {
+        const o = p + nj + 12 * l;
+        return { name, position: Array.from(HEAPF64.subarray(o, o + 3)),
+          rotation: Array.from(HEAPF64.subarray(o + 3, o + 12)) };
+      });
+    });
+  }
+  // 6 rows (linear first) of nj numbers: [v; w] of the tip link's origin = J qd.
+  tipJacobian(q) {
+    const ptr = this._live(), nj = this.numJoints;
+    return achdWithScratch(7 * nj, (p) => {
+      this._q(q, p);
+      if (_achd_robot_tip_jacobian(ptr, 8 * p, 8 * (p + nj))) throw achdLastError();
+      return achdChunks(Array.from(HEAPF64.subarray(p + nj, p + 7 * nj)), nj);
+    });
+  }
+  // M(q) as nj rows, rotor inertia included unless {rotorInertia: false}.
+  massMatrix(q, options) {
+    const ptr = this._live(), nj = this.numJoints;
+    if (options === undefined) options = {};
+    achdCheckObject(options, 'options', ['rotorInertia']);
+    const rotor = options.rotorInertia === undefined ? true : options.rotorInertia;
+    if (typeof rotor !== 'boolean') throw new Error('options.rotorInertia must be true or false');
+    return achdWithScratch(nj + nj * nj, (p) => {
+      this._q(q, p);
+      if (_achd_robot_mass_matrix(ptr, 8 * p, rotor ? 1 : 0, 8 * (p + nj))) throw achdLastError();
+      return achdChunks(Array.from(HEAPF64.subarray(p + nj, p + nj + nj * nj)), Math.max(nj, 1));
+    });
+  }
+  // Inverse dynamics: the joint torques for (q, qd, qdd) under gravity and f_ext.
+  rnea(q, qd, qdd, options) {
+    const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
+    if (options === undefined) options = {};
+    achdCheckObject(options, 'options', ['gravity', 'f_ext', 'effects', 'frictionVelocity']);
+    const effects = achdEffectBits(options.effects, ACHD_DEFAULT_EFFECTS, 'options.effects');
+    const fv = achdNonNegative(options.frictionVelocity, 0.05, 'options.frictionVelocity');
+    return achdWithScratch(4 * nj + 3 + 6 * nl, (p) => {
+      const g = p + 4 * nj, f = g + 3;
+      this._q(q, p);
+      achdWriteVector(qd, 'qd', nj, p + nj);
+      achdWriteVector(qdd, 'qdd', nj, p + 2 * nj);
+      achdWriteVector(options.gravity === undefined ? [0, 0, -9.81] : options.gravity, 'gravity', 3, g);
+      if (options.f_ext !== undefined) {
+        if (!Array.isArray(options.f_ext) || options.f_ext.length !== nl)
+          throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${
+            Array.isArray(options.f_ext) ? options.f_ext.length : typeof options.f_ext}`);
+        achdWriteSpatialList(options.f_ext, 'f_ext', nl, f, 'wrenches');
+      }
+      if (_achd_robot_rnea(ptr, 8 * p, 8 * (p + nj), 8 * (p + 2 * nj), 8 * g,
+        options.f_ext === undefined ? 0 : 8 * f, effects, fv, 8 * (p + 3 * nj))) throw achdLastError();
+      return Array.from(HEAPF64.subarray(p + 3 * nj, p + 4 * nj));
+    });
+  }
+  createSimulator(options) {
+    const ptr = this._live();
+    if (typeof Module['_achd_sim_create'] !== 'function')
+      throw new Error('createSimulator: this build of achd has no simulator (core without simulator.cpp)');
+    if (options === undefined || options === null) options = {};
+    achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity']);
+    const integrator = options.integrator === undefined ? 'rk4' : options.integrator;
+    if (!(integrator in ACHD_INTEGRATORS))
+      throw new Error(`options.integrator: expected 'rk4', 'euler' or 'semi-implicit', got '${integrator}'`);
+    const effects = achdEffectBits(options.effects, ACHD_ALL_EFFECTS, 'options.effects');
+    const sim = achdWithScratch(3, (p) => {
+      achdWriteVector(options.gravity === undefined ? [0, 0, -9.81] : options.gravity, 'gravity', 3, p);
+      return _achd_sim_create(ptr, ACHD_INTEGRATORS[integrator], effects, 8 * p);
+    });
+    if (!sim) throw achdLastError();
+    return new Simulator(this, sim);
+  }
+}
+
+// Loads the chain root -> tip from URDF text; throws an Error naming the problem.
+Module['loadURDF'] = function loadURDF(text, options) {
+  if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
+  achdCheckObject(options, 'loadURDF options', ['root', 'tip']);
+  for (const key of ['root', 'tip'])
+    if (typeof options[key] !== 'string') throw new Error(`loadURDF: options.${key} must be a link name`);
+  const ptr = achdWithString(text, (x) => achdWithString(options.root, (r) =>
+    achdWithString(options.tip, (t) => _achd_robot_load(x, r, t))));
+  if (!ptr) throw achdLastError();
+  return new Robot(ptr);
+};
+// Bytes of wasm memory (grows, never shrinks): for leak checks.
+Module['memoryBytes'] = function memoryBytes() { return HEAPU8.length; };
+Module['Effects'] = Object.freeze(Object.assign({}, ACHD_EFFECT_BITS));

@@ -1,0 +1,41 @@
+#pragma once
+// The C ABI between the wasm module and its JS wrapper (wasm/js/api.js). Functions that
+// can fail return a status (0 = ok) or a null pointer and leave the message of the
+// exception in last_error(); the wrapper turns it into a JS Error. Try blocks cost
+// nothing here: the module is built with native wasm exceptions.
+#include <exception>
+#include <memory>
+#include <string>
+
+#include <emscripten/emscripten.h>
+
+#include "achd/model.hpp"
+
+#define ACHD_EXPORT extern "C" EMSCRIPTEN_KEEPALIVE
+
+namespace achd::wasm {
+
+// A loaded robot: solvers and simulators share its model, so deleting the robot first
+// leaves them valid.
+struct Robot {
+  std::shared_ptr<const Model> model;
+  std::string info;  // JSON description read once by the wrapper (names, limits, ...)
+};
+
+void set_last_error(const char* message);
+
+// Runs f(); on an exception stores its message and returns 1.
+template <typename F>
+int guarded(F&& f) {
+  try {
+    f();
+    return 0;
+  } catch (const std::exception& e) {
+    set_last_error(e.what());
+  } catch (...) {
+    set_last_error("unknown C++ exception");
+  }
+  return 1;
+}
+
+}  // namespace achd::wasm

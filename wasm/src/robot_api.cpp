@@ -1,0 +1,118 @@
+// Robots: URDF loading, the description the wrapper reads once, and the copying
+// computations (forward kinematics, tip Jacobian, mass matrix, RNEA). Inputs and outputs
+// are wasm-memory arrays the wrapper owns; lengths are checked by the wrapper.
+#include <cstdio>
+
+#include "achd/achd.hpp"
+#include "c_api.hpp"
+
+namespace achd::wasm {
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (static_cast<unsigned char>(ch) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+// {"root", "tip", "joints": [{name, type, lower, upper, velocity, effort, damping,
+// friction}], "links": [names after the root]}
+std::string describe(const Model& m) {
+  std::string s = "{\"root\":" + quoted(m.root_name) + ",\"tip\":" + quoted(m.tip_name) + ",\"joints\":[";
+  for (int j = 0; j < m.num_joints(); ++j) {
+    const Body& b = m.bodies[j];
+    s += std::string(j ? "," : "") + "{\"name\":" + quoted(b.joint_name) + ",\"type\":" +
+         quoted(joint_type_name(b.type)) + ",\"lower\":" + number(b.limits.lower) +
+         ",\"upper\":" + number(b.limits.upper) + ",\"velocity\":" + number(b.limits.velocity) +
+         ",\"effort\":" + number(b.limits.effort) + ",\"damping\":" + number(b.damping) +
+         ",\"friction\":" + number(b.friction) + "}";
+  }
+  s += "],\"links\":[";
+  for (int l = 0; l < m.num_links(); ++l) s += (l ? "," : "") + quoted(m.links[l].name);
+  return s + "]}";
+}
+
+Eigen::Map<const Eigen::VectorXd> vec(const double* p, int n) { return {p, n}; }
+
+}  // namespace
+}  // namespace achd::wasm
+
+using achd::wasm::Robot;
+
+// Returns the robot, or null with the reason in achd_last_error().
+ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip) {
+  Robot* robot = nullptr;
+  achd::wasm::guarded([&] {
+    auto model = std::make_shared<const achd::Model>(achd::load_urdf_string(xml, root, tip));
+    robot = new Robot{model, achd::wasm::describe(*model)};
+  });
+  return robot;
+}
+
+ACHD_EXPORT void achd_robot_delete(Robot* r) { delete r; }
+ACHD_EXPORT const char* achd_robot_info(const Robot* r) { return r->info.c_str(); }
+
+// out: per link after the root, position (3) then rotation (9, row-major), root frame.
+ACHD_EXPORT int achd_robot_forward_kinematics(const Robot* r, const double* q, double* out) {
+  return achd::wasm::guarded([&] {
+    const std::vector<achd::Transform> poses =
+        achd::forward_kinematics(*r->model, achd::wasm::vec(q, r->model->num_joints()));
+    for (const achd::Transform& X : poses) {
+      for (int k = 0; k < 3; ++k) *out++ = X.p[k];
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) *out++ = X.R(i, k);
+    }
+  });
+}
+
+// out: the 6 x nj tip Jacobian, row-major, linear rows first.
+ACHD_EXPORT int achd_robot_tip_jacobian(const Robot* r, const double* q, double* out) {
+  return achd::wasm::guarded([&] {
+    const Eigen::MatrixXd J = achd::tip_jacobian(*r->model, achd::wasm::vec(q, r->model->num_joints()));
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out, J.rows(), J.cols()) = J;
+  });
+}
+
+// out: M(q), nj x nj row-major, with the rotor inertia on the diagonal if rotor != 0.
+ACHD_EXPORT int achd_robot_mass_matrix(const Robot* r, const double* q, int rotor, double* out) {
+  return achd::wasm::guarded([&] {
+    const int n = r->model->num_joints();
+    const Eigen::MatrixXd M = achd::crba(*r->model, achd::wasm::vec(q, n), rotor != 0);
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out, n, n) = M;
+  });
+}
+
+// out = RNEA(q, qd, qdd; gravity, f_ext) for the effects bits; f_ext null = none, else
+// 6 per link after the root.
+ACHD_EXPORT int achd_robot_rnea(const Robot* r, const double* q, const double* qd, const double* qdd,
+                                const double* gravity, const double* f_ext, unsigned effects,
+                                double friction_velocity, double* out) {
+  return achd::wasm::guarded([&] {
+    const achd::Model& m = *r->model;
+    const int n = m.num_joints();
+    std::vector<achd::Vector6> wrenches;
+    if (f_ext)
+      for (int l = 0; l < m.num_links(); ++l) wrenches.emplace_back(f_ext + 6 * l);
+    const Eigen::VectorXd tau = achd::rnea(m, achd::wasm::vec(q, n), achd::wasm::vec(qd, n),
+                                           achd::wasm::vec(qdd, n), achd::Vector3(gravity),
+                                           wrenches, effects, friction_velocity);
+    Eigen::Map<Eigen::VectorXd>(out, n) = tau;
+  });
+}

@@ -1,0 +1,78 @@
+// The simulator: achd::Simulator stepping a robot, its state (q, qd, t, ff_torques,
+// f_ext) exposed to JS as views on the Simulator's own Eigen buffers.
+#include "achd/achd.hpp"
+#include "achd/simulator.hpp"
+#include "c_api.hpp"
+
+using achd::wasm::Robot;
+
+// integrator: 0 explicit Euler, 1 semi-implicit Euler, 2 RK4 (achd::Integrator order).
+ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, unsigned effects,
+                                             const double* gravity) {
+  achd::Simulator* sim = nullptr;
+  achd::wasm::guarded([&] {
+    achd::SimulatorOptions o;
+    o.integrator = static_cast<achd::Integrator>(integrator);
+    o.effects = effects;
+    o.gravity = achd::Vector3(gravity);
+    sim = new achd::Simulator(*r->model, o);
+    if (sim->f_ext.empty()) sim->f_ext.assign(r->model->num_links(), achd::Vector6::Zero());
+  });
+  return sim;
+}
+
+ACHD_EXPORT void achd_sim_delete(achd::Simulator* sim) { delete sim; }
+
+// The buffers behind the JS views: 0 q, 1 qd, 2 t, 3 ff_torques, 4 f_ext (6 per link).
+ACHD_EXPORT double* achd_sim_buffer(achd::Simulator* sim, int which) {
+  switch (which) {
+    case 0: return sim->q.data();
+    case 1: return sim->qd.data();
+    case 2: return &sim->t;
+    case 3: return sim->ff_torques.data();
+    case 4: return sim->f_ext.front().data();
+    default: return nullptr;
+  }
+}
+
+ACHD_EXPORT int achd_sim_run(achd::Simulator* sim, int steps, double dt) {
+  return achd::wasm::guarded([&] { sim->run(steps, dt); });
+}
+
+ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const double* qd) {
+  return achd::wasm::guarded([&] {
+    const int n = static_cast<int>(sim->q.size());
+    sim->reset(Eigen::Map<const Eigen::VectorXd>(q, n), Eigen::Map<const Eigen::VectorXd>(qd, n));
+  });
+}
+
+// mode: 0 free, 1 hold, 2 accelerate (classical tip acceleration = setpoint).
+ACHD_EXPORT int achd_sim_set_direction(achd::Simulator* sim, int index, int mode, double setpoint) {
+  return achd::wasm::guarded(
+      [&] { sim->set_direction(index, static_cast<achd::DirectionMode>(mode), setpoint); });
+}
+
+ACHD_EXPORT int achd_sim_direction_mode(const achd::Simulator* sim, int index) {
+  return static_cast<int>(sim->direction_mode(index));
+}
+
+// out: the 6 held-direction residuals (m or rad).
+ACHD_EXPORT void achd_sim_residuals(const achd::Simulator* sim, double* out) {
+  const std::array<double, achd::kNumDirections> r = sim->residuals();
+  for (int k = 0; k < achd::kNumDirections; ++k) out[k] = r[k];
+}
+
+ACHD_EXPORT double achd_sim_kinetic_energy(const achd::Simulator* sim) { return sim->kinetic_energy(); }
+ACHD_EXPORT double achd_sim_potential_energy(const achd::Simulator* sim) { return sim->potential_energy(); }
+
+// The solve at the start of the last step: 0 nu, 1 joint_torques, 2 qdd.
+ACHD_EXPORT const double* achd_sim_result(const achd::Simulator* sim, int which) {
+  const achd::Data& d = sim->data();
+  switch (which) {
+    case 0: return d.nu.data();
+    case 1: return d.joint_torques.data();
+    case 2: return d.qdd.data();
+    default: return nullptr;
+  }
+}
+ACHD_EXPORT int achd_sim_nu_size(const achd::Simulator* sim) { return static_cast<int>(sim->data().nu.size()); }

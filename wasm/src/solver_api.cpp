@@ -1,0 +1,116 @@
+// The zero-copy solver: a Case and a Data owned here, whose Eigen buffers the JS views
+// point into. solve() runs hybrid_dynamics on them in place: no allocation, no copy.
+#include <cstddef>
+
+#include "achd/achd.hpp"
+#include "c_api.hpp"
+
+namespace achd::wasm {
+
+static_assert(sizeof(Vector6) == 6 * sizeof(double), "Vector6 arrays must be dense for the views");
+
+struct Solver {
+  explicit Solver(std::shared_ptr<const Model> m, int max_constraints)
+      : model(std::move(m)), c(Case::zeros(*model)), data(*model), max_constraints(max_constraints) {
+    const int n = model->num_joints();
+    c.qd.setZero(n);
+    c.ff_torques.setZero(n);
+    // alpha and beta live in fixed inline storage: resizing the column count keeps the
+    // values, so the views cover all max_constraints columns.
+    c.alpha.setZero(6, kMaxConstraints);
+    c.beta.setZero(kMaxConstraints);
+    c.alpha.resize(6, 0);
+    c.beta.resize(0);
+    parked_f_ext.assign(model->num_links(), Vector6::Zero());
+  }
+  std::shared_ptr<const Model> model;
+  Case c;
+  Data data;
+  Options options;
+  int max_constraints;
+  // The f_ext buffer while external wrenches are off (c.f_ext is then empty); swapping
+  // moves the buffer between the two vectors without reallocating it.
+  std::vector<Vector6> parked_f_ext;
+};
+
+}  // namespace achd::wasm
+
+using achd::wasm::Robot;
+using achd::wasm::Solver;
+
+ACHD_EXPORT Solver* achd_solver_create(const Robot* r, int max_constraints) {
+  Solver* s = nullptr;
+  achd::wasm::guarded([&] {
+    if (max_constraints < 0 || max_constraints > achd::kMaxConstraints)
+      throw achd::Error("maxConstraints must be an integer in [0, " +
+                        std::to_string(achd::kMaxConstraints) + "], got " + std::to_string(max_constraints));
+    s = new Solver(r->model, max_constraints);
+  });
+  return s;
+}
+
+ACHD_EXPORT void achd_solver_delete(Solver* s) { delete s; }
+
+// The buffers behind the JS views, by index (the wrapper's BUFFERS table lists them).
+ACHD_EXPORT double* achd_solver_buffer(Solver* s, int which) {
+  achd::Case& c = s->c;
+  achd::Data& d = s->data;
+  std::vector<achd::Vector6>& f_ext = c.f_ext.empty() ? s->parked_f_ext : c.f_ext;
+  switch (which) {
+    case 0: return c.q.data();
+    case 1: return c.qd.data();
+    case 2: return c.ff_torques.data();
+    case 3: return c.gravity.data();
+    case 4: return c.alpha.data();
+    case 5: return c.beta.data();
+    case 6: return f_ext.front().data();
+    case 7: return d.qdd.data();
+    case 8: return d.nu.data();
+    case 9: return d.joint_torques.data();
+    case 10: return d.constraint_torques.data();
+    case 11: return d.total_torques.data();
+    case 12: return d.link_accelerations.front().data();
+    case 13: return d.constraint_wrench.data();
+    case 14: return d.dropped.data();
+    default: return nullptr;
+  }
+}
+
+ACHD_EXPORT int achd_solver_set_num_constraints(Solver* s, int nc) {
+  return achd::wasm::guarded([&] {
+    if (nc < 0 || nc > s->max_constraints)
+      throw achd::Error("numConstraints must be an integer in [0, " + std::to_string(s->max_constraints) +
+                        "] (maxConstraints), got " + std::to_string(nc));
+    s->c.alpha.resize(6, nc);
+    s->c.beta.resize(nc);
+  });
+}
+
+ACHD_EXPORT void achd_solver_use_external_wrenches(Solver* s, int on) {
+  if ((on != 0) == !s->c.f_ext.empty()) return;
+  s->c.f_ext.swap(s->parked_f_ext);
+}
+
+// convention 0 physical / 1 kdl; policy 0 truncate / 1 damped; effects: achd::Effect bits.
+ACHD_EXPORT void achd_solver_set_options(Solver* s, int convention, int policy, double tolerance,
+                                         int absolute_tolerance, double damping, unsigned effects,
+                                         double friction_velocity) {
+  achd::Options& o = s->options;
+  o.convention = convention ? achd::Convention::Kdl : achd::Convention::Physical;
+  o.policy = policy ? achd::SingularityPolicy::Damped : achd::SingularityPolicy::Truncate;
+  o.tolerance = tolerance;
+  o.absolute_tolerance = absolute_tolerance != 0;
+  o.damping = damping;
+  o.effects = effects;
+  o.friction_velocity = friction_velocity;
+}
+
+ACHD_EXPORT int achd_solver_solve(Solver* s) {
+  return achd::wasm::guarded([&] { achd::hybrid_dynamics(*s->model, s->data, s->c, s->options); });
+}
+
+ACHD_EXPORT int achd_solver_rank(const Solver* s) { return s->data.rank; }
+ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) { return s->data.sigma_min; }
+ACHD_EXPORT int achd_solver_nu_size(const Solver* s) { return static_cast<int>(s->data.nu.size()); }
+ACHD_EXPORT int achd_solver_dropped_rows(const Solver* s) { return static_cast<int>(s->data.dropped.rows()); }
+ACHD_EXPORT int achd_solver_dropped_cols(const Solver* s) { return static_cast<int>(s->data.dropped.cols()); }
