@@ -1,0 +1,111 @@
+// hybrid_dynamics() never allocates: malloc/calloc/realloc and operator new are counted
+// while it runs, for every robot of robots/index.json, every constraint count 0..6, with
+// qd, f_ext and ff torques nonzero, in both conventions and both singularity policies.
+#include <cstdlib>
+#include <fstream>
+#include <new>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "achd/achd.hpp"
+
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_calloc(std::size_t, std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+extern "C" void __libc_free(void*);
+
+namespace {
+bool g_counting = false;
+long g_allocations = 0;
+void count() {
+  if (g_counting) ++g_allocations;
+}
+}  // namespace
+
+extern "C" void* malloc(std::size_t n) {
+  count();
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t n, std::size_t s) {
+  count();
+  return __libc_calloc(n, s);
+}
+extern "C" void* realloc(void* p, std::size_t n) {
+  count();
+  return __libc_realloc(p, n);
+}
+void* operator new(std::size_t n) {
+  count();
+  if (void* p = __libc_malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { __libc_free(p); }
+void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
+
+namespace {
+
+const std::string kRepo = std::string(__FILE__).substr(0, std::string(__FILE__).rfind("/tests/native/"));
+
+// Allocations made by one hybrid_dynamics() call.
+long allocations_of_solve(const achd::Model& m, achd::Data& d, const achd::Case& c,
+                          const achd::Options& o) {
+  g_allocations = 0;
+  g_counting = true;
+  achd::hybrid_dynamics(m, d, c, o);
+  g_counting = false;
+  return g_allocations;
+}
+
+TEST(NoAllocation, CountingAllocatorSeesEveryKindOfAllocation) {
+  g_allocations = 0;
+  g_counting = true;
+  std::vector<double>* v = new std::vector<double>(100);  // operator new, twice
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(100);         // Eigen's malloc
+  g_counting = false;
+  delete v;
+  EXPECT_EQ(g_allocations, 3);
+  EXPECT_EQ(x.size(), 100);
+}
+
+TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
+  std::ifstream in(kRepo + "/robots/index.json");
+  ASSERT_TRUE(in) << kRepo;
+  const nlohmann::json index = nlohmann::json::parse(in);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int solves = 0;
+  for (const auto& r : index["robots"]) {
+    const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
+                                               r["root"].get<std::string>(), r["tip"].get<std::string>());
+    achd::Data d(m);
+    const int n = m.num_joints();
+    achd::Case c = achd::Case::zeros(m);
+    for (int i = 0; i < n; ++i) c.q[i] = r["q0"][i].get<double>();
+    c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.f_ext.assign(m.num_links(), achd::Vector6::Zero());
+    for (auto& w : c.f_ext) w = achd::Vector6::NullaryExpr([&] { return U(rng); });
+    for (int nc = 0; nc <= achd::kMaxConstraints; ++nc) {
+      c.alpha = achd::ConstraintMatrix::NullaryExpr(6, nc, [&] { return U(rng); });
+      c.beta = achd::ConstraintVector::NullaryExpr(nc, [&] { return U(rng); });
+      for (auto conv : {achd::Convention::Physical, achd::Convention::Kdl})
+        for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::Damped}) {
+          achd::Options o;
+          o.convention = conv;
+          o.policy = policy;
+          o.effects = achd::kAllEffects;
+          EXPECT_EQ(allocations_of_solve(m, d, c, o), 0)
+              << r["name"] << " nc=" << nc << " kdl=" << (conv == achd::Convention::Kdl)
+              << " damped=" << (policy == achd::SingularityPolicy::Damped);
+          ASSERT_TRUE(d.qdd.allFinite());
+          ++solves;
+        }
+    }
+  }
+  EXPECT_EQ(solves, static_cast<int>(index["robots"].size()) * 7 * 4);
+}
+
+}  // namespace
