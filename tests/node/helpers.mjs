@@ -1,0 +1,87 @@
+// Shared by the Node tests and bench/wasm_vs_native.mjs: the built module, the native
+// CLI (DESIGN.md's Release build), DESIGN.md's relative error and robots/index.json.
+import { execFile, execFileSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+export const repo = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+
+// web/dist/achd.mjs, built by `cmake --preset wasm && cmake --build --preset wasm`.
+export async function loadAchd() {
+  const path = join(repo, 'web/dist/achd.mjs');
+  if (!existsSync(path))
+    throw new Error(`${path} is missing: run cmake --preset wasm && cmake --build --preset wasm`);
+  const { default: createAchd } = await import(path);
+  return createAchd();
+}
+
+// The native `achd` CLI: $ACHD_CLI, else build/achd, built there first if absent.
+export function nativeCli() {
+  if (process.env.ACHD_CLI) return resolve(process.env.ACHD_CLI);
+  const cli = join(repo, 'build/achd');
+  if (!existsSync(cli)) {
+    const run = (args) => execFileSync('cmake', args, { cwd: repo, stdio: 'inherit' });
+    run(['-S', '.', '-B', 'build', '-DCMAKE_BUILD_TYPE=Release']);
+    run(['--build', 'build', '--target', 'achd_cli', '-j2']);
+  }
+  return cli;
+}
+
+export function robots() {
+  const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
+  return index.robots.map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8') }));
+}
+
+// max|a - b| / max(1, max|b|) over flat arrays of equal length.
+export function relativeError(a, b) {
+  if (a.length !== b.length) return Infinity;
+  let diff = 0, scale = 1;
+  for (let i = 0; i < a.length; ++i) {
+    diff = Math.max(diff, Math.abs(a[i] - b[i]));
+    scale = Math.max(scale, Math.abs(b[i]));
+  }
+  return diff / scale;
+}
+
+export function scratchDir() {
+  const dir = mkdtempSync(join(tmpdir(), 'achd-node-'));
+  return { dir, write: (name, text) => { const p = join(dir, name); writeFileSync(p, text); return p; },
+    remove: () => rmSync(dir, { recursive: true, force: true }) };
+}
+
+// CLI flags for the options object robot.solve() takes.
+export function cliOptionFlags(options = {}) {
+  const flags = [];
+  if (options.convention) flags.push('--convention', options.convention);
+  if (options.policy) flags.push('--policy', options.policy);
+  if (options.tolerance !== undefined) flags.push('--tolerance', String(options.tolerance));
+  if (options.damping !== undefined) flags.push('--damping', String(options.damping));
+  if (options.absoluteTolerance) flags.push('--absolute-tolerance');
+  return flags;
+}
+
+// Runs `achd args...`; resolves to stdout, rejects with stderr on a non-zero exit.
+export function runCli(cli, args) {
+  return new Promise((ok, fail) => {
+    execFile(cli, args, { maxBuffer: 1 << 26 }, (error, stdout, stderr) => {
+      if (error) fail(new Error(`achd ${args.join(' ')}: ${stderr || error.message}`));
+      else ok(stdout);
+    });
+  });
+}
+
+// Runs the async jobs with at most `width` at a time (the machine has 2 cores).
+export async function pool(jobs, width = 2) {
+  const results = new Array(jobs.length);
+  let next = 0;
+  const worker = async () => {
+    while (next < jobs.length) {
+      const i = next++;
+      results[i] = await jobs[i]();
+    }
+  };
+  await Promise.all(Array.from({ length: Math.min(width, jobs.length) }, worker));
+  return results;
+}
