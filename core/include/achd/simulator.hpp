@@ -30,6 +30,32 @@ const char* direction_name(int index);
 int index_of_direction(const std::string& name);
 const char* integrator_name(Integrator integrator);
 
+// The held set: one mode per direction, with what each mode needs.
+struct HeldDirections {
+  std::array<DirectionMode, kNumDirections> mode{};
+  std::array<double, kNumDirections> setpoint{};  // Accelerate: classical acceleration
+  std::array<double, kNumDirections> target{};    // Hold, linear: e . p_tip when set
+  std::array<double, kNumDirections> angle{};     // Hold, angular: integral of e . w_tip
+
+  bool active(int k) const { return mode[k] != DirectionMode::Free; }
+  int count() const;
+};
+
+// Baumgarte frequency used when SimulatorOptions::stabilisation_frequency is 0:
+// w_n = kBaumgarteStepFraction / dt (100 rad/s at dt = 1 ms), so w_n dt stays far
+// inside the stability region of every integrator (explicit Euler: w_n dt < 2 at
+// zeta = 1) and a held error decays by e^-0.1 per step.
+constexpr double kBaumgarteStepFraction = 0.1;
+
+// Friction is F tanh(qd / v_f): near qd = 0 it acts as a damper of F / v_f, stiff for
+// a light distal joint (KUKA LWR joint 7 at v_f = 0.05: 8300 1/s). The simulator raises
+// v_f, per step, so that friction adds at most kFrictionRateLimit / dt to any joint's
+// linearised decay rate (b_i + F_i / v_f) / I_i, I_i being the joint's own body inertia
+// about its axis (+ rotor): v_f >= F_i dt / (kFrictionRateLimit I_i). Damping's share
+// b_i dt / I_i is the caller's choice of dt; the sum must stay inside the real-axis
+// stability limit of the integrator (explicit and semi-implicit Euler 2, RK4 2.785).
+constexpr double kFrictionRateLimit = 1.0;
+
 struct SimulatorOptions {
   Integrator integrator = Integrator::RK4;
   std::uint32_t effects = kAllEffects;       // achd::Effect bits
@@ -46,7 +72,7 @@ class Simulator {
   Simulator(const Model& model, const SimulatorOptions& options = {});
 
   // State, root to tip. Setting them directly is allowed; reset() also restarts t,
-  // releases every direction and clears the energy and drift records.
+  // releases every direction and clears the drift and limit records.
   Eigen::VectorXd q, qd;
   double t = 0;
   Eigen::VectorXd ff_torques;   // joint torques applied every step (default 0)
@@ -60,11 +86,21 @@ class Simulator {
 
   // Held-direction residuals in m or rad (0 for directions that are not held).
   std::array<double, kNumDirections> residuals() const;
+  // The largest |residual| of each direction since it was set (or since reset()).
+  std::array<double, kNumDirections> max_residuals() const;
+  double setpoint(int index) const;
+  const HeldDirections& directions() const { return held_; }
+  // Pose of the tip link in the base frame and its velocity [v; w] (base orientation).
+  Transform tip_pose() const;
+  Vector6 tip_velocity() const;
   double kinetic_energy() const;
   double potential_energy() const;  // gravity only; 0 when gravity is off
   double energy() const { return kinetic_energy() + potential_energy(); }
   // The solve at the start of the last step (nu, joint torques, ...).
   const Data& data() const { return data_; }
+  // The friction smoothing velocity a step of dt uses: max(options().solver.friction_velocity,
+  // the stability floor above).
+  double friction_velocity(double dt) const;
   const Model& model() const { return model_; }
   const SimulatorOptions& options() const { return options_; }
   SimulatorOptions& options() { return options_; }
@@ -72,15 +108,31 @@ class Simulator {
   const std::vector<int>& limit_hits() const { return limit_hits_; }
 
  private:
+  // Joint accelerations (into `out`) and held-angle rates at one state.
+  void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                const std::array<double, kNumDirections>& angle, double w_n, Data& out,
+                std::array<double, kNumDirections>& angle_rate);
+  void step_explicit_euler(double dt, double w_n);
+  void step_semi_implicit_euler(double dt, double w_n);
+  void step_rk4(double dt, double w_n);
+  void apply_limits();
+
   Model model_;
   SimulatorOptions options_;
-  Data data_;
+  Options solver_;
+  Data data_, stage_data_;
   Case case_;
-  std::array<DirectionMode, kNumDirections> mode_{};
-  std::array<double, kNumDirections> setpoint_{}, target_{}, angle_{};
+  HeldDirections held_, stage_held_;
+  std::array<double, kNumDirections> max_residual_{};
   std::vector<int> limit_hits_;
-  // Workspace for the integrators (sized once).
-  Eigen::VectorXd k_q_[4], k_qd_[4], q0_, qd0_;
+  std::vector<double> mass_;   // per body, from the spatial inertia
+  std::vector<Vector3> com_;   // per body, body frame
+  std::vector<double> axial_inertia_;  // S^T I S of each body alone
+  // Workspace (sized once): body poses and velocities, integrator stages.
+  mutable std::vector<Transform> X0_;
+  mutable std::vector<Vector6> v_;
+  Eigen::VectorXd q0_, qd0_, q_stage_, qd_stage_, k_q_[4], k_qd_[4];
+  std::array<double, kNumDirections> angle0_{}, angle_stage_{}, k_angle_[4]{};
 };
 
 }  // namespace achd

@@ -1,0 +1,46 @@
+#include "held_directions.hpp"
+
+namespace achd {
+
+int HeldDirections::count() const {
+  int n = 0;
+  for (int k = 0; k < kNumDirections; ++k) n += active(k);
+  return n;
+}
+
+void direction_columns(const HeldDirections& h, ConstraintMatrix& alpha) {
+  alpha.setZero(6, h.count());
+  int col = 0;
+  for (int k = 0; k < kNumDirections; ++k) {
+    if (!h.active(k)) continue;
+    if (is_linear_direction(k)) alpha.col(col).head<3>() = direction_axis(k);
+    else alpha.col(col).tail<3>() = direction_axis(k);
+    ++col;
+  }
+}
+
+double direction_error(const HeldDirections& h, int k, const TipState& tip) {
+  if (h.mode[k] != DirectionMode::Hold) return 0;
+  if (is_linear_direction(k)) return direction_axis(k).dot(tip.pose.p) - h.target[k];
+  return h.angle[k];
+}
+
+void direction_targets(const HeldDirections& h, const TipState& tip, double w_n, double zeta,
+                       bool velocity_products, ConstraintVector& beta) {
+  beta.resize(h.count());
+  const Vector3 w_cross_v = tip.w.cross(tip.v);
+  int row = 0;
+  for (int k = 0; k < kNumDirections; ++k) {
+    if (!h.active(k)) continue;
+    const Vector3 e = direction_axis(k);
+    const bool linear = is_linear_direction(k);
+    double desired = h.setpoint[k];
+    if (h.mode[k] == DirectionMode::Hold) {
+      const double rate = e.dot(linear ? tip.v : tip.w);
+      desired = -2 * zeta * w_n * rate - w_n * w_n * direction_error(h, k, tip);
+    }
+    beta[row++] = linear && velocity_products ? desired - e.dot(w_cross_v) : desired;
+  }
+}
+
+}  // namespace achd

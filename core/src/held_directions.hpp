@@ -1,0 +1,32 @@
+#pragma once
+// Tip directions held or accelerated by the simulator, as rows of the constraint
+// alpha^T a_tip = beta of the hybrid solver (physical convention: beta is the real
+// spatial acceleration along alpha).
+#include <array>
+
+#include "achd/case.hpp"
+#include "achd/simulator.hpp"
+#include "tip_kinematics.hpp"
+
+namespace achd {
+
+// The unit vector of direction k (x, y, z, rx, ry, rz) in base axes.
+inline Vector3 direction_axis(int k) { return Vector3::Unit(k % 3); }
+inline bool is_linear_direction(int k) { return k < 3; }
+
+// One column of alpha per active direction, in index order: [e; 0] (force along e at
+// the tip origin) for x, y, z and [0; e] (moment about e) for rx, ry, rz.
+void direction_columns(const HeldDirections& h, ConstraintMatrix& alpha);
+
+// Held quantity minus its target: e . p_tip - target (linear) or the held angle.
+double direction_error(const HeldDirections& h, int k, const TipState& tip);
+
+// beta for each active direction. The desired classical acceleration is the setpoint
+// (Accelerate) or the Baumgarte law -2 zeta w_n e_dot - w_n^2 e_err (Hold). A linear
+// spatial acceleration differs from the classical one of the tip origin by w x v
+// (p_ddot = a_lin + w x v), so linear rows subtract e . (w x v) when the solver computes
+// velocity products; angular spatial and classical accelerations are equal.
+void direction_targets(const HeldDirections& h, const TipState& tip, double w_n, double zeta,
+                       bool velocity_products, ConstraintVector& beta);
+
+}  // namespace achd

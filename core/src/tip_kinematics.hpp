@@ -1,0 +1,29 @@
+#pragma once
+// Pose and velocity of the tip link's origin in the base frame, with a caller-owned
+// workspace so that the simulator's step never allocates.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "achd/model.hpp"
+
+namespace achd {
+
+struct TipState {
+  Transform pose;  // base frame -> tip frame
+  Vector3 v = Vector3::Zero();  // linear velocity of the tip origin, base orientation
+  Vector3 w = Vector3::Zero();  // angular velocity, base orientation
+};
+
+// Body poses and body velocities (each body's own frame, at its origin) of the whole
+// chain: X0_i = X0_p Xj(q_i),  v_i = Xup_i v_p + S qd_i  (RBDA table 5.1, outward).
+// X0 and v must hold num_joints() entries.
+void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                 std::vector<Transform>& X0, std::vector<Vector6>& v);
+
+// The tip from body_motion's output: p = X0_b * offset;  v_tip = R0 (v_b + w_b x o),
+// w_tip = R0 w_b, with o the tip's offset from its body's origin.
+TipState tip_state(const Model& model, const std::vector<Transform>& X0,
+                   const std::vector<Vector6>& v);
+
+}  // namespace achd
