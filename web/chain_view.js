@@ -133,12 +133,12 @@ export class ChainView {
     this.tipAxes.matrixAutoUpdate = false;
     this.robotGroup.add(this.tipAxes);
 
-    this.glyphs.group.scale.setScalar(radius * 8);
+    this.glyphs.group.scale.setScalar(radius * 6);
     this.grid.scale.setScalar(Math.max(size, 0.5) / 2);
 
     const center = box.getCenter(new THREE.Vector3());
     this.controls.target.copy(center);
-    this.camera.position.copy(center).add(new THREE.Vector3(1.3, -1.9, 0.9).multiplyScalar(size));
+    this.camera.position.copy(center).add(new THREE.Vector3(0.75, -1.15, 0.55).multiplyScalar(size));
     this.camera.near = size / 200;
     this.camera.far = size * 50;
     this.camera.updateProjectionMatrix();

@@ -177,7 +177,8 @@ function loadRobot(source) {
   page.settings.robot = source.name;
   page.links = sim.links();
   page.owed = 0;
-  page.lastFrame = null;
+  // Real time starts one step ago, so that the next frame already steps.
+  page.lastFrame = performance.now() - 1000 * page.settings.dt;
   page.lastSolveTiming = -Infinity;
   page.rate = { wall: 0, sim: 0, shown: null };
   view.setChain(page.links, sim.movable);
@@ -226,7 +227,10 @@ function stepSimulation(n) {
   }
 }
 
-function frame(now) {
+// Frames read performance.now(), not rAF's frame start time, which can precede the
+// moment a robot was loaded and would delay its first step by a frame.
+function frame() {
+  const now = performance.now();
   requestAnimationFrame(frame);
   const sim = page.sim;
   if (!sim) return;
@@ -300,21 +304,26 @@ async function loadModule() {
   return createAchd({ print: (line) => moduleLog.push(line), printErr: (line) => moduleLog.push(line) });
 }
 
-async function start() {
-  const [achd, indexText] = await Promise.all([loadModule(), fetchText('robots/index.json')]);
-  page.achd = achd;
-  page.index = JSON.parse(indexText);
-  for (const r of page.index.robots) robotSelect.add(new Option(r.title, r.name));
-
-  const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default));
-  if (!page.index.robots.some((r) => r.name === settings.robot)) {
+// The index and the first robot's URDF load while the wasm module compiles.
+async function readIndexAndRobot() {
+  const index = JSON.parse(await fetchText('robots/index.json'));
+  const { settings, problems } = parseHash(location.hash, defaultSettings(index.default));
+  if (!index.robots.some((r) => r.name === settings.robot)) {
     problems.push(`robot "${settings.robot}" is not in robots/index.json (an own URDF cannot be shared by link)`);
-    settings.robot = page.index.default;
+    settings.robot = index.default;
   }
+  const entry = index.robots.find((r) => r.name === settings.robot);
+  return { index, settings, problems, entry, text: await fetchText(entry.urdf) };
+}
+
+async function start() {
+  const [achd, { index, settings, problems, entry, text }] = await Promise.all([loadModule(), readIndexAndRobot()]);
+  page.achd = achd;
+  page.index = index;
+  for (const r of index.robots) robotSelect.add(new Option(r.title, r.name));
   page.settings = settings;
   controls.show(settings, page.playing);
-  const entry = page.index.robots.find((r) => r.name === settings.robot);
-  loadRobot({ name: entry.name, text: await fetchText(entry.urdf), root: entry.root, tip: entry.tip, q0: entry.q0 });
+  loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 });
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
   requestAnimationFrame(frame);
 }

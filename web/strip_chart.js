@@ -77,8 +77,8 @@ export class StripChart {
     ctx.font = `${10 * ratio}px ui-monospace, monospace`;
     ctx.fillStyle = '#5d6677';
     ctx.textBaseline = 'middle';
-    ctx.fillText(this.label(hi), 2, y(hi - pad));
-    ctx.fillText(this.label(lo), 2, y(lo + pad));
+    ctx.fillText(this.label(hi - pad), 2, y(hi - pad));
+    ctx.fillText(this.label(lo + pad), 2, y(lo + pad));
     ctx.strokeStyle = '#dde1e8';
     ctx.lineWidth = ratio;
     ctx.strokeRect(left, 0.5, plotW, height - 1);

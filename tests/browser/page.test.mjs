@@ -1,0 +1,143 @@
+// The demo page in Debian's Chromium: it starts stepping the default robot, holds tip
+// directions to within 1e-6 while the free joints move, survives a broken URDF with a
+// message on the page, and simulates the 7-DoF arm faster than real time with every
+// effect on and all six directions held.
+import assert from 'node:assert/strict';
+import { mkdir, readFile } from 'node:fs/promises';
+import test from 'node:test';
+import { openPage } from './launch.mjs';
+
+const index = JSON.parse(await readFile(new URL('../../robots/index.json', import.meta.url), 'utf8'));
+const SCREENSHOT = new URL('../../build/browser/page.png', import.meta.url);
+const BROKEN_XML = '<robot name="broken"><link name="base"/><joint name="j" type="revolute">';
+const UNKNOWN_TIP = `<robot name="two">
+  <link name="base"/>
+  <link name="arm"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>`;
+
+const state = (page) => page.evaluate(() => window.achdDemo.state());
+
+// Tries achdDemo.loadURDF and returns how it failed (or null if it did not).
+const loadFailure = (page, text, root, tip) =>
+  page.evaluate(async ([text, root, tip]) => {
+    try {
+      await window.achdDemo.loadURDF(text, root, tip);
+      return null;
+    } catch (err) {
+      return { isError: err instanceof Error, message: err.message };
+    }
+  }, [text, root, tip]);
+
+test('the demo page in Chromium', async (t) => {
+  const session = await openPage();
+  const { page, consoleErrors } = session;
+  try {
+    await t.test('opens on the default robot, stepping within a second, no console errors', async () => {
+      const s = await state(page);
+      assert.equal(s.robot, index.default);
+      assert.ok(s.t > 0, `t = ${s.t}`);
+      const startedMs = await page.evaluate(() => performance.getEntriesByName('achd:stepping')[0].startTime);
+      console.log(`# stepping ${startedMs.toFixed(0)} ms after navigation started`);
+      assert.ok(startedMs < 1000, `stepping only ${startedMs} ms after navigation`);
+      for (const d of ['x', 'y', 'z', 'rx', 'ry', 'rz']) assert.equal(s.directions[d], 'free');
+      assert.equal(await page.locator('#integrator').inputValue(), 'rk4');
+      assert.equal(await page.locator('#dt').inputValue(), '0.001');
+      assert.ok(await page.locator('input[data-effect="damping"]').isChecked());
+      assert.deepEqual(consoleErrors, []);
+    });
+
+    await t.test('pause stops time; holding z and rx keeps them within 1e-6 over 2000 steps', async () => {
+      await page.evaluate(() => window.achdDemo.pause());
+      const paused = await state(page);
+      await page.waitForTimeout(300);
+      assert.equal((await state(page)).t, paused.t, 'time advanced while paused');
+
+      await page.evaluate(() => {
+        window.achdDemo.setDirection('z', 'hold');
+        window.achdDemo.setDirection('rx', 'hold');
+      });
+      const before = await state(page);
+      await page.evaluate(() => window.achdDemo.step(2000));
+      const after = await state(page);
+      assert.ok(Math.abs(after.t - before.t - 2.0) < 1e-9, `t advanced by ${after.t - before.t}`);
+      assert.ok(Math.abs(after.residuals.z) < 1e-6, `z residual ${after.residuals.z}`);
+      assert.ok(Math.abs(after.residuals.rx) < 1e-6, `rx residual ${after.residuals.rx}`);
+      for (const d of ['x', 'y', 'ry', 'rz']) assert.equal(after.residuals[d], null);
+      assert.ok(Array.isArray(after.q) && Array.isArray(after.qd));
+      const moved = Math.max(...after.q.map((q, i) => Math.abs(q - before.q[i])));
+      assert.ok(moved > 0.01, `the free joints moved only ${moved} rad`);
+      assert.ok(typeof after.stepMicros === 'number' && after.stepMicros > 0);
+      assert.match(await page.evaluate(() => location.hash), /dirs=z:hold,rx:hold/);
+      assert.deepEqual(consoleErrors, []);
+    });
+
+    await t.test('the direction toggles on the page drive the simulator', async () => {
+      await page.locator('button[data-direction="x"][data-mode="hold"]').click();
+      assert.equal((await state(page)).directions.x, 'hold');
+      await page.locator('button[data-direction="x"][data-mode="free"]').click();
+      assert.equal((await state(page)).directions.x, 'free');
+    });
+
+    await t.test('a broken URDF is rejected with a message on the page; the robot keeps running', async () => {
+      for (const [text, root, tip, expected] of [
+        [BROKEN_XML, 'base', 'arm', null],
+        [UNKNOWN_TIP, 'base', 'no_such_link', /no_such_link/],
+      ]) {
+        const failure = await loadFailure(page, text, root, tip);
+        assert.ok(failure?.isError, `loadURDF did not reject with an Error: ${JSON.stringify(failure)}`);
+        if (expected) assert.match(failure.message, expected);
+        const shown = page.locator('#page-error');
+        assert.ok(await shown.isVisible(), 'no error on the page');
+        assert.ok((await shown.textContent()).includes(failure.message.split('\n')[0]));
+        const before = await state(page);
+        assert.equal(before.robot, index.default);
+        await page.evaluate(() => window.achdDemo.step(10));
+        const after = await state(page);
+        assert.ok(Math.abs(after.t - before.t - 0.01) < 1e-9, `t advanced by ${after.t - before.t}`);
+      }
+      assert.deepEqual(consoleErrors, []);
+    });
+
+    await t.test('faster than real time on the 7-DoF arm, every effect on, 6 directions held, dt = 1 ms', async () => {
+      assert.equal((await state(page)).robot, 'kuka_lwr4');
+      for (const box of await page.locator('input[data-effect]').all()) assert.ok(await box.isChecked());
+      const factor = await page.evaluate(() => {
+        const demo = window.achdDemo;
+        for (const d of ['x', 'y', 'z', 'rx', 'ry', 'rz']) demo.setDirection(d, 'hold');
+        demo.step(2000);  // lets the wasm code tier up before timing
+        const steps = 5000;
+        const start = performance.now();
+        demo.step(steps);
+        return (steps * 0.001) / ((performance.now() - start) / 1000);
+      });
+      const s = await state(page);
+      console.log(`# real-time factor: ${factor.toFixed(1)} simulated s per wall s ` +
+        `(kuka_lwr4, all effects, 6 held, RK4, dt = 1 ms); page shows ${s.stepMicros.toFixed(1)} µs per step`);
+      assert.ok(factor >= 1, `only ${factor} simulated s per wall s`);
+      for (const d of ['x', 'y', 'z', 'rx', 'ry', 'rz']) assert.ok(Math.abs(s.residuals[d]) < 1e-6, `${d}: ${s.residuals[d]}`);
+    });
+
+    await t.test('a shared URL hash restores robot and toggles', async () => {
+      await page.evaluate(() => window.achdDemo.play());
+      await page.waitForTimeout(500);
+      await mkdir(new URL('.', SCREENSHOT), { recursive: true });
+      await page.screenshot({ path: SCREENSHOT.pathname });
+
+      // Through about:blank: a hash-only change would be a same-document navigation.
+      await page.goto('about:blank');
+      await page.goto(session.url + '#robot=ur5&integrator=semi-implicit&dt=0.0005&effects=gravity&dirs=y:hold,rz:0.5');
+      await page.evaluate(() => window.achdDemo.ready);
+      const s = await state(page);
+      assert.equal(s.robot, 'ur5');
+      assert.equal(s.directions.y, 'hold');
+      assert.equal(s.directions.rz, 0.5);
+      assert.equal(await page.locator('#integrator').inputValue(), 'semi-implicit');
+      assert.equal(await page.locator('#dt').inputValue(), '0.0005');
+      assert.ok(!(await page.locator('input[data-effect="damping"]').isChecked()));
+      assert.deepEqual(consoleErrors, []);
+    });
+  } finally {
+    await session.close();
+  }
+});
