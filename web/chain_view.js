@@ -94,9 +94,10 @@ export class ChainView {
       this.robotGroup.remove(child);
     }
     const origins = links.map((l) => new THREE.Vector3(...l.position));
-    const box = new THREE.Box3().setFromPoints(origins);
-    const size = Math.max(box.getSize(new THREE.Vector3()).length(), 0.2);
-    const radius = Math.min(0.06, Math.max(0.004, size * 0.022));
+    let reach = 0;
+    for (let i = 1; i < origins.length; i++) reach += origins[i].distanceTo(origins[i - 1]);
+    reach = Math.max(reach, 0.2);
+    const radius = Math.min(0.06, Math.max(0.004, reach * 0.022));
     this.radius = radius;
 
     const linkMaterials = [
@@ -133,14 +134,18 @@ export class ChainView {
     this.tipAxes.matrixAutoUpdate = false;
     this.robotGroup.add(this.tipAxes);
 
-    this.glyphs.group.scale.setScalar(radius * 6);
-    this.grid.scale.setScalar(Math.max(size, 0.5) / 2);
+    this.glyphs.group.scale.setScalar(radius * 8);
+    this.grid.scale.setScalar(Math.max(reach, 0.5) / 2);
+    
 
-    const center = box.getCenter(new THREE.Vector3());
-    this.controls.target.copy(center);
-    this.camera.position.copy(center).add(new THREE.Vector3(0.75, -1.15, 0.55).multiplyScalar(size));
-    this.camera.near = size / 200;
-    this.camera.far = size * 50;
+    // Frame the space the chain can sweep, not just its initial pose: a sphere of the
+    // chain's length around the base, seen from the front right and above.
+    const target = new THREE.Vector3(0, 0, 0.3 * reach);
+    this.controls.target.copy(target);
+    const distance = reach / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2));
+    this.camera.position.copy(target).add(new THREE.Vector3(0.55, -0.75, 0.37).normalize().multiplyScalar(0.65 * distance));
+    this.camera.near = reach / 200;
+    this.camera.far = reach * 50;
     this.camera.updateProjectionMatrix();
     this.controls.update();
   }

@@ -11,7 +11,7 @@ import { UrdfUpload } from './urdf_upload.js';
 
 // At most this much simulated time per frame: after a stall (a hidden tab, a slow
 // frame) the simulation resumes instead of trying to catch up all at once.
-const MAX_FRAME_SECONDS = 0.1;
+const MAX_FRAME_SECONDS = 0.25;
 const NUMBERS_EVERY_MS = 200;
 const SOLVE_TIMING_EVERY_MS = 1000;
 const RATE_WINDOW_MS = 1000;
@@ -94,6 +94,7 @@ const push = new PushDrag(view, {
   canPush: (link) => Boolean(page.sim) && link > 0 && page.settings.effects.externalWrenches,
   linkPose: (link) => page.links[link],
   stiffness: () => page.sim.pushStiffness(),
+  maxForce: () => page.sim.pushMaxForce(),
 });
 const controls = new Controls({
   playPause: () => setPlaying(!page.playing),

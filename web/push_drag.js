@@ -47,12 +47,14 @@ export class PushDrag {
     return this.grab.local.clone().applyMatrix4(poseMatrix(this.hooks.linkPose(this.grab.link)));
   }
 
-  // The wrench for the current poses, {link, wrench: [fx,fy,fz,tx,ty,tz], from, to}, or
+  // The wrench for the current poses (the spring force capped at hooks.maxForce(), so
+  // that a long drag cannot fling the robot), {link, wrench: [fx,fy,fz,tx,ty,tz], from, to}, or
   // null when nothing is grabbed.
   current() {
     if (!this.grab) return null;
     const from = this.grabPoint();
     const force = this.grab.target.clone().sub(from).multiplyScalar(this.hooks.stiffness());
+    force.clampLength(0, this.hooks.maxForce());
     const origin = new THREE.Vector3().fromArray(this.hooks.linkPose(this.grab.link).position);
     const torque = from.clone().sub(origin).cross(force);
     return { link: this.grab.link, wrench: [...force.toArray(), ...torque.toArray()], from, to: this.grab.target };

