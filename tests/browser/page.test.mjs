@@ -125,6 +125,19 @@ test('the demo page in Chromium', async (t) => {
       for (const d of ['x', 'y', 'z', 'rx', 'ry', 'rz']) assert.ok(Math.abs(s.residuals[d]) < 1e-6, `${d}: ${s.residuals[d]}`);
     });
 
+    await t.test('an own URDF from the file picker loads with the root and tip chosen on the page', async () => {
+      await page.locator('#urdf-file').setInputFiles(new URL('../../robots/planar2.urdf', import.meta.url).pathname);
+      await page.locator('#urdf-chain').waitFor({ state: 'visible', timeout: 5000 });
+      assert.equal(await page.locator('#urdf-root').inputValue(), 'base_link');
+      assert.equal(await page.locator('#urdf-tip').inputValue(), 'link2');
+      await page.locator('#urdf-chain button[type="submit"]').click();
+      const s = await state(page);
+      assert.equal(s.robot, 'custom');
+      assert.equal(s.q.length, 2);
+      assert.ok(await page.locator('#page-error').isHidden());
+      assert.deepEqual(consoleErrors, []);
+    });
+
     await t.test('a shared URL hash restores robot and toggles', async () => {
       await page.evaluate(() => window.achdDemo.play());
       await page.waitForTimeout(500);
