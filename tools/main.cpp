@@ -19,6 +19,9 @@ const char* kUsage =
     "        [--iterations N] [--repeats R] [--against kdl] [solver options]\n"
     "                  ns per solve (median of R repeats of N calls), with\n"
     "                  --against kdl also KDL's solver in the same run\n"
+    "  simulate SCENE.json [--out traj.csv]\n"
+    "                  run a scene (robots/scenes/*.json), write the trajectory\n"
+    "                  CSV, print a JSON summary (steps, ns per step, drifts)\n"
     "  help            this text\n";
 
 struct Command {
@@ -29,6 +32,7 @@ struct Command {
 const Command kCommands[] = {
     {"solve", achd::cli::cmd_solve},
     {"bench", achd::cli::cmd_bench},
+    {"simulate", achd::cli::cmd_simulate},
 };
 
 }  // namespace

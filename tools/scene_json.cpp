@@ -1,0 +1,215 @@
+#include "scene_json.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "case_json.hpp"
+
+namespace achd::cli {
+namespace {
+
+using nlohmann::json;
+
+double number(const json& v, const std::string& field) {
+  if (!v.is_number()) throw Error(field + " must be a number");
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw Error(field + " is not finite");
+  return x;
+}
+
+std::string text(const json& v, const std::string& field) {
+  if (!v.is_string()) throw Error(field + " must be a string");
+  return v.get<std::string>();
+}
+
+Eigen::VectorXd vector(const json& v, const std::string& field, int n) {
+  if (!v.is_array() || static_cast<int>(v.size()) != n)
+    throw Error(field + " must be an array of " + std::to_string(n) + " numbers");
+  Eigen::VectorXd out(n);
+  for (int i = 0; i < n; ++i) out[i] = number(v[i], field + "[" + std::to_string(i) + "]");
+  return out;
+}
+
+void only_known(const json& j, const std::string& where, std::initializer_list<const char*> known) {
+  for (const auto& item : j.items()) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || item.key() == k;
+    if (!ok) throw Error("unknown field '" + where + item.key() + "'");
+  }
+}
+
+struct EffectName {
+  const char* name;
+  Effect bit;
+};
+const EffectName kEffects[] = {
+    {"gravity", kGravity},     {"velocity_products", kVelocityProducts},
+    {"external_wrenches", kExternalWrenches}, {"damping", kDamping},
+    {"friction", kFriction},   {"rotor_inertia", kRotorInertia},
+    {"constraints", kConstraints}};
+
+std::uint32_t effects(const json& j) {
+  if (!j.is_object()) throw Error("effects must be an object of booleans");
+  std::uint32_t bits = kAllEffects;  // a missing key keeps its effect on
+  for (const auto& item : j.items()) {
+    const EffectName* e = nullptr;
+    for (const EffectName& k : kEffects)
+      if (item.key() == k.name) e = &k;
+    if (!e) throw Error("unknown field 'effects." + item.key() + "'");
+    if (!item.value().is_boolean()) throw Error("effects." + item.key() + " must be true or false");
+    if (item.value().get<bool>()) bits |= e->bit;
+    else bits &= ~e->bit;
+  }
+  return bits;
+}
+
+Integrator integrator(const json& v) {
+  const std::string s = text(v, "integrator");
+  for (Integrator i : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4})
+    if (s == integrator_name(i)) return i;
+  throw Error("integrator: expected 'explicit_euler', 'semi_implicit_euler' or 'rk4', got '" + s + "'");
+}
+
+LimitPolicy limits(const json& v) {
+  const std::string s = text(v, "limits");
+  if (s == "report") return LimitPolicy::Report;
+  if (s == "clamp") return LimitPolicy::Clamp;
+  if (s == "ignore") return LimitPolicy::Ignore;
+  throw Error("limits: expected 'report', 'clamp' or 'ignore', got '" + s + "'");
+}
+
+void directions(const json& j, Scene& s) {
+  if (!j.is_object()) throw Error("directions must be an object (x y z rx ry rz)");
+  for (const auto& item : j.items()) {
+    const int k = index_of_direction(item.key());
+    const std::string field = "directions." + item.key();
+    if (k < 0) throw Error("unknown field '" + field + "' (directions are x y z rx ry rz)");
+    const json& v = item.value();
+    if (v.is_number()) {
+      s.modes[k] = DirectionMode::Accelerate;
+      s.setpoints[k] = number(v, field);
+    } else if (v.is_string() && (v == "hold" || v == "free")) {
+      s.modes[k] = v == "hold" ? DirectionMode::Hold : DirectionMode::Free;
+    } else {
+      throw Error(field + " must be \"hold\", \"free\" or a number (classical acceleration)");
+    }
+  }
+}
+
+void f_ext(const json& j, Scene& s) {
+  if (!j.is_object()) throw Error("f_ext must be an object {link name: [fx, fy, fz, tx, ty, tz]}");
+  s.f_ext.assign(s.model.num_links(), Vector6::Zero());
+  for (const auto& item : j.items()) {
+    const int l = s.model.link_index(item.key());
+    if (l < 0) throw Error("f_ext." + item.key() + ": no link of that name after the root");
+    s.f_ext[l] = vector(item.value(), "f_ext." + item.key(), 6);
+  }
+}
+
+double positive(const json& j, const char* field) {
+  const double x = number(j, field);
+  if (!(x > 0)) throw Error(std::string(field) + " must be > 0");
+  return x;
+}
+
+const json& required(const json& j, const char* field) {
+  if (!j.contains(field)) throw Error(std::string("missing required field '") + field + "'");
+  return j[field];
+}
+
+}  // namespace
+
+int Scene::steps() const { return static_cast<int>(std::lround(duration / dt)); }
+
+bool Scene::conserves_energy() const {
+  const std::uint32_t e = options.effects;
+  if (!(e & kVelocityProducts) || options.limits == LimitPolicy::Clamp) return false;
+  for (const Body& b : model.bodies)
+    if (((e & kDamping) && b.damping != 0) || ((e & kFriction) && b.friction != 0)) return false;
+  if (ff_torques.size() && ff_torques.cwiseAbs().maxCoeff() != 0) return false;
+  if (e & kExternalWrenches)
+    for (const Vector6& f : f_ext)
+      if (f.cwiseAbs().maxCoeff() != 0) return false;
+  if (e & kConstraints)
+    for (DirectionMode m : modes)
+      if (m == DirectionMode::Accelerate) return false;
+  return true;
+}
+
+std::string resolve_scene_path(const std::string& path, const std::string& scene_file) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  if (p.is_absolute()) return path;
+  for (fs::path dir = fs::absolute(scene_file).parent_path();; dir = dir.parent_path()) {
+    if (fs::exists(dir / p)) return (dir / p).lexically_normal().string();
+    if (dir == dir.root_path() || dir.empty()) break;
+  }
+  throw Error("urdf: '" + path + "' not found from the scene's directory or any parent");
+}
+
+Scene parse_scene(const std::string& text_in, const std::string& source) {
+  Scene s;
+  s.source = source;
+  try {
+    json j;
+    try {
+      j = json::parse(text_in);
+    } catch (const json::parse_error& e) {
+      throw Error(std::string("invalid JSON: ") + e.what());
+    }
+    if (!j.is_object()) throw Error("the scene must be a JSON object");
+    only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions",
+                       "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
+                       "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
+                       "rotor_inertia"});
+    if (j.contains("description")) text(j["description"], "description");
+    s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
+    s.root = text(required(j, "root"), "root");
+    s.tip = text(required(j, "tip"), "tip");
+    s.model = load_urdf_file(s.urdf, s.root, s.tip);
+    const int n = s.model.num_joints();
+    s.q0 = vector(required(j, "q0"), "q0", n);
+    s.qd0 = j.contains("qd0") ? vector(j["qd0"], "qd0", n) : Eigen::VectorXd::Zero(n);
+    s.ff_torques = j.contains("ff_torques") ? vector(j["ff_torques"], "ff_torques", n)
+                                            : Eigen::VectorXd::Zero(n);
+    if (j.contains("rotor_inertia")) {
+      const Eigen::VectorXd r = vector(j["rotor_inertia"], "rotor_inertia", n);
+      for (int i = 0; i < n; ++i) {
+        if (r[i] < 0) throw Error("rotor_inertia[" + std::to_string(i) + "] must be >= 0");
+        s.model.set_rotor_inertia(i, r[i]);
+      }
+    }
+    if (j.contains("f_ext")) f_ext(j["f_ext"], s);
+    if (j.contains("effects")) s.options.effects = effects(j["effects"]);
+    if (j.contains("directions")) directions(j["directions"], s);
+    if (j.contains("integrator")) s.options.integrator = integrator(j["integrator"]);
+    if (j.contains("limits")) s.options.limits = limits(j["limits"]);
+    if (j.contains("gravity")) s.options.gravity = vector(j["gravity"], "gravity", 3);
+    s.dt = positive(required(j, "dt"), "dt");
+    s.duration = number(required(j, "duration"), "duration");
+    if (s.duration < 0) throw Error("duration must be >= 0");
+    if (j.contains("friction_velocity"))
+      s.options.solver.friction_velocity = positive(j["friction_velocity"], "friction_velocity");
+    if (j.contains("stabilisation_frequency")) {
+      s.options.stabilisation_frequency = number(j["stabilisation_frequency"], "stabilisation_frequency");
+      if (s.options.stabilisation_frequency < 0) throw Error("stabilisation_frequency must be >= 0");
+    }
+    if (j.contains("stabilisation_damping"))
+      s.options.stabilisation_damping = positive(j["stabilisation_damping"], "stabilisation_damping");
+  } catch (const Error& e) {
+    throw Error(source + ": " + e.what());
+  }
+  return s;
+}
+
+Scene load_scene(const std::string& path) { return parse_scene(read_file(path), path); }
+
+void start_scene(const Scene& scene, Simulator& sim) {
+  sim.reset(scene.q0, scene.qd0);
+  sim.ff_torques = scene.ff_torques;
+  sim.f_ext = scene.f_ext;
+  for (int k = 0; k < kNumDirections; ++k)
+    if (scene.modes[k] != DirectionMode::Free) sim.set_direction(k, scene.modes[k], scene.setpoints[k]);
+}
+
+}  // namespace achd::cli

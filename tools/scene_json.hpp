@@ -1,0 +1,47 @@
+#pragma once
+// Scene files (robots/scenes/*.json): a robot, its initial state, the effects to
+// simulate, held or accelerated tip directions, the integrator, time step and duration.
+// Schema in the README; every error names the scene file and the field.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "achd/achd.hpp"
+#include "achd/simulator.hpp"
+
+namespace achd::cli {
+
+struct Scene {
+  std::string source;  // the scene file, as given
+  std::string urdf;    // the URDF path, resolved (see resolve_scene_path)
+  std::string root, tip;
+  Model model;
+  Eigen::VectorXd q0, qd0, ff_torques;
+  std::vector<Vector6> f_ext;  // empty, or one per link after the root
+  SimulatorOptions options;
+  std::array<DirectionMode, kNumDirections> modes{};
+  std::array<double, kNumDirections> setpoints{};
+  double dt = 0, duration = 0;
+
+  int steps() const;  // round(duration / dt)
+  // True when nothing in the scene adds or removes energy: velocity products on, no
+  // damping, friction, torques, wrenches or accelerated directions, limits not clamped.
+  bool conserves_energy() const;
+};
+
+// Parses a scene; `source` is its file path, used for messages and to resolve "urdf".
+Scene parse_scene(const std::string& text, const std::string& source);
+Scene load_scene(const std::string& path);
+
+// A path in a scene is relative to the repository root: it is looked up against the
+// scene file's directory and then each of its parent directories, and the first that
+// holds it wins (so robots/scenes/x.json finds "robots/kuka_lwr4.urdf" from any working
+// directory). Absolute paths are used as they are.
+std::string resolve_scene_path(const std::string& path, const std::string& scene_file);
+
+// Puts the scene's initial state, torques, wrenches and directions into `sim`.
+void start_scene(const Scene& scene, Simulator& sim);
+
+}  // namespace achd::cli
