@@ -1,8 +1,9 @@
 // achd bench ROBOT.urdf --root LINK --tip LINK --case CASE.json [--iterations N]
 //            [--repeats R] [--against kdl] [solver options]
-// Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R repeats of N
-// calls after a warm-up; with --against kdl also KDL's ChainHdSolver_Vereshchagin on the
-// same chain and case, timed in the same rounds, "ratio" = achd / KDL, and the relative
+// Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R rounds of N
+// calls (default: about 2 ms per round, 51 rounds) after a warm-up round; with --against
+// kdl also KDL's ChainHdSolver_Vereshchagin on the same chain and case, timed in the same
+// rounds, "ratio" = the median of the per-round ratios achd / KDL, and the relative
 // difference of the two qdd (a check that both solved the same problem).
 #include <cstdio>
 #include <iostream>
@@ -29,7 +30,7 @@ int cmd_bench(int argc, char** argv) {
   const std::string case_path = args.get("--case");
   const Case c = parse_case(case_path == "-" ? read_file("/dev/stdin") : read_file(case_path), model,
                             case_path);
-  const int repeats = static_cast<int>(args.integer("--repeats", 15));
+  const int repeats = static_cast<int>(args.integer("--repeats", 51));
   const std::string against = args.get("--against", "");
   if (!against.empty() && against != "kdl")
     throw Error("option --against: expected 'kdl', got '" + against + "'");
@@ -48,11 +49,11 @@ int cmd_bench(int argc, char** argv) {
   std::vector<long> iterations;
   for (const auto& fn : fns)
     iterations.push_back(args.has("--iterations") ? args.integer("--iterations", 1)
-                                                  : calibrate_iterations(fn, 2e7));
-  const std::vector<double> ns = median_ns(fns, iterations, repeats);
+                                                  : calibrate_iterations(fn, 2e6));
+  const std::vector<std::vector<double>> samples = sample_ns(fns, iterations, repeats);
 
   char buf[512];
-  std::snprintf(buf, sizeof buf, "{\"achd_ns\": %.1f, \"iterations\": %ld, \"repeats\": %d", ns[0],
+  std::snprintf(buf, sizeof buf, "{\"achd_ns\": %.1f, \"iterations\": %ld, \"repeats\": %d", median(samples[0]),
                 iterations[0], repeats);
   std::string out = buf;
 #ifdef ACHD_HAVE_KDL
@@ -61,7 +62,7 @@ int cmd_bench(int argc, char** argv) {
     const double diff = (data.qdd - q_kdl).cwiseAbs().maxCoeff() / std::max(1.0, q_kdl.cwiseAbs().maxCoeff());
     std::snprintf(buf, sizeof buf,
                   ", \"kdl_ns\": %.1f, \"kdl_iterations\": %ld, \"ratio\": %.4f, \"qdd_rel_diff\": %.3g",
-                  ns[1], iterations[1], ns[0] / ns[1], diff);
+                  median(samples[1]), iterations[1], median_ratio(samples[0], samples[1]), diff);
     out += buf;
   }
 #endif

@@ -1,44 +1,59 @@
 #pragma once
-// Side-by-side timing: ns per call, the median over repeats after a warm-up, with the
-// repeats of several candidates interleaved so that machine noise hits them alike.
+// Side-by-side timing on a shared, noisy machine: ns per call over many short rounds,
+// each round timing every candidate in turn, so that load changes hit them alike.
+// Report medians of the rounds, and ratios as the median of per-round ratios. The clock
+// is this thread's CPU time: time spent descheduled (other jobs on the cores) is not
+// counted, which on a shared machine is most of the noise.
+#include <time.h>
+
 #include <algorithm>
-#include <chrono>
 #include <functional>
 #include <vector>
 
 namespace achd::cli {
 
-// Calls per repeat such that one repeat of `fn` takes about `target_ns`.
+inline double thread_cpu_ns() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e9 + t.tv_nsec;
+}
+
+// Calls per round such that one round of `fn` takes about `target_ns`.
 inline long calibrate_iterations(const std::function<void()>& fn, double target_ns) {
-  using clock = std::chrono::steady_clock;
   for (long n = 1;; n *= 2) {
-    const auto t0 = clock::now();
+    const double t0 = thread_cpu_ns();
     for (long i = 0; i < n; ++i) fn();
-    const double ns = std::chrono::duration<double, std::nano>(clock::now() - t0).count();
+    const double ns = thread_cpu_ns() - t0;
     if (ns >= target_ns / 4 || n >= (1L << 24))
       return std::max(1L, static_cast<long>(n * target_ns / std::max(ns, 1.0)));
   }
 }
 
-// Median ns per call of each candidate: `repeats` rounds, each round timing `iterations`
-// calls of every candidate in turn. The first round is a warm-up and is discarded.
-inline std::vector<double> median_ns(const std::vector<std::function<void()>>& fns,
-                                     const std::vector<long>& iterations, int repeats) {
-  using clock = std::chrono::steady_clock;
+// ns per call of each candidate in each of `rounds` rounds (samples[k][r]), after one
+// warm-up round that is discarded.
+inline std::vector<std::vector<double>> sample_ns(const std::vector<std::function<void()>>& fns,
+                                                  const std::vector<long>& iterations, int rounds) {
   std::vector<std::vector<double>> samples(fns.size());
-  for (int r = 0; r <= repeats; ++r)
+  for (int r = 0; r <= rounds; ++r)
     for (std::size_t k = 0; k < fns.size(); ++k) {
-      const auto t0 = clock::now();
+      const double t0 = thread_cpu_ns();
       for (long i = 0; i < iterations[k]; ++i) fns[k]();
-      const double ns = std::chrono::duration<double, std::nano>(clock::now() - t0).count();
+      const double ns = thread_cpu_ns() - t0;
       if (r > 0) samples[k].push_back(ns / iterations[k]);
     }
-  std::vector<double> out;
-  for (auto& s : samples) {
-    std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
-    out.push_back(s[s.size() / 2]);
-  }
-  return out;
+  return samples;
+}
+
+inline double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Median over rounds of a[r] / b[r].
+inline double median_ratio(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> r(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) r[i] = a[i] / b[i];
+  return median(r);
 }
 
 }  // namespace achd::cli
