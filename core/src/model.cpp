@@ -1,6 +1,7 @@
 #include "achd/model.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 
@@ -9,6 +10,7 @@
 #include "achd/dynamics.hpp"
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
+#include "achd/kinematics.hpp"
 
 namespace achd {
 
@@ -47,22 +49,43 @@ namespace {
 
 bool finite(const Matrix6& m) { return m.allFinite(); }
 
-// D_i = S^T IA_i S at configuration q must be a healthy fraction of the composite
-// inertia M_ii = S^T I^c_i S: both vanish when nothing after the joint has inertia
-// about its axis, and D alone vanishes when a later joint frees that motion again.
+// Size of the inertia a joint could move: the trace of the rotational (revolute) or
+// linear (prismatic) 3x3 block of the composite inertia Ic_i of bodies i..n-1 about
+// body i's origin, Ic_i = I_i + X_{i+1}^T Ic_{i+1} X_{i+1} (RBDA 6.2).
+std::vector<double> composite_scale(const Model& model, const Eigen::VectorXd& q) {
+  const int n = model.num_joints();
+  std::vector<double> scale(n);
+  Matrix6 Ic = Matrix6::Zero();
+  for (int i = n - 1; i >= 0; --i) {
+    if (i < n - 1) Ic = inertia_to_parent(joint_transform(model.bodies[i + 1], q[i + 1]), Ic);
+    Ic += model.bodies[i].inertia;
+    scale[i] = model.bodies[i].type == JointType::Prismatic ? Ic.topLeftCorner<3, 3>().trace()
+                                                            : Ic.bottomRightCorner<3, 3>().trace();
+  }
+  return scale;
+}
+
+// A joint moves nothing when D_i = S^T IA_i S vanishes: when nothing after it has inertia
+// along its motion (M_ii = S^T Ic_i S = 0) or later joints free that motion again. An
+// exact zero comes out of the sweeps as the round-off of the terms they accumulate, at
+// most ~ n eps times their size (Ic_i for M_ii, M_ii for D_i); 100 n eps leaves a margin
+// of 100. A genuine D can be far below M_ii: a light link ahead of a chain 1e12 times
+// heavier gives D / M_ii ~ 1e-10, which is a valid (badly conditioned) robot.
 void check_joints_move_something(const Model& model, const Eigen::VectorXd& q) {
   const Eigen::MatrixXd M = crba(model, q, false);
+  const std::vector<double> scale = composite_scale(model, q);
   Data data(model);
   Case c = Case::zeros(model);
   c.q = q;
   Options options;
   options.effects = 0;  // pure inertia: D without rotor, no forces
   hybrid_dynamics(model, data, c, options);
+  const double round_off = 100 * model.num_joints() * std::numeric_limits<double>::epsilon();
   for (int i = 0; i < model.num_joints(); ++i) {
-    if (!(M(i, i) > 0) || !(data.D[i] > 1e-9 * M(i, i)))
+    if (!(M(i, i) > round_off * scale[i]) || !(data.D[i] > round_off * M(i, i)))
       throw Error("joint '" + model.bodies[i].joint_name +
-                  "' moves nothing: the links after it have no mass or inertia about its axis "
-                  "(D = 0)");
+                  "' moves nothing: the links after it have no mass or inertia along its "
+                  "motion (D = S^T IA S = 0)");
   }
 }
 
