@@ -2,9 +2,12 @@
 // tests: mixed revolute, continuous, prismatic and fixed joints, arbitrary unit axes,
 // rotated inertial frames, and a fixed tool link at the tip half of the time.
 
-// xorshift32 scaled to [0, 1): deterministic for a seed, platform independent.
+// xorshift32 scaled to [0, 1): deterministic for a seed, platform independent. The seed
+// is scrambled first (multiply by the golden ratio, xor-shift) so that neighbouring
+// seeds do not start with neighbouring draws.
 export function rng(seed) {
-  let s = (seed >>> 0) || 0x9e3779b9;
+  let s = Math.imul((seed >>> 0) ^ 0x5bd1e995, 0x9e3779b9) >>> 0;
+  s = (s ^ (s >>> 16)) >>> 0 || 0x9e3779b9;
   return () => {
     s ^= s << 13; s >>>= 0;
     s ^= s >>> 17;

@@ -1,0 +1,92 @@
+#!/usr/bin/env node
+// ns per hybrid-dynamics solve: the zero-copy solver of the wasm module in Node against
+// the native CLI's `achd bench` on the same robot and case, in the same run.
+//
+//   node bench/wasm_vs_native.mjs          (native CLI: $ACHD_CLI, else build/achd)
+//
+// Prints {"cases": [{"name", "wasm_ns", "native_ns", "ratio"}]}, ratio = wasm / native.
+// wasm: 2e4 warm-up calls (V8 tiers wasm up late), then the median of 15 repeats.
+import { execFileSync } from 'node:child_process';
+
+import { loadAchd, nativeCli, robots, scratchDir } from '../tests/node/helpers.mjs';
+
+const WARMUP = 2e4;
+const REPEATS = 15;
+const TARGET_NS_PER_REPEAT = 2e7;  // ~20 ms per timed repeat
+
+// Six independent constraints: the tip's full acceleration is prescribed.
+const ALL_SIX = [0, 1, 2, 3, 4, 5].map((k) => [0, 1, 2, 3, 4, 5].map((r) => (r === k ? 1 : 0)));
+
+function benchCase(entry, nc) {
+  const nj = entry.q0.length;
+  const c = {
+    q: entry.q0,
+    qd: Array.from({ length: nj }, (_, i) => 0.3 * Math.sin(i + 1)),
+    ff_torques: Array.from({ length: nj }, (_, i) => 0.5 * Math.cos(i + 1)),
+    gravity: [0, 0, -9.81],
+  };
+  if (nc > 0) {
+    c.alpha = ALL_SIX.slice(0, nc);
+    c.beta = Array.from({ length: nc }, (_, k) => 0.1 * (k + 1));
+  }
+  return c;
+}
+
+function median(xs) {
+  const s = xs.slice().sort((a, b) => a - b);
+  return s[Math.floor(s.length / 2)];
+}
+
+function wasmNs(achd, entry, c) {
+  const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
+  const solver = robot.createSolver({ maxConstraints: 6 });
+  solver.q.set(c.q);
+  solver.qd.set(c.qd);
+  solver.ff_torques.set(c.ff_torques);
+  solver.gravity.set(c.gravity);
+  const nc = c.alpha ? c.alpha.length : 0;
+  solver.numConstraints = nc;
+  for (let k = 0; k < nc; ++k) solver.alpha.set(c.alpha[k], 6 * k);
+  if (nc) solver.beta.set(c.beta);
+  for (let i = 0; i < WARMUP; ++i) solver.solve();
+  // Calibrate the calls per repeat, then time REPEATS repeats.
+  let n = 1000, t0 = process.hrtime.bigint();
+  for (let i = 0; i < n; ++i) solver.solve();
+  const perCall = Number(process.hrtime.bigint() - t0) / n;
+  n = Math.max(1000, Math.round(TARGET_NS_PER_REPEAT / perCall));
+  const samples = [];
+  for (let r = 0; r < REPEATS; ++r) {
+    t0 = process.hrtime.bigint();
+    for (let i = 0; i < n; ++i) solver.solve();
+    samples.push(Number(process.hrtime.bigint() - t0) / n);
+  }
+  solver.delete();
+  robot.delete();
+  return median(samples);
+}
+
+function nativeNs(cli, entry, casePath) {
+  const out = execFileSync(cli, ['bench', entry.path, '--root', entry.root, '--tip', entry.tip,
+    '--case', casePath, '--repeats', String(REPEATS)], { encoding: 'utf8' });
+  return JSON.parse(out).achd_ns;
+}
+
+const achd = await loadAchd();
+const cli = nativeCli();
+const scratch = scratchDir();
+const byName = Object.fromEntries(robots().map((r) => [r.name, r]));
+const cases = [['kuka_lwr4_nc0', 'kuka_lwr4', 0], ['kuka_lwr4_nc6', 'kuka_lwr4', 6], ['chain50_nc6', 'chain50', 6]];
+const results = [];
+try {
+  for (const [name, robotName, nc] of cases) {
+    const entry = byName[robotName];
+    const c = benchCase(entry, nc);
+    const casePath = scratch.write(`${name}.json`, JSON.stringify(c));
+    const native_ns = nativeNs(cli, entry, casePath);
+    const wasm_ns = wasmNs(achd, entry, c);
+    results.push({ name, wasm_ns: Number(wasm_ns.toFixed(1)), native_ns, ratio: Number((wasm_ns / native_ns).toFixed(3)) });
+  }
+} finally {
+  scratch.remove();
+}
+console.log(JSON.stringify({ cases: results }, null, 2));
