@@ -6,5 +6,6 @@ namespace achd::cli {
 int cmd_solve(int argc, char** argv);
 int cmd_bench(int argc, char** argv);
 int cmd_simulate(int argc, char** argv);
+int cmd_accuracy(int argc, char** argv);
 
 }  // namespace achd::cli

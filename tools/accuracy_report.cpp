@@ -1,0 +1,139 @@
+// Tables and plot of an accuracy study.
+#include "accuracy_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace achd::cli {
+namespace {
+
+const char* const kIntegrators[] = {"explicit_euler", "semi_implicit_euler", "rk4"};
+const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c"};
+
+// 17 significant digits, empty for NaN/Inf (CSV) .
+std::string cell(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+// A finite number or null.
+nlohmann::ordered_json value(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+std::string study_csv(const Study& study) {
+  std::ostringstream o;
+  o << "kind,integrator,setting,dt_s,steps,stable,error_q_rad,error_qd_rad_s,change_q_rad,energy_drift,"
+       "held_drift_m,held_drift_rad,ns_per_step,cpu_s_per_sim_s,order,pareto\n";
+  for (const StudyRun& r : study.runs) {
+    const bool s = r.stable;
+    o << r.kind << ',' << r.integrator << ',' << r.setting << ',' << cell(r.dt) << ',' << r.steps << ','
+      << (s ? "true" : "false") << ',' << (s ? cell(r.error_q) : "") << ',' << (s ? cell(r.error_qd) : "")
+      << ',' << (r.kind == "integrator" || !s ? "" : cell(r.change_q)) << ',' << cell(r.energy_drift) << ','
+      << (s ? cell(r.held_drift_linear) : "") << ',' << (s ? cell(r.held_drift_angular) : "") << ','
+      << cell(r.ns_per_step) << ',' << cell(r.cpu_s_per_sim_s) << ',' << cell(r.order) << ','
+      << (r.pareto ? "true" : "false") << '\n';
+  }
+  return o.str();
+}
+
+nlohmann::ordered_json study_json(const Study& study) {
+  nlohmann::ordered_json j;
+  j["scene"] = study.scene;
+  j["duration_s"] = study.config.duration;
+  j["error_measure"] = "max_i |q_i(T) - q_ref,i(T)| (rad); error_qd: max_i |qd_i(T) - qd_ref,i(T)| (rad/s)";
+  j["cost_measure"] = "CPU time of the simulating thread per step, median of " +
+                      std::to_string(study.config.timing_repeats) + " runs of up to " +
+                      std::to_string(study.config.timing_steps) + " steps from the scene's start";
+  j["unstable_when"] = "state not finite, or error_q > 1 rad";
+  j["friction_velocity"] = study.friction_velocity;
+  j["stabilisation_frequency"] = study.stabilisation_frequency;
+  const Reference& ref = study.reference;
+  double smallest = INFINITY;
+  for (const StudyRun& r : study.runs)
+    if (r.kind == "integrator" && r.stable) smallest = std::min(smallest, r.error_q);
+  int resolved = 0, stable = 0;  // stable ladder errors >= 1000 x the reference's own
+  for (const StudyRun& r : study.runs)
+    if (r.kind == "integrator" && r.stable) {
+      ++stable;
+      resolved += r.error_q >= 1e3 * ref.self_error_q;
+    }
+  j["reference"] = {{"integrator", "rk4"},
+                    {"dt_s", ref.dt},
+                    {"self_error_q_rad", ref.self_error_q},
+                    {"self_error_qd_rad_s", ref.self_error_qd},
+                    {"smallest_error_q_rad", value(smallest)},
+                    {"self_error_over_smallest", value(ref.self_error_q / smallest)},
+                    {"errors_above_1000x_self_error", std::to_string(resolved) + " of " + std::to_string(stable)}};
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  for (const StudyRun& r : study.runs) {
+    nlohmann::ordered_json row;
+    row["kind"] = r.kind;
+    row["integrator"] = r.integrator;
+    if (!r.setting.empty()) row["setting"] = r.setting;
+    row["dt_s"] = r.dt;
+    row["steps"] = r.steps;
+    row["stable"] = r.stable;
+    row["error_q_rad"] = r.stable ? value(r.error_q) : nullptr;
+    row["error_qd_rad_s"] = r.stable ? value(r.error_qd) : nullptr;
+    if (r.kind != "integrator") row["change_q_rad"] = r.stable ? value(r.change_q) : nullptr;
+    row["energy_drift"] = value(r.energy_drift);
+    row["held_drift_m"] = r.stable ? value(r.held_drift_linear) : nullptr;
+    row["held_drift_rad"] = r.stable ? value(r.held_drift_angular) : nullptr;
+    row["ns_per_step"] = r.ns_per_step;
+    row["cpu_s_per_sim_s"] = r.cpu_s_per_sim_s;
+    if (r.kind == "integrator") {
+      row["order"] = value(r.order);
+      row["pareto"] = r.pareto;
+    }
+    runs.push_back(row);
+  }
+  j["runs"] = runs;
+  j["study_wall_s"] = study.wall_seconds;
+  return j;
+}
+
+LogLogPlot study_plot(const Study& study, const std::string& title) {
+  LogLogPlot plot;
+  plot.title = title;
+  plot.x_label = "cost: CPU time per simulated second (s/s)";
+  plot.y_label = "error: max |q(T) - q_ref(T)| (rad)";
+  plot.x_marker = 1;
+  plot.x_marker_label = "real time";
+  std::string unstable;
+  for (int k = 0; k < 3; ++k) {
+    PlotSeries s;
+    s.name = kIntegrators[k];
+    s.color = kColors[k];
+    for (const StudyRun& r : study.runs) {
+      if (r.kind != "integrator" || r.integrator != kIntegrators[k]) continue;
+      if (r.stable && r.error_q > 0) s.points.push_back({r.cpu_s_per_sim_s, r.error_q, short_number(r.dt * 1e3), r.pareto});
+      else if (!r.stable) unstable += std::string(unstable.empty() ? "" : ", ") + r.integrator + " " + short_number(r.dt * 1e3) + " ms";
+    }
+    plot.series.push_back(s);
+  }
+  const Reference& ref = study.reference;
+  plot.notes.push_back("Labels: time step in ms. Scene " + study.scene + ", " + short_number(study.config.duration) +
+                       " s simulated; reference RK4 at " + short_number(ref.dt * 1e3) + " ms.");
+  plot.notes.push_back("Reference self-check: halving its step changes q(T) by " + short_number(ref.self_error_q) +
+                       " rad. Cost: thread CPU time, median of " + std::to_string(study.config.timing_repeats) +
+                       " short runs.");
+  plot.notes.push_back("Every run: friction smoothing " + short_number(study.friction_velocity) +
+                       " rad/s, Baumgarte frequency " + short_number(study.stabilisation_frequency) +
+                       " rad/s (the simulator's choices at the largest step).");
+  if (!unstable.empty()) plot.notes.push_back("Unstable (NaN/Inf or error > 1 rad, not plotted): " + unstable + ".");
+  return plot;
+}
+
+}  // namespace achd::cli

@@ -1,0 +1,243 @@
+// The accuracy-versus-time study: runs, the reference, timing, and the knob variants.
+#include "accuracy_study.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "achd/error.hpp"
+#include "pareto_front.hpp"
+
+namespace achd::cli {
+namespace {
+
+double thread_cpu_ns() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e9 + t.tv_nsec;
+}
+
+long steps_for(double duration, double dt) { return std::lround(duration / dt); }
+
+std::string number_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+bool uses_friction(const Scene& scene) {
+  if (!(scene.options.effects & kFriction)) return false;
+  for (const Body& b : scene.model.bodies)
+    if (b.friction != 0) return true;
+  return false;
+}
+
+bool holds_directions(const Scene& scene) {
+  if (!(scene.options.effects & kConstraints)) return false;
+  for (DirectionMode m : scene.modes)
+    if (m == DirectionMode::Hold) return true;
+  return false;
+}
+
+// Error, drifts and stability of a run that ended in `end`, against the reference.
+StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt, double duration,
+                 const Reference& ref) {
+  StudyRun r;
+  r.integrator = integrator_name(options.integrator);
+  r.dt = dt;
+  r.steps = steps_for(duration, dt);
+  r.error_q = end.finite ? max_abs_difference(end.q, ref.end.q) : INFINITY;
+  r.error_qd = end.finite ? max_abs_difference(end.qd, ref.end.qd) : INFINITY;
+  r.stable = end.finite && std::isfinite(r.error_qd) && r.error_q <= kUnstableError;
+  r.energy_drift = end.energy_drift;
+  for (int k = 0; k < kNumDirections; ++k) {  // x, y, z first, then rx, ry, rz
+    double& drift = k < 3 ? r.held_drift_linear : r.held_drift_angular;
+    drift = std::max(drift, end.held_drift[k]);
+  }
+  return r;
+}
+
+void time_run(const Scene& scene, const SimulatorOptions& options, const StudyConfig& config, StudyRun& r) {
+  r.ns_per_step = ns_per_step(scene, options, r.dt, r.steps, config.timing_steps, config.timing_repeats);
+  r.cpu_s_per_sim_s = r.ns_per_step * 1e-9 / r.dt;
+}
+
+// The knobs other than the integrator and the step, each a variant of the default solve
+// (the scene's integrator at the scene's step): error against the reference and change
+// against the default.
+void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConfig& config,
+               const Reference& ref, std::vector<StudyRun>& runs) {
+  const double dt = scene.dt;
+  const EndState standard = run_to_end(scene, base, dt, config.duration);
+  auto add = [&](const std::string& kind, const std::string& setting, const SimulatorOptions& o) {
+    const EndState end = run_to_end(scene, o, dt, config.duration);
+    StudyRun r = measure(end, o, dt, config.duration, ref);
+    r.kind = kind;
+    r.setting = setting;
+    r.change_q = end.finite ? max_abs_difference(end.q, standard.q) : INFINITY;
+    time_run(scene, o, config, r);
+    runs.push_back(r);
+  };
+  add("default", "", base);
+  SimulatorOptions o = base;
+  o.effects &= ~kVelocityProducts;
+  add("velocity_products", "off", o);
+  for (double tol : {1e-8, 1e-4, 1e-2}) {
+    o = base;
+    o.solver.policy = SingularityPolicy::Truncate;
+    o.solver.tolerance = tol;
+    add("truncate_tolerance", number_text(tol), o);
+  }
+  for (double damping : {1e-6, 1e-4, 1e-2, 1e-1}) {
+    o = base;
+    o.solver.policy = SingularityPolicy::Damped;
+    o.solver.damping = damping;
+    add("damped_policy", number_text(damping), o);
+  }
+  if (uses_friction(scene)) {
+    // The scene's own smoothing velocity as the simulator floors it at this step, then
+    // smoother than the study's.
+    o = base;
+    o.solver.friction_velocity = scene.options.solver.friction_velocity;
+    add("friction_velocity", number_text(Simulator(scene.model, o).friction_velocity(dt)), o);
+    for (double factor : {2.0, 8.0}) {
+      o.solver.friction_velocity = base.solver.friction_velocity * factor;
+      add("friction_velocity", number_text(o.solver.friction_velocity), o);
+    }
+  }
+  if (holds_directions(scene)) {
+    o = base;
+    o.stabilisation_frequency = 0;  // the simulator's default, kBaumgarteStepFraction / dt
+    add("stabilisation_frequency", number_text(kBaumgarteStepFraction / dt), o);
+    o.stabilisation_frequency = 1000;
+    add("stabilisation_frequency", "1000", o);
+  }
+}
+
+}  // namespace
+
+double max_abs_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return (a - b).cwiseAbs().maxCoeff();
+}
+
+EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration) {
+  Scene variant = scene;
+  variant.options = options;
+  const bool conserves = variant.conserves_energy();
+  Simulator sim(scene.model, options);
+  start_scene(scene, sim);
+  EndState end;
+  const double E0 = sim.energy();
+  double max_kinetic = sim.kinetic_energy(), max_energy_error = 0;
+  const long steps = steps_for(duration, dt);
+  try {
+    for (long s = 0; s < steps && end.finite; ++s) {
+      sim.step(dt);
+      end.finite = sim.q.allFinite() && sim.qd.allFinite();
+      if (conserves && end.finite) {
+        max_kinetic = std::max(max_kinetic, sim.kinetic_energy());
+        max_energy_error = std::max(max_energy_error, std::abs(sim.energy() - E0));
+      }
+    }
+  } catch (const Error&) {
+    end.finite = false;  // the solver refused a state the integrator produced
+  }
+  end.q = sim.q;
+  end.qd = sim.qd;
+  if (conserves && max_kinetic > 0) end.energy_drift = max_energy_error / max_kinetic;
+  if (end.finite) end.held_drift = sim.max_residuals();
+  return end;
+}
+
+double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, long steps,
+                   long max_steps, int repeats) {
+  const long n = std::max(1L, std::min(steps, max_steps));
+  Simulator sim(scene.model, options);
+  std::vector<double> samples;
+  for (int r = 0; r <= repeats; ++r) {  // round 0 warms caches and is discarded
+    start_scene(scene, sim);
+    const double t0 = thread_cpu_ns();
+    try {
+      sim.run(static_cast<int>(n), dt);
+    } catch (const Error&) {
+      // An unstable run may stop early; its cost is still the time per step taken.
+    }
+    const double ns = thread_cpu_ns() - t0;
+    const double taken = std::max(1.0, std::round(sim.t / dt));
+    if (r > 0) samples.push_back(ns / taken);
+  }
+  std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
+  return samples[samples.size() / 2];
+}
+
+Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration) {
+  SimulatorOptions o = options;
+  o.integrator = Integrator::RK4;
+  Reference ref;
+  ref.dt = dt;
+  ref.end = run_to_end(scene, o, dt, duration);
+  const EndState half = run_to_end(scene, o, dt / 2, duration);
+  if (!ref.end.finite || !half.finite) throw Error("accuracy: the RK4 reference run is not finite");
+  ref.self_error_q = max_abs_difference(ref.end.q, half.q);
+  ref.self_error_qd = max_abs_difference(ref.end.qd, half.qd);
+  return ref;
+}
+
+StudyConfig default_config(const Scene& scene, bool quick) {
+  StudyConfig c;
+  c.duration = quick ? std::min(scene.duration, 0.5) : scene.duration;
+  c.dts = quick ? std::vector<double>{10e-3, 5e-3, 2e-3, 1e-3, 0.5e-3, 0.2e-3}
+                : std::vector<double>{10e-3, 5e-3, 2e-3, 1e-3, 0.5e-3, 0.2e-3, 0.1e-3, 0.05e-3};
+  c.reference_dt = c.dts.back() / 4;
+  return c;
+}
+
+Study run_study(const Scene& scene, const StudyConfig& config) {
+  if (!(config.duration > 0)) throw Error("accuracy: duration must be positive");
+  if (config.dts.empty()) throw Error("accuracy: no time steps to study");
+  const auto wall0 = std::chrono::steady_clock::now();
+  Study study;
+  study.scene = scene.source;
+  study.config = config;
+  // One set of equations for every run (see the header): friction smoothing and the
+  // Baumgarte frequency as the simulator would choose them at the largest step.
+  SimulatorOptions base = scene.options;
+  const double largest = *std::max_element(config.dts.begin(), config.dts.end());
+  study.friction_velocity = Simulator(scene.model, scene.options).friction_velocity(largest);
+  base.solver.friction_velocity = study.friction_velocity;
+  if (!(base.stabilisation_frequency > 0)) base.stabilisation_frequency = kBaumgarteStepFraction / largest;
+  study.stabilisation_frequency = base.stabilisation_frequency;
+
+  study.reference = reference_run(scene, base, config.reference_dt, config.duration);
+  std::vector<CostError> points;
+  std::vector<std::size_t> stable_runs;
+  for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
+    SimulatorOptions o = base;
+    o.integrator = integrator;
+    for (std::size_t i = 0; i < config.dts.size(); ++i) {
+      const double dt = config.dts[i];
+      StudyRun r = measure(run_to_end(scene, o, dt, config.duration), o, dt, config.duration, study.reference);
+      r.kind = "integrator";
+      time_run(scene, o, config, r);
+      // Observed order p from e ~ C dt^p between this step and the previous one.
+      const StudyRun* previous = i > 0 ? &study.runs.back() : nullptr;
+      if (previous && previous->stable && r.stable)
+        r.order = std::log(previous->error_q / r.error_q) / std::log(previous->dt / r.dt);
+      study.runs.push_back(r);
+      if (r.stable) {
+        points.push_back({r.cpu_s_per_sim_s, r.error_q});
+        stable_runs.push_back(study.runs.size() - 1);
+      }
+    }
+  }
+  const std::vector<bool> front = pareto_front(points);
+  for (std::size_t i = 0; i < front.size(); ++i) study.runs[stable_runs[i]].pareto = front[i];
+  if (config.knobs) run_knobs(scene, base, config, study.reference, study.runs);
+  study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return study;
+}
+
+}  // namespace achd::cli

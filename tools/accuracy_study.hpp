@@ -1,0 +1,103 @@
+#pragma once
+// The accuracy-versus-time study of a scene (`achd accuracy`): each integrator at a
+// ladder of time steps, and the solver knobs at the scene's step, each run measured by
+//   error  = max_i |q_i(T) - q_ref,i(T)| in rad (the end-state joint positions; the
+//            velocities' max|qd - qd_ref| in rad/s is reported beside it),
+//   cost   = CPU time of the simulating thread per step, median of repeated short runs
+//            (equals wall time on an idle core; on a shared machine it leaves out the
+//            time spent descheduled), and per simulated second: ns_per_step / dt.
+// The reference is RK4 at dt_ref; its own error is estimated as max|q(dt_ref) -
+// q(dt_ref / 2)| (the change when its step is halved).
+//
+// Every run of one study integrates the same equations, so that the differences are the
+// integrators': friction's smoothing velocity and the Baumgarte frequency of held
+// directions, which the simulator otherwise derives from each step, are fixed for all
+// runs at the values it derives for the largest step (Simulator::friction_velocity,
+// kBaumgarteStepFraction / dt), unless the scene sets a larger one. The knobs show what
+// the simulator's own per-step choices change.
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scene_json.hpp"
+
+namespace achd::cli {
+
+// What a run of a scene ends with.
+struct EndState {
+  Eigen::VectorXd q, qd;
+  bool finite = true;  // false: the state became NaN/Inf (or the solver refused it)
+  // max |E(t) - E(0)| / max kinetic energy over the run; NaN when the scene does not
+  // conserve energy.
+  double energy_drift = std::numeric_limits<double>::quiet_NaN();
+  // The largest |residual| of each held direction (m or rad); 0 for free directions.
+  std::array<double, kNumDirections> held_drift{};
+};
+
+// Runs `scene` with `options` for `duration` at `dt` (round(duration / dt) steps).
+EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration);
+
+// Median over `repeats` runs of min(steps, max_steps) steps from the scene's start of
+// the thread CPU time per step, in ns.
+double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, long steps,
+                   long max_steps, int repeats);
+
+// max_i |a_i - b_i|.
+double max_abs_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+
+struct Reference {
+  double dt = 0;
+  EndState end;          // RK4 at dt
+  double self_error_q = 0;   // max|q(dt) - q(dt / 2)|, rad
+  double self_error_qd = 0;  // max|qd(dt) - qd(dt / 2)|, rad/s
+};
+Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration);
+
+// A run is unstable when its state left the finite numbers or its error exceeds this.
+constexpr double kUnstableError = 1.0;  // rad
+
+struct StudyRun {
+  std::string kind;        // "integrator" or the knob's name
+  std::string integrator;  // integrator_name()
+  std::string setting;     // the knob's value ("" for the integrator ladder)
+  double dt = 0;
+  long steps = 0;
+  bool stable = true;
+  double error_q = 0, error_qd = 0;  // against the reference
+  double change_q = 0;               // knobs: max|q - q_default| at the same dt
+  double energy_drift = 0;           // NaN where the scene does not conserve energy
+  double held_drift_linear = 0;      // m, the largest over held linear directions
+  double held_drift_angular = 0;     // rad, the largest over held angular directions
+  double ns_per_step = 0;
+  double cpu_s_per_sim_s = 0;        // ns_per_step * 1e-9 / dt
+  double order = std::numeric_limits<double>::quiet_NaN();  // vs the previous dt
+  bool pareto = false;               // on the error-cost front of the integrator ladder
+};
+
+struct StudyConfig {
+  double duration = 0;                 // simulated seconds of each run
+  std::vector<double> dts;             // the ladder, largest first
+  double reference_dt = 0;             // RK4 reference step
+  int timing_repeats = 5;
+  long timing_steps = 400;             // steps of each timed run (at most the run's)
+  bool knobs = true;
+};
+
+struct Study {
+  std::string scene;
+  StudyConfig config;
+  double friction_velocity = 0;        // m/s or rad/s, fixed for every run (see above)
+  double stabilisation_frequency = 0;  // rad/s, fixed for every run (see above)
+  Reference reference;
+  std::vector<StudyRun> runs;    // the integrator ladder, then the knobs
+  double wall_seconds = 0;       // the whole study
+};
+
+// The ladder 10, 5, 2, 1, 0.5, 0.2, 0.1, 0.05 ms over the scene's duration, the
+// reference at 1/4 of the smallest step. quick: 0.5 s at most, 10 ms down to 0.2 ms.
+StudyConfig default_config(const Scene& scene, bool quick);
+
+Study run_study(const Scene& scene, const StudyConfig& config);
+
+}  // namespace achd::cli
