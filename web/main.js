@@ -8,6 +8,7 @@ import { Readouts } from './readouts.js';
 import { checkDirection, defaultSettings, formatHash, parseHash } from './settings.js';
 import { Simulation } from './simulation.js';
 import { UrdfUpload } from './urdf_upload.js';
+import './accuracy_panel.js';
 
 // At most this much simulated time per frame: after a stall (a hidden tab, a slow
 // frame) the simulation resumes instead of trying to catch up all at once.
