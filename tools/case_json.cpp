@@ -105,7 +105,7 @@ Case parse_case(const std::string& text, const Model& model, const std::string& 
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     throw Error(source + ": invalid JSON: " + e.what());
   }
   return case_from_json(j, model, source);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "achd/error.hpp"
+#include "achd/options.hpp"
 
 namespace achd {
 
@@ -57,6 +58,18 @@ void validate(const Model& model, const Case& c) {
         if (!std::isfinite(c.f_ext[i][r]))
           throw Error("f_ext[" + std::to_string(i) + "][" + std::to_string(r) + "] is not finite");
   }
+}
+
+void validate(const Options& o) {
+  if (!std::isfinite(o.tolerance) || o.tolerance < 0)
+    throw Error("options: tolerance must be finite and >= 0, got " + std::to_string(o.tolerance));
+  // damping 0 would divide 0 by 0 for a zero singular value: plain truncation is the
+  // Truncate policy with tolerance 0.
+  if (!std::isfinite(o.damping) || o.damping <= 0)
+    throw Error("options: damping must be finite and > 0, got " + std::to_string(o.damping));
+  if (!std::isfinite(o.friction_velocity) || o.friction_velocity <= 0)
+    throw Error("options: friction_velocity must be finite and > 0, got " +
+                std::to_string(o.friction_velocity));
 }
 
 }  // namespace achd

@@ -177,6 +177,7 @@ void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
 
 void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
   validate(model, c);
+  validate(o);
   const int nc = (o.effects & kConstraints) ? c.num_constraints() : 0;
   const bool gravity = o.effects & kGravity;
   // Skipped by themselves when their inputs are zero: the result is identical.

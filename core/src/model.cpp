@@ -5,12 +5,9 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "achd/case.hpp"
-#include "achd/data.hpp"
-#include "achd/dynamics.hpp"
 #include "achd/error.hpp"
-#include "achd/hybrid_dynamics.hpp"
 #include "achd/kinematics.hpp"
+#include "joint.hpp"
 
 namespace achd {
 
@@ -49,43 +46,43 @@ namespace {
 
 bool finite(const Matrix6& m) { return m.allFinite(); }
 
-// Size of the inertia a joint could move: the trace of the rotational (revolute) or
-// linear (prismatic) 3x3 block of the composite inertia Ic_i of bodies i..n-1 about
-// body i's origin, Ic_i = I_i + X_{i+1}^T Ic_{i+1} X_{i+1} (RBDA 6.2).
-std::vector<double> composite_scale(const Model& model, const Eigen::VectorXd& q) {
-  const int n = model.num_joints();
-  std::vector<double> scale(n);
-  Matrix6 Ic = Matrix6::Zero();
-  for (int i = n - 1; i >= 0; --i) {
-    if (i < n - 1) Ic = inertia_to_parent(joint_transform(model.bodies[i + 1], q[i + 1]), Ic);
-    Ic += model.bodies[i].inertia;
-    scale[i] = model.bodies[i].type == JointType::Prismatic ? Ic.topLeftCorner<3, 3>().trace()
-                                                            : Ic.bottomRightCorner<3, 3>().trace();
-  }
-  return scale;
+// The trace of the rotational (revolute) or linear (prismatic) 3x3 block of a spatial
+// inertia about its frame origin: the size of what a joint of that type could move.
+double block_trace(const Body& b, const Matrix6& I) {
+  return b.type == JointType::Prismatic ? I.topLeftCorner<3, 3>().trace()
+                                        : I.bottomRightCorner<3, 3>().trace();
 }
 
 // A joint moves nothing when D_i = S^T IA_i S vanishes: when nothing after it has inertia
 // along its motion (M_ii = S^T Ic_i S = 0) or later joints free that motion again. An
 // exact zero comes out of the sweeps as the round-off of the terms they accumulate, at
-// most ~ n eps times their size (Ic_i for M_ii, M_ii for D_i); 100 n eps leaves a margin
-// of 100. A genuine D can be far below M_ii: a light link ahead of a chain 1e12 times
-// heavier gives D / M_ii ~ 1e-10, which is a valid (badly conditioned) robot.
+// most ~ n eps times their size (the composite inertia Ic_i for M_ii, M_ii for D_i);
+// 100 n eps leaves a margin of 100. A genuine D can be far below M_ii: a light link
+// ahead of a chain 1e12 times heavier gives D / M_ii ~ 1e-10, a valid (badly
+// conditioned) robot. Inward sweep, from the tip (RBDA 6.2 and 7.3):
+//   Ic_i = I_i + X^T Ic_{i+1} X,   IA_i = I_i + X^T (IA_{i+1} - U U^T / D_{i+1}) X,
+//   U = IA_i S,  D_i = S^T U,  M_ii = S^T Ic_i S.
 void check_joints_move_something(const Model& model, const Eigen::VectorXd& q) {
-  const Eigen::MatrixXd M = crba(model, q, false);
-  const std::vector<double> scale = composite_scale(model, q);
-  Data data(model);
-  Case c = Case::zeros(model);
-  c.q = q;
-  Options options;
-  options.effects = 0;  // pure inertia: D without rotor, no forces
-  hybrid_dynamics(model, data, c, options);
-  const double round_off = 100 * model.num_joints() * std::numeric_limits<double>::epsilon();
-  for (int i = 0; i < model.num_joints(); ++i) {
-    if (!(M(i, i) > round_off * scale[i]) || !(data.D[i] > round_off * M(i, i)))
-      throw Error("joint '" + model.bodies[i].joint_name +
-                  "' moves nothing: the links after it have no mass or inertia along its "
-                  "motion (D = S^T IA S = 0)");
+  const int n = model.num_joints();
+  const double round_off = 100 * n * std::numeric_limits<double>::epsilon();
+  Matrix6 Ic = Matrix6::Zero(), Ia = Matrix6::Zero();  // of body i+1, in its own frame
+  for (int i = n - 1; i >= 0; --i) {
+    const Body& b = model.bodies[i];
+    Matrix6 IA = b.inertia;
+    Matrix6 IC = b.inertia;
+    if (i < n - 1) {
+      const Transform X = joint_transform(model.bodies[i + 1], q[i + 1]);
+      IA += inertia_to_parent(X, Ia);
+      IC += inertia_to_parent(X, Ic);
+    }
+    const Vector6 S = subspace_times(b, 1.0);
+    const Vector6 U = IA * S;
+    const double D = S.dot(U), M_ii = S.dot(IC * S);
+    if (!(M_ii > round_off * block_trace(b, IC)) || !(D > round_off * M_ii))
+      throw Error("joint '" + b.joint_name + "' moves nothing: the links after it have no mass "
+                  "or inertia along its motion (D = S^T IA S = 0)");
+    Ia = IA - U * U.transpose() / D;
+    Ic = IC;
   }
 }
 

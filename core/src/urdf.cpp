@@ -39,6 +39,9 @@ urdf::ModelInterfaceSharedPtr parse(const std::string& xml, std::string& why) {
   }
   console_bridge::restorePreviousOutputHandler();
   why = handler.first_error;
+  // urdfdom logs some errors and still returns a model (a mass "inf" becomes an
+  // inertial of mass 0): every logged error is fatal.
+  if (!why.empty()) model.reset();
   return model;
 }
 
@@ -94,7 +97,12 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index) {
     case urdf::Joint::REVOLUTE: b.type = JointType::Revolute; break;
     case urdf::Joint::CONTINUOUS: b.type = JointType::Continuous; break;
     case urdf::Joint::PRISMATIC: b.type = JointType::Prismatic; break;
-    default: throw Error(where + ": unsupported joint type (achd supports revolute, continuous, prismatic, fixed)");
+    default:
+      throw Error(where + ": unsupported joint type '" +
+                  (j.type == urdf::Joint::FLOATING ? "floating"
+                   : j.type == urdf::Joint::PLANAR ? "planar"
+                                                    : "unknown") +
+                  "' (achd supports revolute, continuous, prismatic and fixed)");
   }
   const urdf::Vector3& a = j.axis;
   if (!finite3(a.x, a.y, a.z)) throw Error(where + ": axis is not finite");

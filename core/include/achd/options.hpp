@@ -42,4 +42,8 @@ struct Options {
   double friction_velocity = 0.05;  // friction = F tanh(qd / friction_velocity)
 };
 
+// Throws achd::Error naming the option unless tolerance >= 0, damping > 0 and
+// friction_velocity > 0 are finite (hybrid_dynamics calls it).
+void validate(const Options& options);
+
 }  // namespace achd

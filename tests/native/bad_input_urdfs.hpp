@@ -1,0 +1,90 @@
+#pragma once
+// The bad URDFs every front end must refuse (C++ API, CLI), each with the words its
+// error message must contain. Links a (root) and b (tip) unless the case says otherwise.
+#include <string>
+#include <vector>
+
+namespace achd::test {
+
+struct BadUrdf {
+  std::string what;    // test label
+  std::string xml;
+  std::string root = "a", tip = "b";
+  std::vector<std::string> message;  // substrings of the error
+};
+
+inline std::string unit_inertial(const std::string& mass = "1", const std::string& ixx = "1",
+                                 const std::string& ixy = "0", const std::string& izz = "1") {
+  return "<inertial><mass value=\"" + mass + "\"/><inertia ixx=\"" + ixx + "\" ixy=\"" + ixy +
+         "\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"" + izz + "\"/></inertial>";
+}
+inline std::string link(const std::string& name, const std::string& body = unit_inertial()) {
+  return "<link name=\"" + name + "\">" + body + "</link>";
+}
+inline std::string joint(const std::string& name, const std::string& type, const std::string& parent,
+                         const std::string& child,
+                         const std::string& extra = "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" "
+                                                    "upper=\"1\" effort=\"1\" velocity=\"1\"/>") {
+  return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
+         "\"/><child link=\"" + child + "\"/><origin xyz=\"0.1 0 0\"/>" + extra + "</joint>";
+}
+inline std::string robot(const std::string& body) { return "<robot name=\"r\">" + body + "</robot>"; }
+
+inline std::vector<BadUrdf> bad_urdfs() {
+  const std::string ab = link("a") + link("b");
+  return {
+      {"malformed XML", "<robot name=\"r\"><link name=\"a\">", "a", "b", {"cannot parse URDF"}},
+      {"empty document", "", "a", "b", {"cannot parse URDF", "empty"}},
+      {"cycle", robot(link("a") + link("b") + link("c") + joint("j1", "revolute", "a", "b") +
+                      joint("j2", "revolute", "b", "c") + joint("j3", "revolute", "c", "a")),
+       "a", "b", {"cannot parse URDF", "root"}},
+      {"several roots", robot(ab + link("c") + link("d") + joint("j1", "revolute", "a", "b") +
+                              joint("j2", "revolute", "c", "d")),
+       "a", "b", {"Two root links", "[a]", "[c]"}},
+      {"unknown root", robot(ab + joint("j", "revolute", "a", "b")), "x", "b",
+       {"unknown root link 'x'"}},
+      {"unknown tip", robot(ab + joint("j", "revolute", "a", "b")), "a", "x",
+       {"unknown tip link 'x'"}},
+      {"tip not below root", robot(ab + link("c") + joint("j1", "revolute", "a", "b") +
+                                   joint("j2", "revolute", "a", "c")),
+       "b", "c", {"tip link 'c' is not below root link 'b'"}},
+      {"negative mass", robot(link("a") + link("b", unit_inertial("-1")) + joint("j", "revolute", "a", "b")),
+       "a", "b", {"link 'b'", "negative mass"}},
+      {"inertia not PSD", robot(link("a") + link("b", unit_inertial("1", "1", "2")) +
+                                joint("j", "revolute", "a", "b")),
+       "a", "b", {"link 'b'", "not positive semi-definite"}},
+      // principal moments 1, 1, 2 + 1e-8: beyond the 1e-9 relative tolerance
+      {"inertia violates the triangle inequality",
+       robot(link("a") + link("b", unit_inertial("1", "1", "0", "2.00000001")) +
+             joint("j", "revolute", "a", "b")),
+       "a", "b", {"link 'b'", "triangle inequality"}},
+      {"NaN mass", robot(link("a") + link("b", unit_inertial("nan")) + joint("j", "revolute", "a", "b")),
+       "a", "b", {"mass", "nan"}},
+      {"Inf inertia", robot(link("a") + link("b", unit_inertial("1", "inf")) + joint("j", "revolute", "a", "b")),
+       "a", "b", {"ixx"}},
+      {"NaN origin", robot(ab + "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>"
+                                "<origin xyz=\"nan 0 0\"/><axis xyz=\"0 0 1\"/></joint>"),
+       "a", "b", {"nan"}},
+      {"moving a massless link", robot(link("a") + link("b", "") + joint("j", "revolute", "a", "b")),
+       "a", "b", {"joint 'j' moves nothing", "D = S^T IA S = 0"}},
+      {"a point mass on the joint axis",
+       robot(link("a") + link("b", "<inertial><origin xyz=\"0 0 0.5\"/><mass value=\"1\"/><inertia ixx=\"0\" "
+                                   "ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial>") +
+             joint("j", "revolute", "a", "b")),
+       "a", "b", {"joint 'j' moves nothing"}},
+      {"a later coaxial joint frees the motion",
+       robot(link("a") + link("b", "") + link("c") + joint("j1", "revolute", "a", "b") +
+             "<joint name=\"j2\" type=\"continuous\"><parent link=\"b\"/><child link=\"c\"/><axis xyz=\"0 0 1\"/></joint>"),
+       "a", "c", {"joint 'j1' moves nothing"}},
+      {"floating joint", robot(ab + joint("j", "floating", "a", "b", "")), "a", "b",
+       {"joint 'j'", "unsupported joint type 'floating'"}},
+      {"planar joint", robot(ab + joint("j", "planar", "a", "b", "<axis xyz=\"0 0 1\"/>")), "a", "b",
+       {"joint 'j'", "unsupported joint type 'planar'"}},
+      {"zero axis", robot(ab + joint("j", "revolute", "a", "b",
+                                     "<axis xyz=\"0 0 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>")),
+       "a", "b", {"joint 'j'", "axis is zero"}},
+      {"no movable joint", robot(ab + joint("j", "fixed", "a", "b", "")), "a", "b", {"no movable joint"}},
+  };
+}
+
+}  // namespace achd::test
