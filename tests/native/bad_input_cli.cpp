@@ -1,0 +1,113 @@
+// Bad input through `achd solve`: every kind exits with code 2, prints nothing on
+// stdout and exactly one line "achd: error: ..." on stderr naming the problem.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "bad_input_urdfs.hpp"
+
+namespace achd::test {
+namespace {
+
+struct Run {
+  int code;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string write(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + "achd_bad_input_cli_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+Run solve(const std::string& args) {
+  const std::string out = testing::TempDir() + "achd_bad_input_cli.out";
+  const std::string err = testing::TempDir() + "achd_bad_input_cli.err";
+  const std::string cmd = std::string(ACHD_CLI) + " solve " + args + " >" + out + " 2>" + err;
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+// Exit 2, empty stdout, one stderr line starting "achd: error: " containing each part.
+void expect_refused(const Run& r, const std::vector<std::string>& parts, const std::string& what) {
+  EXPECT_EQ(r.code, 2) << what;
+  EXPECT_EQ(r.out, "") << what;
+  ASSERT_FALSE(r.err.empty()) << what;
+  EXPECT_EQ(r.err.rfind("achd: error: ", 0), 0u) << what << ": " << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << what << ": not one line: " << r.err;
+  for (const std::string& p : parts)
+    EXPECT_NE(r.err.find(p), std::string::npos) << what << ": '" << r.err << "' lacks '" << p << "'";
+}
+
+const std::string kKuka = std::string(ACHD_SOURCE_DIR) + "/robots/kuka_lwr4.urdf";
+const std::string kKukaChain = kKuka + " --root lwr_base_link --tip lwr_link_7";
+const std::string kQ = "\"q\": [0, 0, 0, 0, 0, 0, 0], \"gravity\": [0, 0, -9.81]";
+
+TEST(BadInputCli, EveryBadUrdfExitsTwoWithOneLineNamingIt) {
+  const std::string ok_case = write("ok_case.json", "{\"q\": [0], \"gravity\": [0, 0, -9.81]}");
+  for (const BadUrdf& b : bad_urdfs()) {
+    const std::string path = write("robot.urdf", b.xml);
+    std::vector<std::string> parts = b.message;
+    parts.push_back(path + ": ");
+    expect_refused(solve(path + " --root " + b.root + " --tip " + b.tip + " --case " + ok_case), parts,
+                   b.what);
+  }
+}
+
+TEST(BadInputCli, MissingFilesNameThePath) {
+  const std::string ok_case = write("ok7.json", "{" + kQ + "}");
+  expect_refused(solve("/nonexistent/r.urdf --root a --tip b --case " + ok_case),
+                 {"/nonexistent/r.urdf: cannot open file"}, "missing URDF");
+  expect_refused(solve(kKukaChain + " --case /nonexistent/case.json"),
+                 {"/nonexistent/case.json: cannot open file"}, "missing case");
+}
+
+TEST(BadInputCli, BadCasesNameTheFieldAndIndex) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{" + kQ + ", \"extra\": 1}", "unknown field 'extra'"},
+      {"{\"q\": [0, 0, 0, NaN, 0, 0, 0], \"gravity\": [0, 0, -9.81]}", "invalid JSON"},
+      {"{\"q\": [0, 0, 0, 1e999, 0, 0, 0], \"gravity\": [0, 0, -9.81]}", "1e999"},
+      {"{\"q\": [0, 0, 0], \"gravity\": [0, 0, -9.81]}", "q: expected 7 values, got 3"},
+      {"{" + kQ + ", \"qd\": [0, 0]}", "qd: expected 7 values, got 2"},
+      {"{" + kQ + ", \"alpha\": [[1, 0, 0, 0, 0, 0]], \"beta\": []}", "beta: expected 1 values"},
+      {"{" + kQ + ", \"alpha\": [[1, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0], "
+                  "[1, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0]]}",
+       "alpha: at most 6 constraints, got 7"},
+      {"{" + kQ + ", \"f_ext\": [[0, 0, 0, 0, 0, \"x\"]]}", "f_ext: expected 7 wrenches"},
+      {"{\"gravity\": [0, 0, -9.81]}", "missing required field 'q'"},
+      {"{" + kQ, "invalid JSON"},
+  };
+  for (const auto& [text, part] : cases) {
+    const std::string path = write("case.json", text);
+    expect_refused(solve(kKukaChain + " --case " + path), {path + ": ", part}, text);
+  }
+}
+
+TEST(BadInputCli, BadOptionsNameTheOption) {
+  const std::string ok_case = write("ok7b.json", "{" + kQ + "}");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--policy fast", "--policy"},
+      {"--tolerance nan", "--tolerance"},
+      {"--tolerance -1", "--tolerance"},
+      {"--damping inf", "--damping"},
+      {"--policy damped --damping 0", "damping"},
+      {"--bogus 1", "unknown option --bogus"},
+  };
+  for (const auto& [opts, part] : cases)
+    expect_refused(solve(kKukaChain + " --case " + ok_case + " " + opts), {part}, opts);
+  expect_refused(solve(kKuka + " --root lwr_base_link --case " + ok_case), {"--tip"}, "no --tip");
+}
+
+}  // namespace
+}  // namespace achd::test
