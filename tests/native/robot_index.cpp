@@ -1,0 +1,37 @@
+#include "robot_index.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace achd::test {
+
+std::string read_text(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot open file");
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::vector<IndexedRobot> load_robot_index(const std::string& source_dir) {
+  const nlohmann::json index = nlohmann::json::parse(read_text(source_dir + "/robots/index.json"));
+  std::vector<IndexedRobot> robots;
+  for (const auto& r : index.at("robots")) {
+    IndexedRobot robot;
+    robot.name = r.at("name");
+    robot.urdf_path = source_dir + "/" + r.at("urdf").get<std::string>();
+    robot.urdf = read_text(robot.urdf_path);
+    robot.root = r.at("root");
+    robot.tip = r.at("tip");
+    const std::vector<double> q0 = r.at("q0");
+    robot.q0 = Eigen::Map<const Eigen::VectorXd>(q0.data(), static_cast<Eigen::Index>(q0.size()));
+    robot.model = load_urdf_string(robot.urdf, robot.root, robot.tip);
+    robots.push_back(std::move(robot));
+  }
+  return robots;
+}
+
+}  // namespace achd::test
