@@ -1,0 +1,168 @@
+// Physics identities of the hybrid solver on random chains (random_chain.hpp), with
+// DESIGN.md's relative error: the solver agrees with the independent RNEA, its
+// constraint outputs satisfy the constraints, and its accelerations agree with a
+// separate point-velocity kinematics sweep (reference_kinematics.hpp).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "random_chain.hpp"
+#include "reference_kinematics.hpp"
+
+namespace achd::test {
+namespace {
+
+constexpr int kChains = 40;
+
+Eigen::VectorXd stack(const std::vector<Vector6>& v) {
+  Eigen::VectorXd r(6 * v.size());
+  for (size_t i = 0; i < v.size(); ++i) r.segment<6>(6 * i) = v[i];
+  return r;
+}
+
+void report(const char* what, double max_error, int cases) {
+  std::printf("  max rel error %-46s %.3g over %d cases\n", what, max_error, cases);
+}
+
+// With no constraints, RNEA(q, qd, qdd; g, f_ext) returns the applied torques; and f_ext
+// acts exactly like the joint torques sum_l J_l^T f_l (J_l from the reference sweep).
+TEST(Unconstrained, RneaReproducesAppliedTorquesAndWrenches) {
+  double worst_rnea = 0, worst_wrench = 0;
+  int cases = 0;
+  for_random_cases(101, kChains, true, [&](const RandomChain& ch, const Case& c) {
+    if (c.num_constraints()) return;
+    const Model& m = ch.model;
+    Data d(m);
+    hybrid_dynamics(m, d, c);
+    const Eigen::VectorXd qdd = d.qdd;
+    const double e1 = rel_error(rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext), c.ff_torques);
+    Case no_wrench = c;
+    no_wrench.f_ext.clear();
+    for (int l = 0; l < m.num_links(); ++l)
+      no_wrench.ff_torques += reference_link_jacobian(m, c.q, l).transpose() * c.f_ext[l];
+    hybrid_dynamics(m, d, no_wrench);
+    const double e2 = rel_error(d.qdd, qdd);
+    EXPECT_LE(e1, 1e-10) << ch.urdf;
+    EXPECT_LE(e2, 1e-10) << ch.urdf;
+    worst_rnea = std::max(worst_rnea, e1);
+    worst_wrench = std::max(worst_wrench, e2);
+    ++cases;
+  });
+  report("RNEA(qdd) vs ff", worst_rnea, cases);
+  report("qdd(f_ext) vs qdd(ff + J^T f_ext)", worst_wrench, cases);
+}
+
+// alpha^T a_tip == beta: physical (real acceleration), and kdl with
+// beta_kdl = beta - alpha_lin^T g against KDL's accelerations a - [g; 0].
+TEST(Constrained, TipAccelerationMeetsBetaInBothConventions) {
+  double worst_phys = 0, worst_kdl = 0;
+  int cases = 0;
+  for_random_cases(202, kChains, true, [&](const RandomChain& ch, const Case& c) {
+    const int nc = c.num_constraints();
+    if (!nc) return;
+    const Model& m = ch.model;
+    Data d(m);
+    hybrid_dynamics(m, d, c);
+    const double e1 = rel_error(c.alpha.transpose() * d.link_accelerations.back(), c.beta);
+    Case kdl = c;
+    kdl.beta = c.beta - c.alpha.topRows<3>().transpose() * c.gravity;
+    Options o;
+    o.convention = Convention::Kdl;
+    hybrid_dynamics(m, d, kdl, o);
+    const double e2 = rel_error(c.alpha.transpose() * d.link_accelerations.back(), kdl.beta);
+    EXPECT_LE(e1, 1e-10) << "nc " << nc << "\n" << ch.urdf;
+    EXPECT_LE(e2, 1e-10) << "nc " << nc << "\n" << ch.urdf;
+    worst_phys = std::max(worst_phys, e1);
+    worst_kdl = std::max(worst_kdl, e2);
+    ++cases;
+  });
+  report("alpha^T a_tip vs beta (physical)", worst_phys, cases);
+  report("alpha^T a_tip vs beta_kdl (kdl)", worst_kdl, cases);
+}
+
+// joint_torques == RNEA(q, qd, qdd; g, f_ext) == ff - J^T alpha nu; the free robot driven
+// by joint_torques moves with the same qdd; constraint_wrench == alpha nu.
+TEST(Constrained, JointTorquesAreTheTorquesThatProduceTheMotion) {
+  double worst_rnea = 0, worst_jt = 0, worst_free = 0, worst_wrench = 0;
+  int cases = 0;
+  for_random_cases(303, kChains, true, [&](const RandomChain& ch, const Case& c) {
+    const Model& m = ch.model;
+    Data d(m);
+    hybrid_dynamics(m, d, c);
+    const Eigen::VectorXd qdd = d.qdd, tau = d.joint_torques;
+    const Eigen::VectorXd nu = d.nu;
+    const Eigen::MatrixXd J = tip_jacobian(m, c.q);
+    const double e1 = rel_error(tau, rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext));
+    const double e2 = rel_error(tau, c.ff_torques - J.transpose() * (c.alpha * nu));
+    const double e4 = rel_error(d.constraint_wrench, c.alpha * nu);
+    Case free = c;
+    free.alpha.resize(6, 0);
+    free.beta.resize(0);
+    free.ff_torques = tau;
+    hybrid_dynamics(m, d, free);
+    const double e3 = rel_error(d.qdd, qdd);
+    EXPECT_LE(e1, 1e-10) << ch.urdf;
+    EXPECT_LE(e2, 1e-10) << ch.urdf;
+    EXPECT_LE(e3, 1e-10) << ch.urdf;
+    EXPECT_LE(e4, 1e-12);
+    worst_rnea = std::max(worst_rnea, e1);
+    worst_jt = std::max(worst_jt, e2);
+    worst_free = std::max(worst_free, e3);
+    worst_wrench = std::max(worst_wrench, e4);
+    ++cases;
+  });
+  report("joint_torques vs RNEA(qdd)", worst_rnea, cases);
+  report("joint_torques vs ff - J^T alpha nu", worst_jt, cases);
+  report("qdd(free, joint_torques) vs qdd", worst_free, cases);
+  report("constraint_wrench vs alpha nu", worst_wrench, cases);
+}
+
+// Every link's spatial acceleration equals [vdot - w x v; wdot] of the reference sweep
+// driven by the solver's qdd (plus [g; 0] below it in the kdl convention); the tip
+// Jacobian and link poses agree with the reference kinematics.
+TEST(Kinematics, LinkAccelerationsPosesAndJacobianMatchReferenceSweep) {
+  double worst_acc = 0, worst_kdl = 0, worst_jac = 0, worst_pose = 0;
+  int cases = 0;
+  for_random_cases(404, kChains, true, [&](const RandomChain& ch, const Case& c) {
+    const Model& m = ch.model;
+    Data d(m);
+    hybrid_dynamics(m, d, c);
+    const std::vector<FrameMotion> ref = reference_motion(m, c.q, c.qd, d.qdd);
+    std::vector<Vector6> expected(1, Vector6::Zero()), expected_kdl;
+    for (const FrameMotion& f : ref) expected.push_back(f.spatial_acceleration());
+    Vector6 g_shift;
+    g_shift << c.gravity, Vector3::Zero();
+    for (const Vector6& a : expected) expected_kdl.push_back(a - g_shift);
+    const double e1 = rel_error(stack(d.link_accelerations), stack(expected));
+    Options o;
+    o.convention = Convention::Kdl;
+    Case kdl = c;
+    kdl.beta = c.beta - c.alpha.topRows<3>().transpose() * c.gravity;
+    hybrid_dynamics(m, d, kdl, o);
+    const double e2 = rel_error(stack(d.link_accelerations), stack(expected_kdl));
+    const Eigen::MatrixXd J = tip_jacobian(m, c.q);
+    const Eigen::MatrixXd Jref = reference_link_jacobian(m, c.q, m.num_links() - 1);
+    const double e3 = (J - Jref).cwiseAbs().maxCoeff() / std::max(1.0, Jref.cwiseAbs().maxCoeff());
+    const std::vector<Transform> poses = forward_kinematics(m, c.q);
+    double e4 = 0;
+    for (int l = 0; l < m.num_links(); ++l)
+      e4 = std::max({e4, (poses[l].R - ref[l].R).cwiseAbs().maxCoeff(),
+                     (poses[l].p - ref[l].p).cwiseAbs().maxCoeff()});
+    EXPECT_LE(e1, 1e-10) << ch.urdf;
+    EXPECT_LE(e2, 1e-10) << ch.urdf;
+    EXPECT_LE(e3, 1e-12) << ch.urdf;
+    EXPECT_LE(e4, 1e-12) << ch.urdf;
+    worst_acc = std::max(worst_acc, e1);
+    worst_kdl = std::max(worst_kdl, e2);
+    worst_jac = std::max(worst_jac, e3);
+    worst_pose = std::max(worst_pose, e4);
+    ++cases;
+  });
+  report("link accelerations vs reference sweep", worst_acc, cases);
+  report("link accelerations (kdl) vs reference - [g;0]", worst_kdl, cases);
+  report("tip_jacobian vs reference Jacobian", worst_jac, cases);
+  report("forward_kinematics vs reference poses", worst_pose, cases);
+}
+
+}  // namespace
+}  // namespace achd::test
