@@ -65,12 +65,27 @@ void time_run(const Scene& scene, const SimulatorOptions& options, const StudyCo
   r.cpu_s_per_sim_s = r.ns_per_step * 1e-9 / r.dt;
 }
 
+// The step the knobs run at: the scene's, unless the scene's integrator is unstable there
+// in the ladder; then the ladder's largest step at which it is stable (0: none).
+double knob_step(const Scene& scene, const std::vector<StudyRun>& ladder) {
+  const std::string integrator = integrator_name(scene.options.integrator);
+  double largest_stable = 0;
+  bool unstable_at_scene_dt = false;
+  for (const StudyRun& r : ladder) {
+    if (r.integrator != integrator) continue;
+    if (r.stable) largest_stable = std::max(largest_stable, r.dt);
+    else if (r.dt == scene.dt) unstable_at_scene_dt = true;
+  }
+  return unstable_at_scene_dt ? largest_stable : scene.dt;
+}
+
 // The knobs other than the integrator and the step, each a variant of the default solve
-// (the scene's integrator at the scene's step): error against the reference and change
-// against the default.
+// (the scene's integrator at knob_step): error against the reference and change against
+// the default.
 void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConfig& config,
                const Reference& ref, std::vector<StudyRun>& runs) {
-  const double dt = scene.dt;
+  const double dt = knob_step(scene, runs);
+  if (!(dt > 0)) return;
   const EndState standard = run_to_end(scene, base, dt, config.duration);
   auto add = [&](const std::string& kind, const std::string& setting, const SimulatorOptions& o) {
     const EndState end = run_to_end(scene, o, dt, config.duration);
@@ -133,6 +148,9 @@ EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double 
   const double E0 = sim.energy();
   double max_kinetic = sim.kinetic_energy(), max_energy_error = 0;
   const long steps = steps_for(duration, dt);
+  if (std::abs(steps * dt - duration) > 1e-9 * duration)
+    throw Error("accuracy: the duration " + number_text(duration) + " s is not a whole number of steps of " +
+                number_text(dt) + " s");
   try {
     for (long s = 0; s < steps && end.finite; ++s) {
       sim.step(dt);

@@ -35,7 +35,8 @@ struct EndState {
   std::array<double, kNumDirections> held_drift{};
 };
 
-// Runs `scene` with `options` for `duration` at `dt` (round(duration / dt) steps).
+// Runs `scene` with `options` for `duration` at `dt`; duration must be a whole number of
+// steps (an achd::Error otherwise: the end states would belong to different times).
 EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration);
 
 // Median over `repeats` runs of min(steps, max_steps) steps from the scene's start of

@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kWidth = 760, kPlotHeight = 440;
 constexpr double kLeft = 80, kRight = 210, kTop = 40, kBottom = 60, kNoteLine = 16;
+constexpr std::size_t kNoteChars = 120;
 
 std::string escape(const std::string& text) {
   std::string out;
@@ -26,6 +27,24 @@ std::string escape(const std::string& text) {
     else out += c;
   }
   return out;
+}
+
+// Notes broken at spaces into lines of at most kNoteChars characters (longer words stay whole).
+std::vector<std::string> wrap(const std::vector<std::string>& notes) {
+  std::vector<std::string> lines;
+  for (const std::string& note : notes) {
+    std::istringstream words(note);
+    std::string word, line;
+    while (words >> word) {
+      if (!line.empty() && line.size() + 1 + word.size() > kNoteChars) {
+        lines.push_back(line);
+        line = "  ";
+      }
+      line += (line.empty() || line == "  " ? "" : " ") + word;
+    }
+    if (!line.empty()) lines.push_back(line);
+  }
+  return lines;
 }
 
 std::string fixed(double v) {
@@ -65,7 +84,8 @@ std::string render_svg(const LogLogPlot& plot) {
   dx.cover(xs);
   dy.cover(ys);
   const double w = kWidth - kLeft - kRight, h = kPlotHeight - kTop - kBottom;
-  const double height = kPlotHeight + kNoteLine * plot.notes.size() + 8;
+  const std::vector<std::string> notes = wrap(plot.notes);
+  const double height = kPlotHeight + kNoteLine * notes.size() + 8;
   auto px = [&](double x) { return kLeft + dx.fraction(x) * w; };
   auto py = [&](double y) { return kTop + (1 - dy.fraction(y)) * h; };
 
@@ -96,8 +116,8 @@ std::string render_svg(const LogLogPlot& plot) {
   if (plot.x_marker > 0) {
     const double x = px(plot.x_marker);
     o << "<line x1=\"" << fixed(x) << "\" y1=\"" << kTop << "\" x2=\"" << fixed(x) << "\" y2=\"" << kTop + h
-      << "\" stroke=\"#888\" stroke-dasharray=\"6 4\"/>\n<text x=\"" << fixed(x + 4) << "\" y=\"" << kTop + 14
-      << "\" fill=\"#555\">" << escape(plot.x_marker_label) << "</text>\n";
+      << "\" stroke=\"#888\" stroke-dasharray=\"6 4\"/>\n<text x=\"" << fixed(x - 4) << "\" y=\"" << kTop + h - 6
+      << "\" text-anchor=\"end\" fill=\"#555\">" << escape(plot.x_marker_label) << "</text>\n";
   }
   // Series: line, markers, Pareto rings, labels; then the legend entry.
   double legend_y = kTop + 10;
@@ -127,9 +147,9 @@ std::string render_svg(const LogLogPlot& plot) {
   const double lx = kLeft + w + 16;
   o << "<circle cx=\"" << lx + 12 << "\" cy=\"" << legend_y << "\" r=\"7\" fill=\"none\" stroke=\"black\" "
     << "stroke-width=\"1.5\"/>\n<text x=\"" << lx + 30 << "\" y=\"" << legend_y + 4 << "\">Pareto front</text>\n";
-  for (std::size_t i = 0; i < plot.notes.size(); ++i)
+  for (std::size_t i = 0; i < notes.size(); ++i)
     o << "<text x=\"10\" y=\"" << fixed(kPlotHeight + kNoteLine * i + 4) << "\" font-size=\"11\" fill=\"#333\">"
-      << escape(plot.notes[i]) << "</text>\n";
+      << escape(notes[i]) << "</text>\n";
   o << "</svg>\n";
   return o.str();
 }

@@ -59,6 +59,11 @@ TEST_F(AccuracyOrder, SceneIsTheDampedSwing) {
   EXPECT_GT(ref_.self_error_q, 0);  // a real check: the two reference runs differ
 }
 
+TEST_F(AccuracyOrder, DurationMustBeWholeSteps) {
+  // 0.5 s / 8 ms = 62.5 steps: the end state would be at another time than the reference's.
+  EXPECT_THROW(run_to_end(scene_, scene_.options, 8e-3, kDuration), Error);
+}
+
 TEST_F(AccuracyOrder, RK4IsFourthOrder) { expect_order(Integrator::RK4, {4e-3, 2e-3, 1e-3}, 4.0); }
 
 TEST_F(AccuracyOrder, ExplicitEulerIsFirstOrder) {
