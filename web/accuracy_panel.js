@@ -30,7 +30,7 @@ function mount(root) {
       Friction is off here: the simulator derives its smoothing from dt, which would change
       the equations with the step. <button type="button" class="accuracy-run">Run the study</button></p>
     <p class="accuracy-status" aria-live="polite"></p>
-    <div class="accuracy-columns">
+    <div class="accuracy-columns" style="display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start">
       <figure class="accuracy-live"></figure>
       <figure class="accuracy-native"><figcaption>Native (README, 7-DoF arm holding z and rx, 2 s)</figcaption>
         <img src="../docs/accuracy/arm7/accuracy.svg" alt="native accuracy plot" width="380">
@@ -151,7 +151,7 @@ function markPareto(points) {
 
 // Log-log error (rad) against cost (s per simulated s), as the native SVG.
 function plot(runs) {
-  const W = 460, H = 320, L = 64, R = 12, T = 12, B = 44;
+  const W = 580, H = 320, L = 64, R = 190, T = 12, B = 44;
   const shown = runs.filter((r) => r.stable && r.error > 0);
   const decades = (values) => {
     const lo = Math.floor(Math.log10(Math.min(...values)));
@@ -171,7 +171,7 @@ function plot(runs) {
     svg.append(text(L - 4, py(10 ** k) + 4, `1e${k}`, { 'text-anchor': 'end' }));
   }
   svg.append(el('line', { x1: px(1), x2: px(1), y1: T, y2: H - B, stroke: '#888', 'stroke-dasharray': '6 4' }));
-  svg.append(text(px(1) + 3, T + 12, 'real time', { fill: '#555' }));
+  svg.append(text(px(1) - 4, H - B - 6, 'real time', { fill: '#555', 'text-anchor': 'end' }));
   svg.append(text((L + W - R) / 2, H - 8, 'cost: wall time per simulated second (s/s)', { 'text-anchor': 'middle' }));
   svg.append(text(14, (T + H - B) / 2, 'error: max |q(T) − q_ref(T)| (rad)',
     { 'text-anchor': 'middle', transform: `rotate(-90 14 ${(T + H - B) / 2})` }));
@@ -184,11 +184,12 @@ function plot(runs) {
       if (r.pareto) svg.append(el('circle', { cx: px(r.cost), cy: py(r.error), r: 7, fill: 'none', stroke: 'black' }));
       svg.append(text(px(r.cost) + 5, py(r.error) - 5, String(r.ms), { 'font-size': 9, fill: '#444' }));
     }
-    svg.append(el('circle', { cx: W - 140, cy: T + 10 + 16 * i, r: 4, fill: integrator.color }));
-    svg.append(text(W - 132, T + 14 + 16 * i, integrator.label));
+    svg.append(el('circle', { cx: W - R + 20, cy: T + 10 + 16 * i, r: 4, fill: integrator.color }));
+    svg.append(text(W - R + 32, T + 14 + 16 * i, integrator.label));
   });
-  svg.append(el('circle', { cx: W - 140, cy: T + 58, r: 7, fill: 'none', stroke: 'black' }));
-  svg.append(text(W - 128, T + 62, 'Pareto front (labels: dt in ms)'));
+  svg.append(el('circle', { cx: W - R + 20, cy: T + 58, r: 7, fill: 'none', stroke: 'black' }));
+  svg.append(text(W - R + 32, T + 62, 'Pareto front'));
+  svg.append(text(W - R + 12, T + 84, 'labels: dt in ms', { fill: '#555' }));
   return svg;
 }
 
