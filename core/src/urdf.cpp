@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <mutex>
+#include <set>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -141,13 +142,16 @@ Model build(const urdf::ModelInterface& urdf_model, const std::string& root, con
 
   // Joints from the tip up to the root.
   std::vector<urdf::JointConstSharedPtr> joints;
+  std::set<std::string> seen = {tip};
   for (auto link = tip_link; link->name != root;) {
     if (!link->parent_joint)
       throw Error(source + ": tip link '" + tip + "' is not below root link '" + root + "'");
     joints.push_back(link->parent_joint);
     link = urdf_model.getLink(link->parent_joint->parent_link_name);
-    if (!link || joints.size() > urdf_model.links_.size())
+    if (!link)
       throw Error(source + ": tip link '" + tip + "' is not below root link '" + root + "'");
+    if (!seen.insert(link->name).second)
+      throw Error(source + ": the links form a cycle through link '" + link->name + "'");
   }
 
   Model model;
@@ -182,6 +186,18 @@ Model load(const std::string& xml, const std::string& root, const std::string& t
   std::string why;
   const auto parsed = parse(xml, why);
   if (!parsed) throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
+  // urdfdom links point to their children and parent joints by shared_ptr: a cycle in
+  // the URDF (which it accepts when another link is the root) would never be freed.
+  struct BreakCycles {
+    urdf::ModelInterface& model;
+    ~BreakCycles() {
+      for (auto& entry : model.links_) {
+        entry.second->child_links.clear();
+        entry.second->child_joints.clear();
+        entry.second->parent_joint.reset();
+      }
+    }
+  } break_cycles{*parsed};
   try {
     return build(*parsed, root, tip, source);
   } catch (const Error& e) {

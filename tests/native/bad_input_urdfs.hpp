@@ -38,6 +38,11 @@ inline std::vector<BadUrdf> bad_urdfs() {
       {"cycle", robot(link("a") + link("b") + link("c") + joint("j1", "revolute", "a", "b") +
                       joint("j2", "revolute", "b", "c") + joint("j3", "revolute", "c", "a")),
        "a", "b", {"cannot parse URDF", "root"}},
+      // a cycle that urdfdom accepts because another link (r) is the root
+      {"cycle below the root", robot(link("r") + link("a") + link("b") + link("c") +
+                                     joint("j0", "revolute", "r", "a") + joint("j1", "revolute", "c", "b") +
+                                     joint("j2", "revolute", "b", "c")),
+       "r", "b", {"the links form a cycle through link"}},
       {"several roots", robot(ab + link("c") + link("d") + joint("j1", "revolute", "a", "b") +
                               joint("j2", "revolute", "c", "d")),
        "a", "b", {"Two root links", "[a]", "[c]"}},
