@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
 
 namespace achd::cli {
@@ -11,7 +12,7 @@ namespace {
 const char* const kIntegrators[] = {"explicit_euler", "semi_implicit_euler", "rk4"};
 const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c"};
 
-// 17 significant digits, empty for NaN/Inf (CSV) .
+// 17 significant digits, empty for NaN/Inf (CSV).
 std::string cell(double v) {
   if (!std::isfinite(v)) return "";
   char buf[40];
@@ -34,12 +35,12 @@ nlohmann::ordered_json value(double v) {
 
 std::string study_csv(const Study& study) {
   std::ostringstream o;
-  o << "kind,integrator,setting,dt_s,steps,stable,error_q_rad,error_qd_rad_s,change_q_rad,energy_drift,"
+  o << "kind,integrator,setting,dt_s,steps,stable,status,error_q_rad,error_qd_rad_s,change_q_rad,energy_drift,"
        "held_drift_m,held_drift_rad,ns_per_step,cpu_s_per_sim_s,order,pareto\n";
   for (const StudyRun& r : study.runs) {
     const bool s = r.stable;
     o << r.kind << ',' << r.integrator << ',' << r.setting << ',' << cell(r.dt) << ',' << r.steps << ','
-      << (s ? "true" : "false") << ',' << (s ? cell(r.error_q) : "") << ',' << (s ? cell(r.error_qd) : "")
+      << (s ? "true" : "false") << ',' << r.status << ',' << (s ? cell(r.error_q) : "") << ',' << (s ? cell(r.error_qd) : "")
       << ',' << (r.kind == "integrator" || !s ? "" : cell(r.change_q)) << ',' << cell(r.energy_drift) << ','
       << (s ? cell(r.held_drift_linear) : "") << ',' << (s ? cell(r.held_drift_angular) : "") << ','
       << cell(r.ns_per_step) << ',' << cell(r.cpu_s_per_sim_s) << ',' << cell(r.order) << ','
@@ -56,7 +57,8 @@ nlohmann::ordered_json study_json(const Study& study) {
   j["cost_measure"] = "CPU time of the simulating thread per step, median of " +
                       std::to_string(study.config.timing_repeats) + " runs of up to " +
                       std::to_string(study.config.timing_steps) + " steps from the scene's start";
-  j["unstable_when"] = "state not finite, or error_q > 1 rad";
+  j["unstable_when"] = "status unstable: the state became NaN/Inf or the solver refused it; "
+                      "status diverged: finite but error_q > 1 rad";
   j["friction_velocity"] = study.friction_velocity;
   j["stabilisation_frequency"] = study.stabilisation_frequency;
   const Reference& ref = study.reference;
@@ -85,6 +87,7 @@ nlohmann::ordered_json study_json(const Study& study) {
     row["dt_s"] = r.dt;
     row["steps"] = r.steps;
     row["stable"] = r.stable;
+    row["status"] = r.status;
     row["error_q_rad"] = r.stable ? value(r.error_q) : nullptr;
     row["error_qd_rad_s"] = r.stable ? value(r.error_qd) : nullptr;
     if (r.kind != "integrator") row["change_q_rad"] = r.stable ? value(r.change_q) : nullptr;
@@ -113,9 +116,10 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
   plot.y_label = "error: max |q(T) - q_ref(T)| (rad)";
   plot.x_marker = 1;
   plot.x_marker_label = "real time";
-  std::string unstable;  // "explicit_euler 10, 5 ms; rk4 10 ms"
+  // Runs not plotted, by status: "explicit_euler 10, 5 ms; rk4 10 ms".
+  std::map<std::string, std::string> left_out;
   for (int k = 0; k < 3; ++k) {
-    std::string steps;
+    std::map<std::string, std::string> steps;
     PlotSeries s;
     s.name = kIntegrators[k];
     s.color = kColors[k];
@@ -124,9 +128,10 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
       const bool resolved = r.error_q >= 1e3 * study.reference.self_error_q;
       const std::string label = short_number(r.dt * 1e3) + (resolved ? "" : "*");
       if (r.stable && r.error_q > 0) s.points.push_back({r.cpu_s_per_sim_s, r.error_q, label, r.pareto});
-      else if (!r.stable) steps += (steps.empty() ? "" : ", ") + short_number(r.dt * 1e3);
+      else if (!r.stable) steps[r.status] += (steps[r.status].empty() ? "" : ", ") + short_number(r.dt * 1e3);
     }
-    if (!steps.empty()) unstable += (unstable.empty() ? "" : "; ") + s.name + " " + steps + " ms";
+    for (const auto& [status, list] : steps)
+      left_out[status] += (left_out[status].empty() ? "" : "; ") + s.name + " " + list + " ms";
     plot.series.push_back(s);
   }
   const Reference& ref = study.reference;
@@ -139,7 +144,10 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
   plot.notes.push_back("Every run: friction smoothing " + short_number(study.friction_velocity) +
                        " rad/s, Baumgarte frequency " + short_number(study.stabilisation_frequency) +
                        " rad/s (the simulator's choices at the largest step).");
-  if (!unstable.empty()) plot.notes.push_back("Unstable (NaN/Inf or error > 1 rad, not plotted): " + unstable + ".");
+  if (left_out.count("unstable"))
+    plot.notes.push_back("Unstable (NaN/Inf), not plotted: " + left_out["unstable"] + ".");
+  if (left_out.count("diverged"))
+    plot.notes.push_back("Diverged (finite, error > 1 rad), not plotted: " + left_out["diverged"] + ".");
   return plot;
 }
 

@@ -9,14 +9,14 @@
 
 namespace achd::cli {
 
-// One row per run: kind, integrator, setting, dt_s, steps, stable, error_q_rad,
+// One row per run: kind, integrator, setting, dt_s, steps, stable, status, error_q_rad,
 // error_qd_rad_s, change_q_rad, energy_drift, held_drift_m, held_drift_rad,
 // ns_per_step, cpu_s_per_sim_s, order, pareto. Unstable runs have empty errors.
 std::string study_csv(const Study& study);
 // The configuration, the reference and its self-check, and the same rows.
 nlohmann::ordered_json study_json(const Study& study);
 // log-log error (rad) against cost (s per simulated s), one line per integrator,
-// stable runs only; unstable ones are named in a note.
+// stable runs only; unstable and diverged ones are named in notes.
 LogLogPlot study_plot(const Study& study, const std::string& title);
 
 }  // namespace achd::cli

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "achd/error.hpp"
 #include "pareto_front.hpp"
@@ -52,6 +53,7 @@ StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt
   r.error_q = end.finite ? max_abs_difference(end.q, ref.end.q) : INFINITY;
   r.error_qd = end.finite ? max_abs_difference(end.qd, ref.end.qd) : INFINITY;
   r.stable = end.finite && std::isfinite(r.error_qd) && r.error_q <= kUnstableError;
+  r.status = r.stable ? "ok" : end.finite && std::isfinite(r.error_qd) ? "diverged" : "unstable";
   r.energy_drift = end.energy_drift;
   for (int k = 0; k < kNumDirections; ++k) {  // x, y, z first, then rx, ry, rz
     double& drift = k < 3 ? r.held_drift_linear : r.held_drift_angular;
@@ -86,13 +88,20 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
                const Reference& ref, std::vector<StudyRun>& runs) {
   const double dt = knob_step(scene, runs);
   if (!(dt > 0)) return;
-  const EndState standard = run_to_end(scene, base, dt, config.duration);
+  // The default solve of each integrator, computed when a knob first needs it.
+  std::map<Integrator, EndState> standard;
   auto add = [&](const std::string& kind, const std::string& setting, const SimulatorOptions& o) {
+    if (!standard.count(o.integrator)) {
+      SimulatorOptions d = base;
+      d.integrator = o.integrator;
+      standard[o.integrator] = run_to_end(scene, d, dt, config.duration);
+    }
     const EndState end = run_to_end(scene, o, dt, config.duration);
     StudyRun r = measure(end, o, dt, config.duration, ref);
     r.kind = kind;
     r.setting = setting;
-    r.change_q = end.finite ? max_abs_difference(end.q, standard.q) : INFINITY;
+    const EndState& d = standard[o.integrator];
+    r.change_q = end.finite && d.finite ? max_abs_difference(end.q, d.q) : INFINITY;
     time_run(scene, o, config, r);
     runs.push_back(r);
   };
@@ -129,6 +138,14 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
     add("stabilisation_frequency", number_text(kBaumgarteStepFraction / dt), o);
     o.stabilisation_frequency = 1000;
     add("stabilisation_frequency", "1000", o);
+    // The held drift the other integrators show with the simulator's default frequency.
+    for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
+      if (integrator == base.integrator) continue;
+      o = base;
+      o.integrator = integrator;
+      o.stabilisation_frequency = 0;
+      add("stabilisation_frequency", number_text(kBaumgarteStepFraction / dt), o);
+    }
   }
 }
 

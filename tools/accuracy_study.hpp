@@ -64,9 +64,11 @@ struct StudyRun {
   std::string setting;     // the knob's value ("" for the integrator ladder)
   double dt = 0;
   long steps = 0;
-  bool stable = true;
+  bool stable = true;      // false: "unstable" or "diverged" below
+  std::string status;      // "ok"; "unstable": NaN/Inf (or the solver refused the
+                           // state); "diverged": finite but error_q > kUnstableError
   double error_q = 0, error_qd = 0;  // against the reference
-  double change_q = 0;               // knobs: max|q - q_default| at the same dt
+  double change_q = 0;               // knobs: max|q - q_default| (same integrator and dt)
   double energy_drift = 0;           // NaN where the scene does not conserve energy
   double held_drift_linear = 0;      // m, the largest over held linear directions
   double held_drift_angular = 0;     // rad, the largest over held angular directions
