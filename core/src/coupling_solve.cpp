@@ -3,15 +3,16 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 namespace achd {
 namespace {
 
-// A well-conditioned K is solved by Cholesky when its smallest eigenvalue is at least
-// this fraction of trace(K) >= sigma_max (and above the truncation threshold).
-constexpr double kCholeskyMinRatio = 1e-8;
+// K is solved by Cholesky when its smallest eigenvalue is at least this fraction of
+// trace(K) >= sigma_max and above the truncation threshold: then no direction is
+// truncated, and Cholesky, backward stable for any positive definite K, keeps its pivots
+// well away from round-off (the eigen-decomposition is as accurate there, not more).
+constexpr double kCholeskyMinRatio = 1e-11;
 
 // The smallest eigenvalue of the symmetric K (nc <= 6), without eigenvectors:
 // Householder reduction to a tridiagonal T = Q^T K Q, then Laguerre's iteration on
@@ -19,27 +20,36 @@ constexpr double kCholeskyMinRatio = 1e-8;
 // polynomial with real roots rises monotonically and cubically to the smallest one.
 double smallest_eigenvalue(const CouplingMatrix& K) {
   const int n = static_cast<int>(K.rows());
-  CouplingMatrix A = K;
-  double d[kMaxConstraints] = {0}, e[kMaxConstraints] = {0};
-  ConstraintVector v, p;
+  double A[kMaxConstraints][kMaxConstraints], d[kMaxConstraints] = {0}, e[kMaxConstraints] = {0};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A[i][j] = K(i, j);
   for (int k = 0; k + 2 < n; ++k) {
     // H = 1 - 2 v v^T maps x = A(k+1:, k) to [alpha; 0]; A(k+1:, k+1:) <- H A H
     //   = A - 2 (v w^T + w v^T),  w = A v - (v^T A v) v.
-    const int m = n - k - 1;
-    const double norm = A.col(k).tail(m).norm();
-    const double alpha = A(k + 1, k) > 0 ? -norm : norm;
+    double norm2 = 0, v[kMaxConstraints], w[kMaxConstraints];
+    for (int i = k + 1; i < n; ++i) norm2 += A[i][k] * A[i][k];
+    const double alpha = A[k + 1][k] > 0 ? -std::sqrt(norm2) : std::sqrt(norm2);
     e[k] = alpha;
-    v = A.col(k).tail(m);
-    v[0] -= alpha;
-    const double vn = v.norm();
-    if (vn == 0) continue;  // already tridiagonal in this column
-    v /= vn;
-    p.noalias() = A.bottomRightCorner(m, m) * v;
-    p -= v.dot(p) * v;
-    A.bottomRightCorner(m, m) -= 2 * (v * p.transpose() + p * v.transpose());
+    double vn2 = 0;
+    for (int i = k + 1; i < n; ++i) {
+      v[i] = A[i][k] - (i == k + 1 ? alpha : 0.0);
+      vn2 += v[i] * v[i];
+    }
+    if (vn2 == 0) continue;  // already tridiagonal in this column
+    const double vinv = 1 / std::sqrt(vn2);
+    double vw = 0;
+    for (int i = k + 1; i < n; ++i) v[i] *= vinv;
+    for (int i = k + 1; i < n; ++i) {
+      w[i] = 0;
+      for (int j = k + 1; j < n; ++j) w[i] += A[i][j] * v[j];
+      vw += v[i] * w[i];
+    }
+    for (int i = k + 1; i < n; ++i) w[i] -= vw * v[i];
+    for (int i = k + 1; i < n; ++i)
+      for (int j = k + 1; j < n; ++j) A[i][j] -= 2 * (v[i] * w[j] + w[i] * v[j]);
   }
-  for (int k = 0; k < n; ++k) d[k] = A(k, k);
-  if (n >= 2) e[n - 2] = A(n - 1, n - 2);
+  for (int k = 0; k < n; ++k) d[k] = A[k][k];
+  if (n >= 2) e[n - 2] = A[n - 1][n - 2];
   double x = d[0], scale = 0;
   for (int k = 0; k < n; ++k) {
     const double r = (k ? std::abs(e[k - 1]) : 0.0) + (k + 1 < n ? std::abs(e[k]) : 0.0);
@@ -65,6 +75,37 @@ double smallest_eigenvalue(const CouplingMatrix& K) {
     if (step <= 4 * std::numeric_limits<double>::epsilon() * scale) break;
   }
   return x;
+}
+
+// x = K^-1 b by K = L L^T (L lower triangular), then L y = b, L^T x = y. False if a
+// pivot is not positive.
+bool cholesky_solve(const CouplingMatrix& K, const ConstraintVector& b, ConstraintVector& x) {
+  const int n = static_cast<int>(K.rows());
+  double L[kMaxConstraints][kMaxConstraints], y[kMaxConstraints];
+  for (int j = 0; j < n; ++j) {
+    double djj = K(j, j);
+    for (int k = 0; k < j; ++k) djj -= L[j][k] * L[j][k];
+    if (!(djj > 0)) return false;
+    L[j][j] = std::sqrt(djj);
+    const double inv = 1 / L[j][j];
+    for (int i = j + 1; i < n; ++i) {
+      double lij = K(i, j);
+      for (int k = 0; k < j; ++k) lij -= L[i][k] * L[j][k];
+      L[i][j] = lij * inv;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    double s = b[i];
+    for (int k = 0; k < i; ++k) s -= L[i][k] * y[k];
+    y[i] = s / L[i][i];
+  }
+  x.resize(n);
+  for (int i = n - 1; i >= 0; --i) {
+    double s = y[i];
+    for (int k = i + 1; k < n; ++k) s -= L[k][i] * x[k];
+    x[i] = s / L[i][i];
+  }
+  return true;
 }
 
 // nu = K^-1 rhs by the eigen-decomposition K = V diag(sigma) V^T with the singularity
@@ -118,15 +159,12 @@ void solve_coupling(Data& data, const Options& options) {
     const double trace = K.trace();
     const double lambda_min = smallest_eigenvalue(K);
     const double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
-    if (lambda_min > threshold && lambda_min >= kCholeskyMinRatio * trace) {
-      Eigen::LLT<CouplingMatrix> llt(K);
-      if (llt.info() == Eigen::Success) {
-        data.nu = llt.solve(data.rhs);
-        data.rank = nc;
-        data.sigma_min = lambda_min;
-        data.dropped.resize(nc, 0);
-        return;
-      }
+    if (lambda_min > threshold && lambda_min >= kCholeskyMinRatio * trace &&
+        cholesky_solve(K, data.rhs, data.nu)) {
+      data.rank = nc;
+      data.sigma_min = lambda_min;
+      data.dropped.resize(nc, 0);
+      return;
     }
   }
   solve_by_eigen_decomposition(data, options);
