@@ -18,8 +18,9 @@ constexpr double kCholeskyMinRatio = 1e-11;
 // Householder reduction to a tridiagonal T = Q^T K Q, then Laguerre's iteration on
 // p(x) = det(T - x 1) started below every eigenvalue (Gershgorin), which for a
 // polynomial with real roots rises monotonically and cubically to the smallest one.
-double smallest_eigenvalue(const CouplingMatrix& K) {
-  const int n = static_cast<int>(K.rows());
+// (n is a template parameter so that the short loops unroll; see smallest_eigenvalue.)
+template <int n>
+double smallest_eigenvalue_n(const CouplingMatrix& K) {
   double A[kMaxConstraints][kMaxConstraints], d[kMaxConstraints] = {0}, e[kMaxConstraints] = {0};
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) A[i][j] = K(i, j);
@@ -75,6 +76,18 @@ double smallest_eigenvalue(const CouplingMatrix& K) {
     if (step <= 4 * std::numeric_limits<double>::epsilon() * scale) break;
   }
   return x;
+}
+
+static_assert(kMaxConstraints == 6, "smallest_eigenvalue dispatches n = 1..6");
+double smallest_eigenvalue(const CouplingMatrix& K) {
+  switch (K.rows()) {
+    case 1: return smallest_eigenvalue_n<1>(K);
+    case 2: return smallest_eigenvalue_n<2>(K);
+    case 3: return smallest_eigenvalue_n<3>(K);
+    case 4: return smallest_eigenvalue_n<4>(K);
+    case 5: return smallest_eigenvalue_n<5>(K);
+    default: return smallest_eigenvalue_n<6>(K);
+  }
 }
 
 // x = K^-1 b by K = L L^T (L lower triangular), then L y = b, L^T x = y. False if a
