@@ -47,7 +47,7 @@ void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
 
 namespace {
 
-const std::string kRepo = std::string(__FILE__).substr(0, std::string(__FILE__).rfind("/tests/native/"));
+const std::string kRepo = ACHD_SOURCE_DIR;
 
 // Allocations made by one hybrid_dynamics() call.
 long allocations_of_solve(const achd::Model& m, achd::Data& d, const achd::Case& c,
