@@ -40,9 +40,6 @@ urdf::ModelInterfaceSharedPtr parse(const std::string& xml, std::string& why) {
   }
   console_bridge::restorePreviousOutputHandler();
   why = handler.first_error;
-  // urdfdom logs some errors and still returns a model (a mass "inf" becomes an
-  // inertial of mass 0): every logged error is fatal.
-  if (!why.empty()) model.reset();
   return model;
 }
 
@@ -185,19 +182,24 @@ Model load(const std::string& xml, const std::string& root, const std::string& t
            const std::string& source) {
   std::string why;
   const auto parsed = parse(xml, why);
-  if (!parsed) throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
   // urdfdom links point to their children and parent joints by shared_ptr: a cycle in
-  // the URDF (which it accepts when another link is the root) would never be freed.
+  // the URDF (which it accepts when another link is the root, or when a joint is its
+  // child's parent) would never be freed.
   struct BreakCycles {
-    urdf::ModelInterface& model;
+    const urdf::ModelInterfaceSharedPtr& model;
     ~BreakCycles() {
-      for (auto& entry : model.links_) {
+      if (!model) return;
+      for (auto& entry : model->links_) {
         entry.second->child_links.clear();
         entry.second->child_joints.clear();
         entry.second->parent_joint.reset();
       }
     }
-  } break_cycles{*parsed};
+  } break_cycles{parsed};
+  // urdfdom logs some errors and still returns a model (a mass "inf" becomes an
+  // inertial of mass 0): every logged error is fatal.
+  if (!parsed || !why.empty())
+    throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
   try {
     return build(*parsed, root, tip, source);
   } catch (const Error& e) {
