@@ -20,6 +20,7 @@ Data::Data(const Model& model) {
   D.assign(n, 0.0);
   u.assign(n, 0.0);
   E.resize(6, 0);
+  Ea.resize(6, 0);
   EZ.assign(n, ConstraintVector(0));
 }
 

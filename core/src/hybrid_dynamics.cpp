@@ -108,28 +108,23 @@ void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) 
       d.pA[p] += d.Xup[i].force_to_parent(d.pA[i]);
     }
     if (!nc) continue;
-    // Per unit constraint force e (column k of E), fixed-size 6-vector work:
-    //   EZ_k = S^T e;  ea = e - U EZ_k / D                        (eq. c)
-    //   G_k += ea^T c + EZ_k u / D                                 (eq. e)
-    //   e_parent = X^T ea: f_P = R f, n_P = R n + p x f_P
-    // (Locals, not Data members, inside the loops: stores through the columns would
-    // otherwise force the compiler to reload every member.)
-    const Transform X = d.Xup[i];
-    const Vector6 ci = d.c[i];
-    const double uD = d.u[i] * Dinv;
-    double ez[kMaxConstraints];
-    double* E = d.E.data();
-    for (int k = 0; k < nc; ++k) {
-      Eigen::Map<Vector6> e(E + 6 * k);
-      ez[k] = subspace_dot(b, e);
-      e -= Ud * ez[k];
-      d.G0[k] += ez[k] * uD + (moving ? e.dot(ci) : 0.0);
-      e = X.force_to_parent(e);
-    }
-    // M -= EZ EZ^T / D                                             (eq. d)
+    // EZ = E^T S;  Ea = E - U EZ^T / D                        (eq. c)
+    // G  += Ea^T c + EZ u / D;  M -= EZ EZ^T / D               (eqs. e, d)
+    ConstraintVector& EZ = d.EZ[i];
+    EZ.resize(nc);
+    for (int k = 0; k < nc; ++k) EZ[k] = subspace_dot(b, d.E.col(k));
+    d.E.noalias() -= Ud * EZ.transpose();
+    if (moving) d.G0.noalias() += d.E.transpose() * d.c[i];
+    d.G0 += EZ * (d.u[i] * Dinv);
+    d.M0.noalias() -= (EZ * Dinv) * EZ.transpose();
+    // E_parent = X^T Ea: f_P = R f, n_P = R n + p x f_P, all columns at once
+    const Matrix3& R = d.Xup[i].R;
+    d.Ea.resize(6, nc);
+    d.Ea.topRows<3>().noalias() = R * d.E.topRows<3>();
+    d.Ea.bottomRows<3>().noalias() = R * d.E.bottomRows<3>();
     for (int k = 0; k < nc; ++k)
-      for (int j = 0; j <= k; ++j) d.M0(j, k) = d.M0(k, j) -= ez[k] * ez[j] * Dinv;
-    d.EZ[i] = Eigen::Map<const ConstraintVector>(ez, nc);
+      d.Ea.col(k).tail<3>() += d.Xup[i].p.cross(Vector3(d.Ea.col(k).head<3>()));
+    d.E.swap(d.Ea);
   }
 }
 

@@ -36,7 +36,7 @@ struct Data {
   std::vector<Vector6> U;        // IA S
   std::vector<double> D, u;      // S^T IA S (+ rotor), tau - S^T pA
   std::vector<ConstraintVector> EZ;      // E^T S at each body
-  ConstraintForceMatrix E;               // unit constraint forces at the body being swept
+  ConstraintForceMatrix E, Ea;           // unit constraint forces at the body being swept
                                          // (after the sweep: at the base, E_0)
   ConstraintForceMatrix alpha_body;      // alpha at the tip body's origin, body frame
   CouplingMatrix M0;                     // acceleration-energy coupling at the base
