@@ -146,6 +146,14 @@ export interface SimulatorOptions {
   effects?: Effects | number;
   /** default [0, 0, -9.81]. */
   gravity?: Vec;
+  /** joint limits: 'report' (default) records hits, 'clamp' stops the joint there, 'ignore'. */
+  limits?: 'report' | 'clamp' | 'ignore';
+  /** Coulomb friction F tanh(qd / v): v in rad/s or m/s, default 0.05, raised per step for stability. */
+  frictionVelocity?: number;
+  /** Baumgarte frequency of held directions in rad/s; default 0 = 0.1 / dt. */
+  stabilisationFrequency?: number;
+  /** Baumgarte damping ratio, default 1. */
+  stabilisationDamping?: number;
 }
 
 /** Time stepping under the hybrid solver. */
@@ -168,9 +176,11 @@ export interface Simulator {
   reset(q: Vec, qd?: Vec): void;
   /** 'hold' keeps the tip where it is along the base axis; a number prescribes the classical tip acceleration; 'free' releases. */
   setDirection(name: Direction, mode: 'hold' | 'free' | number): void;
-  /** held-direction residuals in m or rad; null for free directions. */
+  /** held-direction residuals in m or rad; null for directions not held (free or accelerated). */
   residuals(): Record<Direction, number | null>;
   energy(): { kinetic: number; potential: number; total: number };
+  /** names of the joints at or past a limit after the last step (a copy; [] under limits 'ignore'). */
+  limitHits(): string[];
   /** of the solve at the start of the last step (copies). */
   nu(): number[];
   jointTorques(): number[];

@@ -52,10 +52,7 @@ window.achdDemo = {
   ready,
   state() {
     if (!page.sim) throw new Error('achdDemo.state: no robot loaded yet (await achdDemo.ready)');
-    const s = page.sim.snapshot();
-    // Only held directions have a residual; free and accelerated ones report null.
-    for (const d of Object.keys(s.residuals)) if (s.directions[d] !== 'hold') s.residuals[d] = null;
-    return s;
+    return page.sim.snapshot();
   },
   setDirection(name, mode) {
     checkDirection(name, mode);

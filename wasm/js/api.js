@@ -14,6 +14,8 @@ const ACHD_ALL_EFFECTS = 127;
 const ACHD_MAX_CONSTRAINTS = 6;
 const ACHD_DIRECTIONS = ['x', 'y', 'z', 'rx', 'ry', 'rz'];
 const ACHD_INTEGRATORS = { euler: 0, 'semi-implicit': 1, rk4: 2 };
+// achd::DirectionMode.
+const ACHD_MODE_FREE = 0, ACHD_MODE_HOLD = 1, ACHD_MODE_ACCELERATE = 2;
 
 function achdLastError() {
   return new Error(UTF8ToString(_achd_last_error()));
@@ -76,6 +78,13 @@ function achdNonNegative(value, fallback, name) {
   if (value === undefined) return fallback;
   if (typeof value !== 'number' || !Number.isFinite(value) || value < 0)
     throw new Error(`${name} must be a finite number >= 0, got ${value}`);
+  return value;
+}
+
+function achdPositive(value, fallback, name) {
+  if (value === undefined) return fallback;
+  if (typeof value !== 'number' || !Number.isFinite(value) || value <= 0)
+    throw new Error(`${name} must be a finite number > 0, got ${value}`);
   return value;
 }
 
@@ -255,6 +264,7 @@ class Simulator extends AchdHandle {
     this.numJoints = robot.numJoints;
     this.numLinks = robot.numLinks;
     this._linkNames = robot.linkNames;
+    this._jointNames = robot.jointNames;
   }
   _bufferOf(ptr, index) { return _achd_sim_buffer(ptr, index); }
   _layout() {
@@ -289,20 +299,21 @@ class Simulator extends AchdHandle {
     const index = ACHD_DIRECTIONS.indexOf(name);
     if (index < 0) throw new Error(`setDirection: unknown direction '${name}' (x, y, z, rx, ry, rz)`);
     let code, setpoint = 0;
-    if (mode === 'free') code = 0;
-    else if (mode === 'hold') code = 1;
-    else if (typeof mode === 'number' && Number.isFinite(mode)) { code = 2; setpoint = mode; }
+    if (mode === 'free') code = ACHD_MODE_FREE;
+    else if (mode === 'hold') code = ACHD_MODE_HOLD;
+    else if (typeof mode === 'number' && Number.isFinite(mode)) { code = ACHD_MODE_ACCELERATE; setpoint = mode; }
     else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${mode}`);
     if (_achd_sim_set_direction(ptr, index, code, setpoint)) throw achdLastError();
   }
-  // Held-direction residuals (m or rad); null for free directions.
+  // Held-direction residuals (m or rad); null for directions that are not held (free
+  // or accelerated: neither has a position or angle to keep).
   residuals() {
     const ptr = this._live();
     return achdWithScratch(6, (p) => {
       _achd_sim_residuals(ptr, 8 * p);
       const out = {};
       ACHD_DIRECTIONS.forEach((name, k) => {
-        out[name] = _achd_sim_direction_mode(ptr, k) === 0 ? null : HEAPF64[p + k];
+        out[name] = _achd_sim_direction_mode(ptr, k) === ACHD_MODE_HOLD ? HEAPF64[p + k] : null;
       });
       return out;
     });
@@ -311,6 +322,14 @@ class Simulator extends AchdHandle {
     const ptr = this._live();
     const kinetic = _achd_sim_kinetic_energy(ptr), potential = _achd_sim_potential_energy(ptr);
     return { kinetic, potential, total: kinetic + potential };
+  }
+  // Names of the joints at or past a limit after the last step (a copy; [] under 'ignore').
+  limitHits() {
+    const ptr = this._live(), n = _achd_sim_limit_hits(ptr, 0);
+    return achdWithScratch(n, (p) => {
+      _achd_sim_limit_hits(ptr, 8 * p);
+      return Array.from(HEAP32.subarray(2 * p, 2 * p + n), (i) => this._jointNames[i]);
+    });
   }
   nu() { const ptr = this._live(); return achdCopy(_achd_sim_result(ptr, 0), _achd_sim_nu_size(ptr)); }
   jointTorques() { return achdCopy(_achd_sim_result(this._live(), 1), this.numJoints); }
@@ -478,14 +497,21 @@ class Robot extends AchdHandle {
     if (typeof Module['_achd_sim_create'] !== 'function')
       throw new Error('createSimulator: this build of achd has no simulator (core without simulator.cpp)');
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity']);
+    achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
+      'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping']);
     const integrator = options.integrator === undefined ? 'rk4' : options.integrator;
     if (!(integrator in ACHD_INTEGRATORS))
       throw new Error(`options.integrator: expected 'rk4', 'euler' or 'semi-implicit', got '${integrator}'`);
     const effects = achdEffectBits(options.effects, ACHD_ALL_EFFECTS, 'options.effects');
+    // Defaults are achd::SimulatorOptions' (core/include/achd/simulator.hpp).
+    const limits = achdChoice(options.limits, ['ignore', 'report', 'clamp'], 1, 'options.limits');
+    const frictionVelocity = achdPositive(options.frictionVelocity, 0.05, 'options.frictionVelocity');
+    const frequency = achdNonNegative(options.stabilisationFrequency, 0, 'options.stabilisationFrequency');
+    const damping = achdPositive(options.stabilisationDamping, 1, 'options.stabilisationDamping');
     const sim = achdWithScratch(3, (p) => {
       achdWriteVector(options.gravity === undefined ? [0, 0, -9.81] : options.gravity, 'gravity', 3, p);
-      return _achd_sim_create(ptr, ACHD_INTEGRATORS[integrator], effects, 8 * p);
+      return _achd_sim_create(ptr, ACHD_INTEGRATORS[integrator], effects, 8 * p, limits,
+        frictionVelocity, frequency, damping);
     });
     if (!sim) throw achdLastError();
     return new Simulator(this, sim);

@@ -1,20 +1,31 @@
 // The simulator: achd::Simulator stepping a robot, its state (q, qd, t, ff_torques,
 // f_ext) exposed to JS as views on the Simulator's own Eigen buffers.
+#include <algorithm>
+#include <vector>
+
 #include "achd/achd.hpp"
 #include "achd/simulator.hpp"
 #include "c_api.hpp"
 
 using achd::wasm::Robot;
 
-// integrator: 0 explicit Euler, 1 semi-implicit Euler, 2 RK4 (achd::Integrator order).
+// integrator: 0 explicit Euler, 1 semi-implicit Euler, 2 RK4 (achd::Integrator order);
+// limits: 0 ignore, 1 report, 2 clamp (achd::LimitPolicy order). The rest are the scene
+// file's friction_velocity, stabilisation_frequency (0 = from dt), stabilisation_damping.
 ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, unsigned effects,
-                                             const double* gravity) {
+                                             const double* gravity, int limits,
+                                             double friction_velocity, double stabilisation_frequency,
+                                             double stabilisation_damping) {
   achd::Simulator* sim = nullptr;
   achd::wasm::guarded([&] {
     achd::SimulatorOptions o;
     o.integrator = static_cast<achd::Integrator>(integrator);
     o.effects = effects;
     o.gravity = achd::Vector3(gravity);
+    o.limits = static_cast<achd::LimitPolicy>(limits);
+    o.solver.friction_velocity = friction_velocity;
+    o.stabilisation_frequency = stabilisation_frequency;
+    o.stabilisation_damping = stabilisation_damping;
     sim = new achd::Simulator(*r->model, o);
     if (sim->f_ext.empty()) sim->f_ext.assign(r->model->num_links(), achd::Vector6::Zero());
   });
@@ -76,3 +87,11 @@ ACHD_EXPORT const double* achd_sim_result(const achd::Simulator* sim, int which)
   }
 }
 ACHD_EXPORT int achd_sim_nu_size(const achd::Simulator* sim) { return static_cast<int>(sim->data().nu.size()); }
+
+// Joints at or past a limit after the last step (limits 'report' or 'clamp'): their
+// count, and with out != nullptr their indices, root to tip.
+ACHD_EXPORT int achd_sim_limit_hits(const achd::Simulator* sim, int* out) {
+  const std::vector<int>& hits = sim->limit_hits();
+  if (out) std::copy(hits.begin(), hits.end(), out);
+  return static_cast<int>(hits.size());
+}
