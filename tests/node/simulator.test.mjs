@@ -1,0 +1,182 @@
+// The simulator behind the JS API: every scene in robots/scenes/ run in wasm ends where
+// the native `achd simulate` ends, held directions stay held, energy is conserved, and
+// bad input throws an Error naming the problem without breaking the simulator.
+import assert from 'node:assert/strict';
+import { readFileSync, readdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { before, test } from 'node:test';
+
+import { loadAchd, nativeCli, relativeError, repo, robots, runCli, scratchDir } from './helpers.mjs';
+
+const SCENES = join(repo, 'robots/scenes');
+const INTEGRATORS = { rk4: 'rk4', explicit_euler: 'euler', semi_implicit_euler: 'semi-implicit' };
+const EFFECTS = { gravity: 'gravity', velocity_products: 'velocityProducts', external_wrenches: 'externalWrenches',
+  damping: 'damping', friction: 'friction', rotor_inertia: 'rotorInertia', constraints: 'constraints' };
+// Scene fields -> createSimulator options (the rest are handled in startScene).
+const OPTIONS = { limits: 'limits', friction_velocity: 'frictionVelocity',
+  stabilisation_frequency: 'stabilisationFrequency', stabilisation_damping: 'stabilisationDamping' };
+const HANDLED = ['description', 'urdf', 'root', 'tip', 'q0', 'qd0', 'effects', 'directions', 'integrator',
+  'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', ...Object.keys(OPTIONS)];
+
+let achd, kuka, kukaEntry;
+before(async () => {
+  achd = await loadAchd();
+  kukaEntry = robots().find((r) => r.name === 'kuka_lwr4');
+  kuka = achd.loadURDF(kukaEntry.text, { root: kukaEntry.root, tip: kukaEntry.tip });
+});
+
+const readScene = (file) => JSON.parse(readFileSync(join(SCENES, file), 'utf8'));
+
+// A simulator configured as tools/scene_json.cpp's start_scene configures the native one.
+function startScene(scene, robot) {
+  for (const key of Object.keys(scene))
+    if (!HANDLED.includes(key)) throw new Error(`the test does not map scene field '${key}' to the JS API`);
+  const options = { integrator: INTEGRATORS[scene.integrator ?? 'rk4'] };
+  if (scene.effects)
+    options.effects = Object.fromEntries(Object.entries(scene.effects).map(([k, on]) => [EFFECTS[k], on]));
+  if (scene.gravity) options.gravity = scene.gravity;
+  for (const [field, option] of Object.entries(OPTIONS)) if (field in scene) options[option] = scene[field];
+  const sim = robot.createSimulator(options);
+  sim.reset(scene.q0, scene.qd0);
+  if (scene.ff_torques) sim.ff_torques.set(scene.ff_torques);
+  for (const [link, wrench] of Object.entries(scene.f_ext ?? {})) sim.setExternalWrench(link, wrench);
+  for (const [name, mode] of Object.entries(scene.directions ?? {})) sim.setDirection(name, mode);
+  return sim;
+}
+
+// The last row of `achd simulate --out` (t, q, qd, tip pose; 17 significant digits, so
+// the doubles round-trip exactly).
+async function nativeFinalState(file, nj) {
+  const tmp = scratchDir();
+  try {
+    const csv = join(tmp.dir, 'traj.csv');
+    await runCli(nativeCli(), ['simulate', join(SCENES, file), '--out', csv]);
+    const rows = readFileSync(csv, 'utf8').trim().split('\n');
+    const last = rows[rows.length - 1].split(',').map(Number);
+    return { t: last[0], q: last.slice(1, 1 + nj), qd: last.slice(1 + nj, 1 + 2 * nj) };
+  } finally {
+    tmp.remove();
+  }
+}
+
+for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.json')).sort()) {
+  test(`scene ${file}: wasm ends where native achd simulate ends (relative error <= 1e-9)`, async (t) => {
+    const scene = readScene(file);
+    const robot = achd.loadURDF(readFileSync(join(repo, scene.urdf), 'utf8'), { root: scene.root, tip: scene.tip });
+    const sim = startScene(scene, robot);
+    try {
+      sim.step(Math.round(scene.duration / scene.dt), scene.dt);
+      const native = await nativeFinalState(file, robot.numJoints);
+      assert.equal(sim.t, native.t);
+      const eq = relativeError(Array.from(sim.q), native.q), eqd = relativeError(Array.from(sim.qd), native.qd);
+      t.diagnostic(`relative error q ${eq.toExponential(2)}, qd ${eqd.toExponential(2)}`);
+      assert.ok(eq <= 1e-9, `q: relative error ${eq}`);
+      assert.ok(eqd <= 1e-9, `qd: relative error ${eqd}`);
+    } finally {
+      sim.delete();
+      robot.delete();
+    }
+  });
+}
+
+test('held z and rx stay within 1e-6 over 2000 steps of 1 ms; only held directions report a residual', (t) => {
+  const sim = startScene(readScene('kuka_lwr4_hold_z_rx.json'), kuka);
+  try {
+    sim.setDirection('y', 0.05);  // accelerated (5 cm in y over 2 s): no residual, like the free ones
+    const q0 = Array.from(sim.q);
+    let worst = 0;
+    for (let s = 0; s < 2000; ++s) {
+      sim.step(1, 1e-3);
+      const r = sim.residuals();
+      for (const d of ['x', 'y', 'ry', 'rz']) assert.equal(r[d], null, `${d} is not held`);
+      worst = Math.max(worst, Math.abs(r.z), Math.abs(r.rx));
+    }
+    t.diagnostic(`largest held residual ${worst.toExponential(2)}`);
+    assert.ok(worst < 1e-6, `largest held residual ${worst}`);
+    // The arm did move: the held rows constrain it, they do not freeze it.
+    assert.ok(relativeError(Array.from(sim.q), q0) > 1e-2, 'the arm stayed where it was');
+  } finally {
+    sim.delete();
+  }
+});
+
+test('gravity + velocity products only, RK4 at 0.25 ms for 2 s: |E - E0| <= 1e-6 max kinetic energy', (t) => {
+  const sim = kuka.createSimulator({ integrator: 'rk4', effects: achd.Effects.gravity | achd.Effects.velocityProducts });
+  try {
+    sim.reset(kukaEntry.q0);
+    const E0 = sim.energy().total;
+    let maxKinetic = 0, maxError = 0;
+    for (let s = 0; s < 8000; ++s) {
+      sim.step(1, 2.5e-4);
+      const e = sim.energy();
+      maxKinetic = Math.max(maxKinetic, e.kinetic);
+      maxError = Math.max(maxError, Math.abs(e.total - E0));
+    }
+    t.diagnostic(`max kinetic ${maxKinetic.toFixed(1)} J, drift ${(maxError / maxKinetic).toExponential(2)} of it`);
+    assert.ok(maxKinetic > 1, `the arm barely moved (max kinetic energy ${maxKinetic} J)`);
+    assert.ok(maxError <= 1e-6 * maxKinetic, `energy drift ${maxError / maxKinetic} of the max kinetic energy`);
+  } finally {
+    sim.delete();
+  }
+});
+
+test('joint limits: report lists the joint, clamp also puts it back, ignore does neither', () => {
+  const j = 1, upper = kuka.limits[j].upper, q = Array.from(kukaEntry.q0);
+  q[j] = upper + 0.1;
+  const qd = [0, 1, 0, 0, 0, 0, 0];
+  for (const limits of ['report', 'clamp', 'ignore']) {
+    const sim = kuka.createSimulator({ limits });
+    try {
+      sim.reset(q, qd);
+      sim.step(1, 1e-3);
+      assert.deepEqual(sim.limitHits(), limits === 'ignore' ? [] : [kuka.jointNames[j]], limits);
+      if (limits === 'clamp') {
+        assert.equal(sim.q[j], upper);
+        assert.equal(sim.qd[j], 0);
+      } else {
+        assert.ok(sim.q[j] > upper, `${limits}: q[${j}] = ${sim.q[j]}`);
+      }
+    } finally {
+      sim.delete();
+    }
+  }
+});
+
+test('bad input throws an Error naming the problem; the simulator keeps working after reset', () => {
+  const throws = (fn, message) =>
+    assert.throws(fn, (e) => e instanceof Error && message.test(e.message), `expected ${message}`);
+  // Reference: 10 steps from q0 on a fresh simulator.
+  const fresh = kuka.createSimulator();
+  fresh.reset(kukaEntry.q0);
+  fresh.step(10);
+  const reference = Array.from(fresh.q);
+  fresh.delete();
+
+  throws(() => kuka.createSimulator({ integrator: 'verlet' }), /^options\.integrator: expected/);
+  throws(() => kuka.createSimulator({ limits: 'stop' }), /^options\.limits: expected 'ignore' or 'report' or 'clamp'/);
+  throws(() => kuka.createSimulator({ frictionVelocity: 0 }), /^options\.frictionVelocity must be a finite number > 0/);
+  throws(() => kuka.createSimulator({ stabilisationFrequency: -1 }), /^options\.stabilisationFrequency must be/);
+  throws(() => kuka.createSimulator({ dt: 1e-3 }), /^options: unknown field 'dt'$/);
+
+  const sim = kuka.createSimulator();
+  sim.reset(kukaEntry.q0);
+  throws(() => sim.setDirection('w', 'hold'), /unknown direction 'w'/);
+  throws(() => sim.setDirection('z', 'stick'), /mode must be 'hold', 'free' or a finite number, got stick/);
+  throws(() => sim.setDirection('z', NaN), /mode must be/);
+  throws(() => sim.reset([1, 2, 3]), /^q: expected 7 values, got 3$/);
+  throws(() => sim.reset(kukaEntry.q0, new Float64Array(8)), /^qd: expected 7 values, got 8$/);
+  throws(() => sim.step(1.5), /^step: n must be an integer >= 0/);
+  throws(() => sim.step(1, 0), /^step: dt must be a finite number > 0/);
+  sim.q[3] = NaN;
+  throws(() => sim.step(), /^q\[3\] is not finite$/);
+
+  sim.reset(kukaEntry.q0);
+  sim.step(10);
+  assert.deepEqual(Array.from(sim.q), reference);
+
+  sim.delete();
+  throws(() => sim.step(), /^Simulator has been deleted$/);
+  throws(() => sim.q, /^Simulator has been deleted$/);
+  throws(() => sim.residuals(), /^Simulator has been deleted$/);
+  throws(() => sim.delete(), /^Simulator has been deleted$/);
+});
