@@ -44,15 +44,20 @@ function startScene(scene, robot) {
   return sim;
 }
 
-// The last row of `achd simulate --out` (t, q, qd, tip pose; 17 significant digits, so
-// the doubles round-trip exactly).
-async function nativeFinalState(file, nj) {
+// The 50-link chain falling is chaotic (halving RK4's step changes its state at 2 s by
+// 1.4e-7 rad, docs/accuracy/chain50): the last-bit differences of glibc's and musl's
+// sin/cos grow exponentially along it, so it is compared after 1 s of its 2 s.
+const HORIZON = { 'chain50_fall.json': 1.0 };
+
+// The row of `achd simulate --out` at step `steps` (t, q, qd, tip pose; 17 significant
+// digits, so the doubles round-trip exactly).
+async function nativeState(file, nj, steps) {
   const tmp = scratchDir();
   try {
     const csv = join(tmp.dir, 'traj.csv');
     await runCli(nativeCli(), ['simulate', join(SCENES, file), '--out', csv]);
     const rows = readFileSync(csv, 'utf8').trim().split('\n');
-    const last = rows[rows.length - 1].split(',').map(Number);
+    const last = rows[1 + steps].split(',').map(Number);
     return { t: last[0], q: last.slice(1, 1 + nj), qd: last.slice(1 + nj, 1 + 2 * nj) };
   } finally {
     tmp.remove();
@@ -65,8 +70,9 @@ for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.json')).sort()
     const robot = achd.loadURDF(readFileSync(join(repo, scene.urdf), 'utf8'), { root: scene.root, tip: scene.tip });
     const sim = startScene(scene, robot);
     try {
-      sim.step(Math.round(scene.duration / scene.dt), scene.dt);
-      const native = await nativeFinalState(file, robot.numJoints);
+      const steps = Math.round(Math.min(scene.duration, HORIZON[file] ?? Infinity) / scene.dt);
+      sim.step(steps, scene.dt);
+      const native = await nativeState(file, robot.numJoints, steps);
       assert.equal(sim.t, native.t);
       const eq = relativeError(Array.from(sim.q), native.q), eqd = relativeError(Array.from(sim.qd), native.qd);
       t.diagnostic(`relative error q ${eq.toExponential(2)}, qd ${eqd.toExponential(2)}`);
