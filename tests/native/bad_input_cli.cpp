@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -25,15 +26,19 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
+// Per-process names: ctest -j runs the tests of this program in parallel processes.
+std::string temp(const std::string& name) {
+  return testing::TempDir() + "achd_bad_input_cli_" + std::to_string(getpid()) + "_" + name;
+}
+
 std::string write(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + "achd_bad_input_cli_" + name;
+  const std::string path = temp(name);
   std::ofstream(path) << text;
   return path;
 }
 
 Run solve(const std::string& args) {
-  const std::string out = testing::TempDir() + "achd_bad_input_cli.out";
-  const std::string err = testing::TempDir() + "achd_bad_input_cli.err";
+  const std::string out = temp("stdout"), err = temp("stderr");
   const std::string cmd = std::string(ACHD_CLI) + " solve " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
