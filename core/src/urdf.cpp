@@ -65,11 +65,16 @@ Matrix6 link_inertia(const urdf::Link& link) {
   if (!link.inertial) return Matrix6::Zero();  // massless link: valid
   const urdf::Inertial& in = *link.inertial;
   const std::string where = "link '" + link.name + "'";
-  if (!std::isfinite(in.mass)) throw Error(where + ": mass is not finite");
+  // The messages name the field and its value as urdfdom's own do (native urdfdom
+  // rejects "nan" itself; the wasm build's parser accepts it and these checks catch it).
+  if (!std::isfinite(in.mass))
+    throw Error(where + ": mass [" + std::to_string(in.mass) + "] is not finite");
   if (in.mass < 0) throw Error(where + ": negative mass " + std::to_string(in.mass));
   const double v[6] = {in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
-  for (double x : v)
-    if (!std::isfinite(x)) throw Error(where + ": inertia is not finite");
+  const char* names[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+  for (int k = 0; k < 6; ++k)
+    if (!std::isfinite(v[k]))
+      throw Error(where + ": inertia " + names[k] + " [" + std::to_string(v[k]) + "] is not finite");
   Matrix3 Ic;
   Ic << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
   const Eigen::SelfAdjointEigenSolver<Matrix3> eig(Ic, Eigen::EigenvaluesOnly);
