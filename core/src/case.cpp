@@ -28,7 +28,42 @@ void check_vector(const Eigen::VectorXd& v, int n, const char* field, bool optio
 
 }  // namespace
 
+namespace {
+
+static_assert(sizeof(Vector6) == 6 * sizeof(double), "f_ext is checked as one array");
+
+// 0 when every x is finite, NaN otherwise (x * 0 is NaN for an infinity or a NaN): one
+// multiply and one add per number, in four independent sums, where the checks below
+// branch on each number.
+double finite_probe(const double* x, Eigen::Index n) {
+  double s[4] = {0, 0, 0, 0};
+  Eigen::Index i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (int k = 0; k < 4; ++k) s[k] += x[i + k] * 0.0;
+  for (; i < n; ++i) s[0] += x[i] * 0.0;
+  return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+// The common case, in one pass: right sizes and every number finite.
+bool plainly_valid(const Model& model, const Case& c) {
+  const Eigen::Index nj = model.num_joints();
+  const int nc = c.num_constraints();
+  if (c.q.size() != nj || (c.qd.size() && c.qd.size() != nj) ||
+      (c.ff_torques.size() && c.ff_torques.size() != nj) || nc > kMaxConstraints ||
+      c.beta.size() != nc || (!c.f_ext.empty() && static_cast<int>(c.f_ext.size()) != model.num_links()))
+    return false;
+  double s = finite_probe(c.q.data(), nj) + finite_probe(c.qd.data(), c.qd.size()) +
+             finite_probe(c.ff_torques.data(), c.ff_torques.size()) +
+             finite_probe(c.gravity.data(), 3) + finite_probe(c.alpha.data(), 6 * nc) +
+             finite_probe(c.beta.data(), nc);
+  if (!c.f_ext.empty()) s += finite_probe(c.f_ext[0].data(), 6 * Eigen::Index(c.f_ext.size()));
+  return s == 0;
+}
+
+}  // namespace
+
 void validate(const Model& model, const Case& c) {
+  if (plainly_valid(model, c)) return;
   const int nj = model.num_joints();
   check_vector(c.q, nj, "q", false);
   check_vector(c.qd, nj, "qd", true);
