@@ -9,18 +9,17 @@ Data::Data(const Model& model) {
   constraint_wrench.setZero();
   link_accelerations.assign(model.num_links() + 1, Vector6::Zero());
   dropped.resize(0, 0);
-  Xup.resize(n);
   X0.resize(n);
+  r.assign(n, Vector3::Zero());
   v.assign(n, Vector6::Zero());
   c.assign(n, Vector6::Zero());
   a.assign(n, Vector6::Zero());
-  IA.assign(n, Matrix6::Zero());
+  IA.assign(n, SymmetricInertia{Matrix3::Zero(), Matrix3::Zero(), Matrix3::Zero()});
   pA.assign(n, Vector6::Zero());
   U.assign(n, Vector6::Zero());
   D.assign(n, 0.0);
   u.assign(n, 0.0);
   E.resize(6, 0);
-  Ea.resize(6, 0);
   EZ.assign(n, ConstraintVector(0));
 }
 

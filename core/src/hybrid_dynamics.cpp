@@ -1,19 +1,26 @@
 // The Popov-Vereshchagin solver in Featherstone's notation, in four steps:
-//   1. outward sweep: joint transforms, velocities, velocity-product terms, bias forces;
+//   1. outward sweep: body poses, joint subspaces, velocities, velocity-product terms,
+//      rigid inertias and bias forces;
 //   2. inward sweep: articulated inertias IA and bias forces pA (ABA, RBDA 7.3), plus the
 //      unit constraint forces E, their acceleration energy G and coupling M
 //      (Vereshchagin 1989 eqs. a-e, KDL's P_tilde, R_tilde, E, G, M);
 //   3. at the base: the constraint magnitudes nu from K nu = E_0^T a_0 + G_0 - beta,
 //      K = -M_0 (eq. f);
 //   4. outward sweep: joint and link accelerations (eq. g).
-// All body quantities are in the body's own frame; gravity enters as the fictitious base
-// acceleration a_0 = [-g; 0], so the sweeps compute KDL's accelerations a - [g; 0].
+// Every quantity is in base axes, and body i's are taken about its origin p_i: between a
+// body and its parent, vectors and inertias move by the shift r_i = p_i - p_parent alone
+//   motion:  m_i = [m_p,lin + m_p,ang x r_i; m_p,ang]
+//   force:   f_p = [f_i,lin; f_i,ang + r_i x f_i,lin]
+// so no transform ever rotates, and each body's rigid inertia is turned into base axes
+// once, in step 1. Gravity enters as the fictitious base acceleration a_0 = [-g; 0], so
+// the sweeps compute KDL's accelerations a - [g; 0].
 #include "achd/hybrid_dynamics.hpp"
 
 #include <cmath>
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
+#include "articulated_inertia.hpp"
 #include "coupling_solve.hpp"
 #include "joint.hpp"
 
@@ -39,137 +46,173 @@ void joint_forces(const Model& model, Data& d, const Case& c, const Options& o) 
       d.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
 }
 
-// Step 1. v_i = Xup_i v_p + S qd_i;  c_i = v_i x S qd_i;  pA_i = v_i x* I_i v_i.
+// The joint subspace S = [0; z] (revolute) or [z; 0] (prismatic), z the body's z axis.
+inline Vector3 joint_axis(const Data& d, int i) { return d.X0[i].R.col(2); }
+
+// S^T f
+inline double subspace_dot(bool rotational, const Vector3& z, const Vector6& f) {
+  return rotational ? z.dot(f.tail<3>()) : z.dot(f.head<3>());
+}
+
+// S s
+inline Vector6 subspace_times(bool rotational, const Vector3& z, double s) {
+  Vector6 m;
+  if (rotational) m << Vector3::Zero(), z * s;
+  else m << z * s, Vector3::Zero();
+  return m;
+}
+
+// Step 1. Poses (body_poses); IA_i = I_i in base axes;
+// v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  pA_i = v_i x* I_i v_i,
+// with I_i v = [m v_lin - h x w; h x v_lin + C w] for I_i = [m 1, -[h]x; [h]x, C].
 void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving) {
+  body_poses(model, c.q, d.X0, d.r);
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
-    d.Xup[i] = joint_transform(b, c.q[i]);
-    d.X0[i] = b.parent < 0 ? d.Xup[i] : d.X0[b.parent] * d.Xup[i];
-    d.IA[i] = b.inertia;
-    if (moving) {
-      const Vector6 vJ = subspace_times(b, c.qd[i]);
-      d.v[i] = b.parent < 0 ? vJ : Vector6(d.Xup[i].motion_to_child(d.v[b.parent]) + vJ);
-      d.c[i] = cross_motion(d.v[i], vJ);
-      d.pA[i] = cross_force(d.v[i], b.inertia * d.v[i]);
-    } else {
+    const int p = b.parent;
+    SymmetricInertia& I = d.IA[i];
+    const Vector3 h = set_rigid_inertia(I, d.X0[i].R, b.inertia);
+    if (!moving) {
       d.v[i].setZero();
       d.c[i].setZero();
       d.pA[i].setZero();
+      continue;
     }
+    const Vector6 vJ = subspace_times(is_rotational(b), joint_axis(d, i), c.qd[i]);
+    if (p < 0) {
+      d.v[i] = vJ;
+      d.c[i].setZero();
+    } else {
+      const Vector6 vp = motion_shift(d.v[p], d.r[i]);
+      d.v[i] = vp + vJ;
+      d.c[i] = cross_motion(vp, vJ);
+    }
+    const Vector3 vl = d.v[i].head<3>(), w = d.v[i].tail<3>();
+    Vector6 Iv;
+    Iv << b.inertia(0, 0) * vl - h.cross(w), h.cross(vl) + I.C * w;
+    d.pA[i] = cross_force(d.v[i], Iv);
   }
 }
 
-// pA_b -= f_ext of every link on body b, moved from the link origin (base orientation)
-// to the body origin in body coordinates: f_b = R0^T f, n_b = R0^T n + p x f_b.
+// pA_b -= f_ext of every link on body b, moved from the link origin to the body origin:
+// n_b = n + (p_link - p_b) x f.
 void add_external_wrenches(const Model& model, Data& d, const Case& c) {
   for (int l = 0; l < model.num_links(); ++l) {
-    const int b = model.links[l].body;
+    const Link& link = model.links[l];
+    const int b = link.body;
     if (b < 0) continue;  // a link fixed to the root: the base takes the wrench
-    const Matrix3& R0 = d.X0[b].R;
-    const Vector3 f = R0.transpose() * c.f_ext[l].head<3>();
+    const Vector3 f = c.f_ext[l].head<3>();
     d.pA[b].head<3>() -= f;
-    d.pA[b].tail<3>() -= R0.transpose() * c.f_ext[l].tail<3>() + model.links[l].offset.p.cross(f);
+    d.pA[b].tail<3>() -= c.f_ext[l].tail<3>();
+    if (!link.offset.p.isZero()) d.pA[b].tail<3>() -= (d.X0[b].R * link.offset.p).cross(f);
   }
 }
 
-// alpha (tip origin, base orientation) -> the tip body's frame and origin.
+// E = alpha moved from the tip link's origin to the tip body's origin.
 void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc) {
   const Link& tip = model.tip();
-  const Matrix3& R0 = d.X0[tip.body].R;
-  d.alpha_body.resize(6, nc);
+  const Vector3 r = d.X0[tip.body].R * tip.offset.p;
+  d.E.resize(6, nc);
   for (int k = 0; k < nc; ++k) {
-    const Vector3 f = R0.transpose() * c.alpha.col(k).head<3>();
-    d.alpha_body.col(k).head<3>() = f;
-    d.alpha_body.col(k).tail<3>() = R0.transpose() * c.alpha.col(k).tail<3>() + tip.offset.p.cross(f);
+    const Vector3 f = c.alpha.col(k).head<3>();
+    d.E.col(k).head<3>() = f;
+    d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() + r.cross(f);
   }
 }
 
 // Step 2, for i = n-1 .. 0. IA_i and pA_i are overwritten with Ia_i and pa_i (what the
-// parent receives); E holds the unit constraint forces at body i, rolled towards the base.
+// parent adds to its own, shifted by r_i); E holds the unit constraint forces at body i,
+// rolled towards the base.
 void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) {
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
-    // U = IA S,  D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
-    d.U[i] = inertia_times_subspace(b, d.IA[i]);
-    d.D[i] = subspace_dot(b, d.U[i]) + (rotor ? b.rotor_inertia : 0.0);
-    d.u[i] = d.tau[i] - subspace_dot(b, d.pA[i]);
+    const bool rotational = is_rotational(b);
+    const Vector3 z = joint_axis(d, i);
+    SymmetricInertia& IA = d.IA[i];
+    // U = IA S = [B z; C z] (revolute) or [A z; B^T z] (prismatic),
+    // D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
+    Vector6& U = d.U[i];
+    if (rotational) U << IA.B * z, IA.C * z;
+    else U << IA.A * z, IA.B.transpose() * z;
+    d.D[i] = subspace_dot(rotational, z, U) + (rotor ? b.rotor_inertia : 0.0);
+    d.u[i] = d.tau[i] - subspace_dot(rotational, z, d.pA[i]);
     if (!(d.D[i] > 0) || !std::isfinite(d.D[i]))
       throw Error("joint '" + b.joint_name + "': nothing to move (D = S^T IA S = " +
                   std::to_string(d.D[i]) + ")");
     const double Dinv = 1.0 / d.D[i];
-    const Vector6 Ud = d.U[i] * Dinv;
     const int p = b.parent;
     if (p >= 0) {
-      // Ia = IA - U U^T / D;  pa = pA + Ia c + U u / D;  the parent adds X^T Ia X, X^T pa
-      d.IA[i].noalias() -= Ud * d.U[i].transpose();
-      if (moving) d.pA[i].noalias() += d.IA[i] * d.c[i];
-      d.pA[i] += Ud * d.u[i];
-      add_inertia_to_parent(d.Xup[i], d.IA[i], d.IA[p]);
-      d.pA[p] += d.Xup[i].force_to_parent(d.pA[i]);
+      // Ia = IA - U U^T / D;  pa = pA + Ia c + U u / D;  the parent adds both, shifted
+      subtract_rank_one(IA, U, Dinv);
+      Vector6 pa = d.pA[i] + U * (d.u[i] * Dinv);
+      if (moving) pa += times(IA, d.c[i]);
+      add_shifted(IA, d.r[i], d.IA[p]);
+      d.pA[p] += force_shift(pa, d.r[i]);
     }
     if (!nc) continue;
-    // EZ = E^T S;  Ea = E - U EZ^T / D                        (eq. c)
-    // G  += Ea^T c + EZ u / D;  M -= EZ EZ^T / D               (eqs. e, d)
+    // EZ = E^T S;  E <- E - U EZ^T / D                        (eq. c)
+    // G  += E^T c + EZ u / D;  M -= EZ EZ^T / D                (eqs. e, d)
+    // then E moves to the parent's origin.
     ConstraintVector& EZ = d.EZ[i];
     EZ.resize(nc);
-    for (int k = 0; k < nc; ++k) EZ[k] = subspace_dot(b, d.E.col(k));
-    d.E.noalias() -= Ud * EZ.transpose();
-    if (moving) d.G0.noalias() += d.E.transpose() * d.c[i];
-    d.G0 += EZ * (d.u[i] * Dinv);
-    d.M0.noalias() -= (EZ * Dinv) * EZ.transpose();
-    // E_parent = X^T Ea: f_P = R f, n_P = R n + p x f_P, all columns at once
-    const Matrix3& R = d.Xup[i].R;
-    d.Ea.resize(6, nc);
-    d.Ea.topRows<3>().noalias() = R * d.E.topRows<3>();
-    d.Ea.bottomRows<3>().noalias() = R * d.E.bottomRows<3>();
+    for (int k = 0; k < nc; ++k) {
+      EZ[k] = subspace_dot(rotational, z, d.E.col(k));
+      d.E.col(k) -= U * (EZ[k] * Dinv);
+    }
+    if (moving)
+      for (int k = 0; k < nc; ++k) d.G0[k] += d.E.col(k).dot(d.c[i]);
+    const double uD = d.u[i] * Dinv;
+    for (int k = 0; k < nc; ++k) {
+      d.G0[k] += EZ[k] * uD;
+      const double EZk = EZ[k] * Dinv;
+      for (int l = 0; l < nc; ++l) d.M0(l, k) -= EZ[l] * EZk;
+    }
     for (int k = 0; k < nc; ++k)
-      d.Ea.col(k).tail<3>() += d.Xup[i].p.cross(Vector3(d.Ea.col(k).head<3>()));
-    d.E.swap(d.Ea);
+      d.E.col(k).tail<3>() += d.r[i].cross(Vector3(d.E.col(k).head<3>()));
   }
 }
 
-// Step 4. a'_i = Xup_i a_p + c_i;  qdd_i = (u_i - U_i^T a'_i - EZ_i^T nu) / D_i;
+// Step 4. a'_i = a_p (shifted) + c_i;  qdd_i = (u_i - U_i^T a'_i - EZ_i^T nu) / D_i;
 // a_i = a'_i + S qdd_i.
 void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
   for (int i = 0; i < model.num_joints(); ++i) {
-    const Body& b = model.bodies[i];
-    const Vector6 a_in = d.Xup[i].motion_to_child(b.parent < 0 ? a0 : d.a[b.parent]) + d.c[i];
+    const int p = model.bodies[i].parent;
+    const Vector6 a_in = motion_shift(p < 0 ? a0 : d.a[p], d.r[i]) + d.c[i];
     const double ct = nc ? -d.EZ[i].dot(d.nu) : 0.0;  // KDL's constraint torque -S^T E nu
     d.qdd[i] = (d.u[i] - d.U[i].dot(a_in) + ct) / d.D[i];
-    d.a[i] = a_in + subspace_times(b, d.qdd[i]);
+    d.a[i] = a_in + subspace_times(is_rotational(model.bodies[i]), joint_axis(d, i), d.qdd[i]);
     d.constraint_torques[i] = ct;
     d.total_torques[i] = d.D[i] * d.qdd[i];
   }
 }
 
-// Spatial acceleration of every link at its origin, base orientation; `shift` = [g; 0]
-// turns the sweeps' KDL accelerations into physical ones.
+// Spatial acceleration of every link at its origin, base orientation: the body's, moved
+// from the body origin to the link origin. `shift` = [g; 0] turns the sweeps' KDL
+// accelerations into physical ones.
 void link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
   d.link_accelerations[0] = a0 + shift;
   for (int l = 0; l < model.num_links(); ++l) {
     const Link& link = model.links[l];
     Vector6& out = d.link_accelerations[l + 1];
-    if (link.body < 0) {
-      out = a0 + shift;
-      continue;
-    }
-    const Vector6& ab = d.a[link.body];
-    const Matrix3& R0 = d.X0[link.body].R;
-    out.head<3>() = R0 * (ab.head<3>() + ab.tail<3>().cross(link.offset.p));
-    out.tail<3>() = R0 * ab.tail<3>();
+    if (link.body < 0) out = a0;
+    else if (link.offset.p.isZero()) out = d.a[link.body];
+    else out = motion_shift(d.a[link.body], d.X0[link.body].R * link.offset.p);
     out += shift;
   }
 }
 
-// joint_torques = ff - J^T (alpha nu): walk the tip wrench down the chain, tau_i = S^T w.
+// joint_torques = ff - J^T (alpha nu): the tip wrench w = alpha nu carried from the tip
+// link's origin down the chain, tau_i -= S_i^T w (w about body i's origin).
 void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
   if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
   else d.joint_torques.setZero();
   if (!nc) return;
-  Vector6 w = d.alpha_body * d.nu;
-  for (int i = model.tip().body; i >= 0; --i) {
-    d.joint_torques[i] -= subspace_dot(model.bodies[i], w);
-    w = d.Xup[i].force_to_parent(w);
+  const Link& tip = model.tip();
+  const Vector6 w_tip = c.alpha * d.nu;
+  Vector6 w = force_shift(w_tip, d.X0[tip.body].R * tip.offset.p);
+  for (int i = tip.body; i >= 0; --i) {
+    d.joint_torques[i] -= subspace_dot(is_rotational(model.bodies[i]), joint_axis(d, i), w);
+    w.tail<3>() += d.r[i].cross(Vector3(w.head<3>()));
   }
 }
 
@@ -190,10 +233,7 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
 
   d.M0.setZero(nc, nc);
   d.G0.setZero(nc);
-  if (nc) {
-    constraint_forces_at_tip(model, d, c, nc);
-    d.E = d.alpha_body;
-  }
+  if (nc) constraint_forces_at_tip(model, d, c, nc);
   inward_sweep(model, d, nc, moving, o.effects & kRotorInertia);
 
   Vector6 a0 = Vector6::Zero();  // base acceleration: [-g; 0]

@@ -1,27 +1,61 @@
 #include "achd/kinematics.hpp"
 
 #include "joint.hpp"
+#include "sin_cos.hpp"
 
 namespace achd {
 
 Transform joint_transform(const Body& b, double q) {
-  // Revolute: rotate the joint frame by q about the axis; prismatic: slide along it.
+  // Revolute: X_tree followed by a turn of q about z, R = R_tree Rz(q), whose first two
+  // columns mix: [c r0 + s r1, -s r0 + c r1, r2]. Prismatic: a slide of q along z.
   Transform X = b.X_tree;
-  if (is_rotational(b)) X.R = b.X_tree.R * Eigen::AngleAxisd(q, b.axis).toRotationMatrix();
-  else X.p = b.X_tree.p + b.X_tree.R * (b.axis * q);
+  if (is_rotational(b)) {
+    double s, c;
+    sin_cos(q, s, c);
+    X.R.col(0) = c * b.X_tree.R.col(0) + s * b.X_tree.R.col(1);
+    X.R.col(1) = c * b.X_tree.R.col(1) - s * b.X_tree.R.col(0);
+  } else {
+    X.p = b.X_tree.p + q * b.X_tree.R.col(2);
+  }
   return X;
+}
+
+void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transform>& X0,
+                std::vector<Vector3>& r) {
+  for (int i = 0; i < model.num_joints(); ++i) {
+    const Body& b = model.bodies[i];
+    const int p = b.parent;
+    Transform& X = X0[i];
+    Matrix3 T;  // R_parent R_tree: the joint frame at q = 0
+    if (p < 0) {
+      T = b.X_tree.R;
+      r[i] = b.X_tree.p;
+    } else {
+      T.noalias() = X0[p].R * b.X_tree.R;
+      r[i].noalias() = X0[p].R * b.X_tree.p;
+    }
+    if (is_rotational(b)) {
+      double s, c;
+      sin_cos(q[i], s, c);
+      X.R.col(0) = c * T.col(0) + s * T.col(1);
+      X.R.col(1) = c * T.col(1) - s * T.col(0);
+      X.R.col(2) = T.col(2);
+    } else {
+      X.R = T;
+      r[i] += q[i] * T.col(2);
+    }
+    X.p = p < 0 ? r[i] : Vector3(X0[p].p + r[i]);
+  }
 }
 
 namespace {
 
-// Poses of the bodies in the base frame: X0_i = X0_parent * Xj(q_i).
+// Poses of the bodies in the base frame.
 std::vector<Transform> body_poses(const Model& model, const Eigen::VectorXd& q) {
-  std::vector<Transform> X0(model.num_joints());
-  for (int i = 0; i < model.num_joints(); ++i) {
-    const Transform Xj = joint_transform(model.bodies[i], q[i]);
-    const int p = model.bodies[i].parent;
-    X0[i] = p < 0 ? Xj : X0[p] * Xj;
-  }
+  const int n = model.num_joints();
+  std::vector<Transform> X0(n);
+  std::vector<Vector3> r(n);
+  body_poses(model, q, X0, r);
   return X0;
 }
 
@@ -73,10 +107,10 @@ Eigen::MatrixXd tip_jacobian(const Model& model, const Eigen::VectorXd& q) {
   const Vector3 p_tip = tip.body < 0 ? tip.offset.p : (X0[tip.body] * tip.offset).p;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, model.num_joints());
   // Column i: joint i's unit motion seen at the tip. Revolute: [z x (p_tip - p_i); z];
-  // prismatic: [z; 0], with z the axis in base orientation.
+  // prismatic: [z; 0], with z the joint axis (the body's z) in base orientation.
   for (int i = 0; i <= tip.body; ++i) {
     const Body& b = model.bodies[i];
-    const Vector3 z = X0[i].R * b.axis;
+    const Vector3 z = X0[i].R.col(2);
     if (is_rotational(b)) {
       J.col(i).head<3>() = z.cross(p_tip - X0[i].p);
       J.col(i).tail<3>() = z;

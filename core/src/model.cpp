@@ -96,10 +96,10 @@ void validate(const Model& model) {
     const Body& b = model.bodies[i];
     const std::string where = "joint '" + b.joint_name + "'";
     if (b.parent != i - 1) throw Error(where + ": bodies must form a chain in order");
-    if (!b.axis.allFinite() || std::abs(b.axis.norm() - 1) > 1e-9)
-      throw Error(where + ": axis must be a finite unit vector");
     if (!b.X_tree.R.allFinite() || !b.X_tree.p.allFinite())
       throw Error(where + ": origin is not finite");
+    if (!(b.X_tree.R.transpose() * b.X_tree.R).isIdentity(1e-9) || b.X_tree.R.determinant() < 0)
+      throw Error(where + ": origin rotation is not a rotation matrix");
     if (!finite(b.inertia)) throw Error("link '" + b.link_name + "': inertia is not finite");
     if (!std::isfinite(b.damping) || b.damping < 0)
       throw Error(where + ": damping must be finite and >= 0");

@@ -4,6 +4,7 @@
 #include "achd/dynamics.hpp"
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
+#include "articulated_inertia.hpp"
 #include "joint.hpp"
 
 namespace achd {
@@ -17,44 +18,49 @@ Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::
     throw Error("rnea: q, qd and qdd must have " + std::to_string(n) + " values");
   if (!f_ext.empty() && static_cast<int>(f_ext.size()) != model.num_links())
     throw Error("rnea: f_ext must have " + std::to_string(model.num_links()) + " wrenches");
-  std::vector<Transform> Xup(n), X0(n);
-  std::vector<Vector6> v(n), f(n);
-  std::vector<Vector6> a(n);
+  // The solver's representation (hybrid_dynamics.cpp): base axes, body i's vectors about
+  // its origin, passed between bodies by the shift r_i; the same poses as the solver.
+  std::vector<Transform> X0(n);
+  std::vector<Vector3> r(n);
+  body_poses(model, q, X0, r);
+  std::vector<Vector6> v(n), a(n), f(n);
   Vector6 a0 = Vector6::Zero();  // gravity as the base accelerating at -g
   if (effects & kGravity) a0.head<3>() = -gravity;
   const bool products = effects & kVelocityProducts;
-  // Outward: v_i = X v_p + S qd;  a_i = X a_p + S qdd + v_i x S qd;
-  //          f_i = I a_i + v_i x* I v_i
+  // Outward: v_i = v_p (shifted) + S qd;  a_i = a_p (shifted) + S qdd + v_p (shifted) x S qd;
+  //          f_i = I a_i + v_i x* I v_i   (S = the body's z axis, angular or linear)
+  SymmetricInertia I;
   for (int i = 0; i < n; ++i) {
     const Body& b = model.bodies[i];
-    Xup[i] = joint_transform(b, q[i]);
-    X0[i] = b.parent < 0 ? Xup[i] : X0[b.parent] * Xup[i];
-    const Vector6 vJ = subspace_times(b, qd[i]);
-    v[i] = (b.parent < 0 ? Vector6::Zero().eval() : Xup[i].motion_to_child(v[b.parent])) + vJ;
-    a[i] = Xup[i].motion_to_child(b.parent < 0 ? a0 : a[b.parent]) + subspace_times(b, qdd[i]);
-    if (products) a[i] += cross_motion(v[i], vJ);
-    f[i] = b.inertia * a[i];
-    if (products) f[i] += cross_force(v[i], b.inertia * v[i]);
+    const Vector3 z = X0[i].R.col(2);
+    Vector6 S = Vector6::Zero();
+    if (is_rotational(b)) S.tail<3>() = z;
+    else S.head<3>() = z;
+    const Vector6 vp = b.parent < 0 ? Vector6::Zero().eval() : motion_shift(v[b.parent], r[i]);
+    v[i] = vp + S * qd[i];
+    a[i] = motion_shift(b.parent < 0 ? a0 : a[b.parent], r[i]) + S * qdd[i];
+    if (products) a[i] += cross_motion(vp, S * qd[i]);
+    set_rigid_inertia(I, X0[i].R, b.inertia);
+    f[i] = times(I, a[i]);
+    if (products) f[i] += cross_force(v[i], times(I, v[i]));
   }
-  // f_i -= f_ext of its links, moved to the body origin in body coordinates.
+  // f_i -= f_ext of its links, moved from the link origin to the body origin.
   if ((effects & kExternalWrenches) && !f_ext.empty())
     for (int l = 0; l < model.num_links(); ++l) {
       const Link& link = model.links[l];
       if (link.body < 0) continue;
-      const Matrix3& R0 = X0[link.body].R;
-      const Vector3 fl = R0.transpose() * f_ext[l].head<3>();
-      f[link.body].head<3>() -= fl;
-      f[link.body].tail<3>() -= R0.transpose() * f_ext[l].tail<3>() + link.offset.p.cross(fl);
+      f[link.body] -= force_shift(f_ext[l], X0[link.body].R * link.offset.p);
     }
-  // Inward: tau_i = S^T f_i (+ rotor qdd, + damping qd, + friction);  f_p += X^T f_i
+  // Inward: tau_i = S^T f_i (+ rotor qdd, + damping qd, + friction);  f_p += f_i (shifted)
   Eigen::VectorXd tau(n);
   for (int i = n - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
-    tau[i] = subspace_dot(b, f[i]);
+    const Vector3 z = X0[i].R.col(2);
+    tau[i] = is_rotational(b) ? z.dot(f[i].tail<3>()) : z.dot(f[i].head<3>());
     if (effects & kRotorInertia) tau[i] += b.rotor_inertia * qdd[i];
     if (effects & kDamping) tau[i] += b.damping * qd[i];
     if (effects & kFriction) tau[i] += b.friction * std::tanh(qd[i] / friction_velocity);
-    if (b.parent >= 0) f[b.parent] += Xup[i].force_to_parent(f[i]);
+    if (b.parent >= 0) f[b.parent] += force_shift(f[i], r[i]);
   }
   return tau;
 }

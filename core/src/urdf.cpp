@@ -89,7 +89,23 @@ Matrix6 link_inertia(const urdf::Link& link) {
   return spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
 }
 
-Body make_body(const urdf::Joint& j, const Transform& X_tree, int index) {
+// A rotation whose z column is the unit vector a: the smallest turn taking e_z to a,
+//   R = 1 + [v]x + [v]x^2 / (1 + c),  v = e_z x a,  c = e_z . a   (Rodrigues),
+// used for a_z >= 0; for a_z < 0, the turn to -a after a half turn about x, which keeps
+// 1 + c away from 0. Axes along +-x, +-y, +-z give exact 0/1 entries.
+Matrix3 frame_with_z_along(const Vector3& a) {
+  const Vector3 b = a.z() >= 0 ? a : Vector3(-a);
+  const Vector3 v(-b.y(), b.x(), 0);
+  const Matrix3 vx = skew(v);
+  Matrix3 R = Matrix3::Identity() + vx + vx * vx / (1 + b.z());
+  if (a.z() < 0) R.rightCols<2>() = -R.rightCols<2>();  // R diag(1, -1, -1)
+  return R;
+}
+
+// The body of movable joint j, its frame the joint frame with z along the axis: X_tree
+// is the URDF joint origin (from the previous body's frame) turned by R_axis =
+// frame_with_z_along(axis), which is returned as well.
+Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3& R_axis) {
   const std::string where = "joint '" + j.name + "'";
   Body b;
   b.joint_name = j.name;
@@ -111,7 +127,8 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index) {
   if (!finite3(a.x, a.y, a.z)) throw Error(where + ": axis is not finite");
   const Vector3 axis(a.x, a.y, a.z);
   if (axis.norm() < 1e-12) throw Error(where + ": axis is zero");
-  b.axis = axis.normalized();
+  R_axis = frame_with_z_along(axis.normalized());
+  b.X_tree.R = X_tree.R * R_axis;
   if (j.limits && b.type != JointType::Continuous) {
     const urdf::JointLimits& l = *j.limits;
     if (!std::isfinite(l.lower) || !std::isfinite(l.upper) || !std::isfinite(l.velocity) ||
@@ -171,10 +188,13 @@ Model build(const urdf::ModelInterface& urdf_model, const std::string& root, con
       offset = X;  // the child rides on the current body
       if (body >= 0) model.bodies[body].inertia += inertia_to_parent(offset, inertia);
     } else {
-      model.bodies.push_back(make_body(j, X, static_cast<int>(model.bodies.size())));
+      Matrix3 R_axis;
+      model.bodies.push_back(make_body(j, X, static_cast<int>(model.bodies.size()), R_axis));
       body = model.num_joints() - 1;
-      model.bodies[body].inertia = inertia;
-      offset = Transform();
+      // The child link's frame in the body (joint) frame is R_axis^T, constant as the
+      // joint turns about or slides along z.
+      offset = Transform{R_axis.transpose(), Vector3::Zero()};
+      model.bodies[body].inertia = inertia_to_parent(offset, inertia);
     }
     model.links.push_back({child->name, body, offset});
   }

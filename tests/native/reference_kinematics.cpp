@@ -16,13 +16,13 @@ std::vector<FrameMotion> body_motion(const Model& model, const Eigen::VectorXd& 
     const FrameMotion parent = b.parent < 0 ? FrameMotion() : m[b.parent];
     FrameMotion& f = m[i];
     const Matrix3 R_tree = parent.R * b.X_tree.R;
-    const Vector3 s = R_tree * b.axis;  // the joint axis in the base frame
+    const Vector3 s = R_tree.col(2);  // the joint axis (the body frame's z) in the base frame
     f.p = parent.p + parent.R * b.X_tree.p;
     if (is_prismatic(b)) {
       f.R = R_tree;
       f.p += s * q[i];
     } else {
-      f.R = R_tree * Eigen::AngleAxisd(q[i], b.axis).toRotationMatrix();
+      f.R = R_tree * Eigen::AngleAxisd(q[i], Vector3::UnitZ()).toRotationMatrix();
     }
     const Vector3 r = f.p - parent.p;
     f.w = parent.w;
@@ -79,7 +79,7 @@ Eigen::MatrixXd reference_link_jacobian(const Model& model, const Eigen::VectorX
   for (int j = l.body; j >= 0; j = model.bodies[j].parent) {
     const Body& b = model.bodies[j];
     const Matrix3 R_tree = (b.parent < 0 ? Matrix3::Identity() : bodies[b.parent].R) * b.X_tree.R;
-    const Vector3 s = R_tree * b.axis;
+    const Vector3 s = R_tree.col(2);
     if (is_prismatic(b)) J.col(j).head<3>() = s;
     else J.col(j) << s.cross(p - bodies[j].p), s;
   }

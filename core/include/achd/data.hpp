@@ -28,17 +28,22 @@ struct Data {
   CouplingMatrix dropped;        // nc x k: constraint-space directions truncated/damped
 
   // ---- per body workspace (Featherstone's names; index = body) ----
-  std::vector<Transform> Xup;    // parent body frame -> body frame at the current q
-  std::vector<Transform> X0;     // base frame -> body frame (pose in the base)
+  // The sweeps use base axes everywhere, and express body i's vectors and inertias about
+  // the body's origin p_i (the "mixed" representation KDL reports link accelerations in):
+  // passing them between a body and its parent is a shift by r_i, never a rotation, and
+  // nothing is taken about a far-away point (the base origin), which would cost digits.
+  // The joint subspace is S_i = [0; z_i] (revolute) or [z_i; 0] (prismatic), z_i the
+  // body's z axis, X0_i.R.col(2).
+  std::vector<Transform> X0;     // body pose in the base (axes R, origin p)
+  std::vector<Vector3> r;        // p_i - p_parent, base axes (kinematics.hpp's body_poses)
   std::vector<Vector6> v, c, a;  // velocity, velocity-product acceleration, acceleration
-  std::vector<Matrix6> IA;       // articulated-body inertia; after the sweep Ia = IA - U U^T / D
+  std::vector<SymmetricInertia> IA;  // articulated-body inertia; after the sweep Ia = IA - U U^T / D
   std::vector<Vector6> pA;       // articulated-body bias force; after the sweep pa
   std::vector<Vector6> U;        // IA S
   std::vector<double> D, u;      // S^T IA S (+ rotor), tau - S^T pA
   std::vector<ConstraintVector> EZ;      // E^T S at each body
-  ConstraintForceMatrix E, Ea;           // unit constraint forces at the body being swept
-                                         // (after the sweep: at the base, E_0)
-  ConstraintForceMatrix alpha_body;      // alpha at the tip body's origin, body frame
+  ConstraintForceMatrix E;               // unit constraint forces, rolled from the tip
+                                         // to the base (after the sweep: E_0)
   CouplingMatrix M0;                     // acceleration-energy coupling at the base
   ConstraintVector G0;                   // acceleration energy of the bias terms
   ConstraintVector rhs;                  // E_0^T a_0 + G_0 - beta

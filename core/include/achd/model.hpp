@@ -20,13 +20,15 @@ struct JointLimits {
 };
 
 // One movable joint and the rigid body it moves (the joint's child link merged with
-// the links attached to it by fixed joints).
+// the links attached to it by fixed joints). The body frame is the joint frame: its
+// origin on the joint and its z axis along the joint axis (a revolute joint turns about
+// it, a prismatic joint slides along it), as in Featherstone's and Denavit-Hartenberg's
+// joint frames; the URDF child link's own frame is kept in Model::links.
 struct Body {
   std::string joint_name;  // the URDF joint
-  std::string link_name;   // the URDF child link; its frame is the body frame
+  std::string link_name;   // the URDF child link (its frame: Model::links)
   int parent = -1;         // body index of the parent, -1 = the root (fixed base)
   JointType type = JointType::Revolute;
-  Vector3 axis = Vector3::UnitZ();  // unit joint axis in the body frame
   Transform X_tree;                 // parent body frame -> body frame at q = 0
   Matrix6 inertia = Matrix6::Zero();  // spatial inertia about the body origin, merged
   double damping = 0;                 // N m s/rad or N s/m, from URDF <dynamics>
@@ -58,7 +60,7 @@ struct Model {
   int link_index(const std::string& link_name) const;    // -1 if absent
 };
 
-// Checks a model built in code: axes unit, inertias physical, every joint with
+// Checks a model built in code: rotations orthonormal, inertias physical, every joint with
 // something to move (D > 0 at every configuration). Throws achd::Error naming the
 // joint or link. The URDF loader calls it; call it after building a Model by hand.
 void validate(const Model& model);

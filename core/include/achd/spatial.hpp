@@ -64,6 +64,20 @@ struct Transform {
   }
 };
 
+// Moving the reference point, axes unchanged. A motion vector about point P, taken about
+// the point P + r:  [v + w x r; w].
+inline Vector6 motion_shift(const Vector6& m, const Vector3& r) {
+  Vector6 out = m;
+  out.head<3>() += m.tail<3>().cross(r);
+  return out;
+}
+// A force about point P + r, taken about P:  [f; n + r x f].
+inline Vector6 force_shift(const Vector6& f, const Vector3& r) {
+  Vector6 out = f;
+  out.tail<3>() += r.cross(f.head<3>());
+  return out;
+}
+
 // m1 x m2 (spatial motion cross product): [w1 x v2 + v1 x w2; w1 x w2]
 inline Vector6 cross_motion(const Vector6& m1, const Vector6& m2) {
   Vector6 r;
@@ -82,6 +96,12 @@ inline Vector6 cross_force(const Vector6& m, const Vector6& f) {
   return r;
 }
 
+// A symmetric 6x6 spatial inertia by blocks, linear first: [A B; B^T C], A and C
+// symmetric (both triangles stored, and equal).
+struct SymmetricInertia {
+  Matrix3 A, B, C;
+};
+
 // Spatial inertia of a rigid body about its frame origin, linear first:
 //   I = [ m 1     -m [c]x ]
 //       [ m [c]x   I_o    ],   I_o = I_c - m [c]x [c]x   (RBDA eq. 2.63)
@@ -90,7 +110,7 @@ Matrix6 spatial_inertia(double mass, const Vector3& com, const Matrix3& inertia_
 // X^T I X: a 6x6 inertia given in C (about C's origin) expressed in P (about P's
 // origin), by blocks: rotate, then shift by p (RBDA 2.66 with linear-first order).
 Matrix6 inertia_to_parent(const Transform& X, const Matrix6& I_child);
-// I_parent += X^T I_child X without a temporary 6x6 (the inward sweep's hot spot).
+// I_parent += X^T I_child X: rotate the blocks, then add_shifted_inertia.
 void add_inertia_to_parent(const Transform& X, const Matrix6& I_child, Matrix6& I_parent);
 
 }  // namespace achd
