@@ -14,7 +14,7 @@ Data::Data(const Model& model) {
   v.assign(n, Vector6::Zero());
   c.assign(n, Vector6::Zero());
   a.assign(n, Vector6::Zero());
-  IA.assign(n, SymmetricInertia{Matrix3::Zero(), Matrix3::Zero(), Matrix3::Zero()});
+  IA.assign(n, Matrix6::Zero());
   pA.assign(n, Vector6::Zero());
   U.assign(n, Vector6::Zero());
   D.assign(n, 0.0);

@@ -20,7 +20,7 @@
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
-#include "articulated_inertia.hpp"
+#include "spatial_pairs.hpp"
 #include "coupling_solve.hpp"
 #include "joint.hpp"
 
@@ -50,17 +50,18 @@ void joint_forces(const Model& model, Data& d, const Case& c, const Options& o) 
 inline Vector3 joint_axis(const Data& d, int i) { return d.X0[i].R.col(2); }
 
 // S^T f
-inline double subspace_dot(bool rotational, const Vector3& z, const Vector6& f) {
-  return rotational ? z.dot(f.tail<3>()) : z.dot(f.head<3>());
+inline double subspace_dot(bool rotational, const Vector3& z, const Pairs& f) {
+  return z.dot(rotational ? angular_part(f) : linear_part(f));
 }
 
 // S s
-inline Vector6 subspace_times(bool rotational, const Vector3& z, double s) {
-  Vector6 m;
-  if (rotational) m << Vector3::Zero(), z * s;
-  else m << z * s, Vector3::Zero();
-  return m;
+inline Pairs subspace_times(bool rotational, const Vector3& z, double s) {
+  const Vector3 zs = z * s;
+  if (rotational) return {{Pair{0, 0}, Pair{0, zs[0]}, Pair{zs[1], zs[2]}}};
+  return {{Pair{zs[0], zs[1]}, Pair{zs[2], 0}, Pair{0, 0}}};
 }
+
+const Pairs kZero = {{Pair{0, 0}, Pair{0, 0}, Pair{0, 0}}};
 
 // Step 1. Poses (body_poses); IA_i = I_i in base axes;
 // v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  pA_i = v_i x* I_i v_i,
@@ -70,7 +71,7 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
-    SymmetricInertia& I = d.IA[i];
+    Matrix6& I = d.IA[i];
     const Vector3 h = set_rigid_inertia(I, d.X0[i].R, b.inertia);
     if (!moving) {
       d.v[i].setZero();
@@ -78,19 +79,22 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       d.pA[i].setZero();
       continue;
     }
-    const Vector6 vJ = subspace_times(is_rotational(b), joint_axis(d, i), c.qd[i]);
-    if (p < 0) {
-      d.v[i] = vJ;
-      d.c[i].setZero();
-    } else {
-      const Vector6 vp = motion_shift(d.v[p], d.r[i]);
-      d.v[i] = vp + vJ;
-      d.c[i] = cross_motion(vp, vJ);
+    const Vector3 z = joint_axis(d, i), zq = z * c.qd[i];
+    Pairs vp = kZero;
+    if (p >= 0) {
+      vp = load_pairs(d.v[p]);
+      motion_to_child(vp, Shift(d.r[i]));
     }
+    const Vector3 vl_p = linear_part(vp), w_p = angular_part(vp);
+    const bool rotational = is_rotational(b);
+    store_pairs(d.v[i], vp + subspace_times(rotational, z, c.qd[i]));
+    // c = v_p x S qd: [v_lin x zq; w x zq] (revolute) or [w x zq; 0] (prismatic)
+    if (rotational) d.c[i] << vl_p.cross(zq), w_p.cross(zq);
+    else d.c[i] << w_p.cross(zq), Vector3::Zero();
     const Vector3 vl = d.v[i].head<3>(), w = d.v[i].tail<3>();
-    Vector6 Iv;
-    Iv << b.inertia(0, 0) * vl - h.cross(w), h.cross(vl) + I.C * w;
-    d.pA[i] = cross_force(d.v[i], Iv);
+    const Vector3 f = b.inertia(0, 0) * vl - h.cross(w);
+    const Vector3 n = h.cross(vl) + I.bottomRightCorner<3, 3>() * w;
+    d.pA[i] << w.cross(f), w.cross(n) + vl.cross(f);  // v x* [f; n]
   }
 }
 
@@ -120,34 +124,38 @@ void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc
   }
 }
 
-// Step 2, for i = n-1 .. 0. IA_i and pA_i are overwritten with Ia_i and pa_i (what the
-// parent adds to its own, shifted by r_i); E holds the unit constraint forces at body i,
-// rolled towards the base.
+// Step 2, for i = n-1 .. 0. IA_i is overwritten with Ia_i (what the parent adds to its
+// own, shifted by r_i); E holds the unit constraint forces at body i, rolled towards the
+// base.
 void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) {
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     const bool rotational = is_rotational(b);
     const Vector3 z = joint_axis(d, i);
-    SymmetricInertia& IA = d.IA[i];
-    // U = IA S = [B z; C z] (revolute) or [A z; B^T z] (prismatic),
+    Matrix6& IA = d.IA[i];
+    // U = IA S (the columns 3..5, revolute, or 0..2, prismatic, combined by z),
     // D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
-    Vector6& U = d.U[i];
-    if (rotational) U << IA.B * z, IA.C * z;
-    else U << IA.A * z, IA.B.transpose() * z;
-    d.D[i] = subspace_dot(rotational, z, U) + (rotor ? b.rotor_inertia : 0.0);
-    d.u[i] = d.tau[i] - subspace_dot(rotational, z, d.pA[i]);
-    if (!(d.D[i] > 0) || !std::isfinite(d.D[i]))
+    const Pairs U = combine_columns(IA, rotational ? 3 : 0, z);
+    const Pairs pA = load_pairs(d.pA[i]);
+    const double D = subspace_dot(rotational, z, U) + (rotor ? b.rotor_inertia : 0.0);
+    const double u = d.tau[i] - subspace_dot(rotational, z, pA);
+    if (!(D > 0) || !std::isfinite(D))
       throw Error("joint '" + b.joint_name + "': nothing to move (D = S^T IA S = " +
-                  std::to_string(d.D[i]) + ")");
-    const double Dinv = 1.0 / d.D[i];
+                  std::to_string(D) + ")");
+    store_pairs(d.U[i], U);
+    d.D[i] = D;
+    d.u[i] = u;
+    const double Dinv = 1.0 / D;
+    const Shift shift(d.r[i]);
     const int p = b.parent;
     if (p >= 0) {
       // Ia = IA - U U^T / D;  pa = pA + Ia c + U u / D;  the parent adds both, shifted
       subtract_rank_one(IA, U, Dinv);
-      Vector6 pa = d.pA[i] + U * (d.u[i] * Dinv);
-      if (moving) pa += times(IA, d.c[i]);
-      add_shifted(IA, d.r[i], d.IA[p]);
-      d.pA[p] += force_shift(pa, d.r[i]);
+      Pairs pa = pA + U * splat(u * Dinv);
+      if (moving) pa = pa + times(IA, d.c[i]);
+      add_shifted(IA, shift, d.IA[p]);
+      force_to_parent(pa, shift);
+      store_pairs(d.pA[p], load_pairs(d.pA[p]) + pa);
     }
     if (!nc) continue;
     // EZ = E^T S;  E <- E - U EZ^T / D                        (eq. c)
@@ -155,20 +163,21 @@ void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) 
     // then E moves to the parent's origin.
     ConstraintVector& EZ = d.EZ[i];
     EZ.resize(nc);
+    const Pairs ci = load_pairs(d.c[i]);
+    const double uD = u * Dinv;
     for (int k = 0; k < nc; ++k) {
-      EZ[k] = subspace_dot(rotational, z, d.E.col(k));
-      d.E.col(k) -= U * (EZ[k] * Dinv);
+      double* col = d.E.data() + 6 * k;
+      Pairs e = load_pairs(col);
+      EZ[k] = subspace_dot(rotational, z, e);
+      e = e - U * splat(EZ[k] * Dinv);
+      d.G0[k] += (moving ? dot(e, ci) : 0.0) + EZ[k] * uD;
+      force_to_parent(e, shift);
+      store_pairs(col, e);
     }
-    if (moving)
-      for (int k = 0; k < nc; ++k) d.G0[k] += d.E.col(k).dot(d.c[i]);
-    const double uD = d.u[i] * Dinv;
     for (int k = 0; k < nc; ++k) {
-      d.G0[k] += EZ[k] * uD;
       const double EZk = EZ[k] * Dinv;
       for (int l = 0; l < nc; ++l) d.M0(l, k) -= EZ[l] * EZk;
     }
-    for (int k = 0; k < nc; ++k)
-      d.E.col(k).tail<3>() += d.r[i].cross(Vector3(d.E.col(k).head<3>()));
   }
 }
 
@@ -176,13 +185,16 @@ void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) 
 // a_i = a'_i + S qdd_i.
 void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
   for (int i = 0; i < model.num_joints(); ++i) {
-    const int p = model.bodies[i].parent;
-    const Vector6 a_in = motion_shift(p < 0 ? a0 : d.a[p], d.r[i]) + d.c[i];
+    const Body& b = model.bodies[i];
+    Pairs a = load_pairs(b.parent < 0 ? a0 : d.a[b.parent]);
+    motion_to_child(a, Shift(d.r[i]));
+    a = a + load_pairs(d.c[i]);
     const double ct = nc ? -d.EZ[i].dot(d.nu) : 0.0;  // KDL's constraint torque -S^T E nu
-    d.qdd[i] = (d.u[i] - d.U[i].dot(a_in) + ct) / d.D[i];
-    d.a[i] = a_in + subspace_times(is_rotational(model.bodies[i]), joint_axis(d, i), d.qdd[i]);
+    const double qdd = (d.u[i] - dot(load_pairs(d.U[i]), a) + ct) / d.D[i];
+    store_pairs(d.a[i], a + subspace_times(is_rotational(b), joint_axis(d, i), qdd));
+    d.qdd[i] = qdd;
     d.constraint_torques[i] = ct;
-    d.total_torques[i] = d.D[i] * d.qdd[i];
+    d.total_torques[i] = d.D[i] * qdd;
   }
 }
 
@@ -210,9 +222,10 @@ void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
   const Link& tip = model.tip();
   const Vector6 w_tip = c.alpha * d.nu;
   Vector6 w = force_shift(w_tip, d.X0[tip.body].R * tip.offset.p);
+  Pairs wp = load_pairs(w);
   for (int i = tip.body; i >= 0; --i) {
-    d.joint_torques[i] -= subspace_dot(is_rotational(model.bodies[i]), joint_axis(d, i), w);
-    w.tail<3>() += d.r[i].cross(Vector3(w.head<3>()));
+    d.joint_torques[i] -= subspace_dot(is_rotational(model.bodies[i]), joint_axis(d, i), wp);
+    force_to_parent(wp, Shift(d.r[i]));
   }
 }
 

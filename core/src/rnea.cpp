@@ -4,7 +4,7 @@
 #include "achd/dynamics.hpp"
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
-#include "articulated_inertia.hpp"
+#include "spatial_pairs.hpp"
 #include "joint.hpp"
 
 namespace achd {
@@ -29,7 +29,7 @@ Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::
   const bool products = effects & kVelocityProducts;
   // Outward: v_i = v_p (shifted) + S qd;  a_i = a_p (shifted) + S qdd + v_p (shifted) x S qd;
   //          f_i = I a_i + v_i x* I v_i   (S = the body's z axis, angular or linear)
-  SymmetricInertia I;
+  Matrix6 I;
   for (int i = 0; i < n; ++i) {
     const Body& b = model.bodies[i];
     const Vector3 z = X0[i].R.col(2);
@@ -41,8 +41,12 @@ Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::
     a[i] = motion_shift(b.parent < 0 ? a0 : a[b.parent], r[i]) + S * qdd[i];
     if (products) a[i] += cross_motion(vp, S * qd[i]);
     set_rigid_inertia(I, X0[i].R, b.inertia);
-    f[i] = times(I, a[i]);
-    if (products) f[i] += cross_force(v[i], times(I, v[i]));
+    store_pairs(f[i], times(I, a[i]));
+    if (products) {
+      Vector6 Iv;
+      store_pairs(Iv, times(I, v[i]));
+      f[i] += cross_force(v[i], Iv);
+    }
   }
   // f_i -= f_ext of its links, moved from the link origin to the body origin.
   if ((effects & kExternalWrenches) && !f_ext.empty())

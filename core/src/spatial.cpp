@@ -1,6 +1,6 @@
 #include "achd/spatial.hpp"
 
-#include "articulated_inertia.hpp"
+#include "spatial_pairs.hpp"
 
 namespace achd {
 
@@ -18,15 +18,12 @@ void add_inertia_to_parent(const Transform& X, const Matrix6& Ic, Matrix6& Ip) {
   // Rotate the blocks [A B; B^T C] into P's orientation: A' = R A R^T, B' = R B R^T, C';
   // then shift the reference point from C's origin to P's origin.
   const Matrix3& R = X.R;
-  SymmetricInertia I, P;
-  I.A = rotate_symmetric(R, Ic.topLeftCorner<3, 3>());
-  I.B = R * Ic.topRightCorner<3, 3>() * R.transpose();
-  I.C = rotate_symmetric(R, Ic.bottomRightCorner<3, 3>());
-  P.A = Ip.topLeftCorner<3, 3>();
-  P.B = Ip.topRightCorner<3, 3>();
-  P.C = Ip.bottomRightCorner<3, 3>();
-  add_shifted(I, X.p, P);
-  Ip << P.A, P.B, P.B.transpose(), P.C;
+  Matrix6 I;
+  I.topLeftCorner<3, 3>() = rotate_symmetric(R, Ic.topLeftCorner<3, 3>());
+  I.topRightCorner<3, 3>() = R * Ic.topRightCorner<3, 3>() * R.transpose();
+  I.bottomLeftCorner<3, 3>() = I.topRightCorner<3, 3>().transpose();
+  I.bottomRightCorner<3, 3>() = rotate_symmetric(R, Ic.bottomRightCorner<3, 3>());
+  add_shifted(I, Shift(X.p), Ip);
 }
 
 Matrix6 inertia_to_parent(const Transform& X, const Matrix6& Ic) {

@@ -96,12 +96,6 @@ inline Vector6 cross_force(const Vector6& m, const Vector6& f) {
   return r;
 }
 
-// A symmetric 6x6 spatial inertia by blocks, linear first: [A B; B^T C], A and C
-// symmetric (both triangles stored, and equal).
-struct SymmetricInertia {
-  Matrix3 A, B, C;
-};
-
 // Spatial inertia of a rigid body about its frame origin, linear first:
 //   I = [ m 1     -m [c]x ]
 //       [ m [c]x   I_o    ],   I_o = I_c - m [c]x [c]x   (RBDA eq. 2.63)

@@ -1,0 +1,132 @@
+#pragma once
+// The sweeps' spatial algebra on pairs (pair.hpp). A spatial 6-vector, linear first, is
+// held as three pairs of rows (0,1), (2,3), (4,5); a 6x6 inertia (symmetric, both
+// triangles stored) as Eigen's column-major Matrix6, each column three such pairs. All
+// quantities share base axes, so moving one from a body to its parent is a change of
+// reference point alone (Shift).
+#include "achd/spatial.hpp"
+#include "pair.hpp"
+
+namespace achd {
+
+// A 6-vector as three pairs.
+struct Pairs {
+  Pair p[3];
+};
+
+inline Pairs load_pairs(const double* x) { return {{load_pair(x), load_pair(x + 2), load_pair(x + 4)}}; }
+inline Pairs load_pairs(const Vector6& v) { return load_pairs(v.data()); }
+inline void store_pairs(double* x, const Pairs& v) {
+  for (int k = 0; k < 3; ++k) store_pair(x + 2 * k, v.p[k]);
+}
+inline void store_pairs(Vector6& v, const Pairs& x) { store_pairs(v.data(), x); }
+inline Pairs column(const Matrix6& M, int j) { return load_pairs(M.data() + 6 * j); }
+
+inline Pairs operator+(const Pairs& a, const Pairs& b) { return {{a.p[0] + b.p[0], a.p[1] + b.p[1], a.p[2] + b.p[2]}}; }
+inline Pairs operator-(const Pairs& a, const Pairs& b) { return {{a.p[0] - b.p[0], a.p[1] - b.p[1], a.p[2] - b.p[2]}}; }
+inline Pairs operator*(const Pairs& a, Pair s) { return {{a.p[0] * s, a.p[1] * s, a.p[2] * s}}; }
+
+// a . b, summed as (pairs 0 + 1) + 2, then the two lanes.
+inline double dot(const Pairs& a, const Pairs& b) {
+  const Pair s = (a.p[0] * b.p[0] + a.p[1] * b.p[1]) + a.p[2] * b.p[2];
+  return s[0] + s[1];
+}
+
+// The rows 0..2 (linear) and 3..5 (angular) of a 6-vector as 3-vectors.
+inline Vector3 linear_part(const Pairs& v) { return Vector3(v.p[0][0], v.p[0][1], v.p[1][0]); }
+inline Vector3 angular_part(const Pairs& v) { return Vector3(v.p[1][1], v.p[2][0], v.p[2][1]); }
+
+// A change of reference point by r (from a parent's origin to a child's), axes unchanged,
+// with the pairs of r's components that the cross products need.
+struct Shift {
+  explicit Shift(const Vector3& r)
+      : r0(splat(r[0])), r1(splat(r[1])), r2(splat(r[2])), r20{r[2], r[0]}, r01{r[0], r[1]},
+        r12{r[1], r[2]}, z1{0, r[1]}, z2{0, r[2]}, r1z{r[1], 0}, r0z{r[0], 0} {}
+  Pair r0, r1, r2, r20, r01, r12, z1, z2, r1z, r0z;
+};
+
+// A force f = [f; n] about the child's origin, taken about the parent's: n += r x f.
+//   row 3 (p[1][1]) += r1 f2 - r2 f1;  rows 4, 5 (p[2]) += (r2 f0 - r0 f2, r0 f1 - r1 f0)
+inline void force_to_parent(Pairs& f, const Shift& s) {
+  const Pair f20 = low_lanes(f.p[1], f.p[0]);  // (f2, f0)
+  f.p[2] += s.r20 * f.p[0] - s.r01 * f20;
+  f.p[1] += s.z1 * swapped(f.p[1]) - s.z2 * f.p[0];
+}
+
+// A motion m = [v; w] about the parent's origin, taken about the child's: v += w x r.
+//   rows 0, 1 (p[0]) += (w1 r2 - w2 r1, w2 r0 - w0 r2);  row 2 (p[1][0]) += w0 r1 - w1 r0
+inline void motion_to_child(Pairs& m, const Shift& s) {
+  const Pair w20 = high_lanes(m.p[2], m.p[1]);  // (w2, w0)
+  m.p[0] += s.r20 * m.p[2] - s.r12 * w20;
+  m.p[1] += s.r1z * swapped(m.p[1]) - s.r0z * m.p[2];
+}
+
+// p x M, column by column: [p]x M without forming [p]x.
+inline Matrix3 cross_columns(const Vector3& p, const Matrix3& M) {
+  Matrix3 r;
+  for (int j = 0; j < 3; ++j) r.col(j) = p.cross(M.col(j));
+  return r;
+}
+
+// R S R^T for a symmetric S: the lower triangle computed, the upper mirrored.
+inline Matrix3 rotate_symmetric(const Matrix3& R, const Matrix3& S) {
+  const Matrix3 RS = R * S;
+  Matrix3 r;
+  for (int j = 0; j < 3; ++j)
+    for (int i = j; i < 3; ++i) r(i, j) = r(j, i) = RS.row(i).dot(R.row(j));
+  return r;
+}
+
+// A rigid body's inertia about its origin, given in its own axes as the 6x6
+// I_b = [m 1, -[h]x; [h]x, I_o] (h = m c), in the axes of a frame where the body's axes
+// are the columns of R: [m 1, -[R h]x; [R h]x, R I_o R^T]. Also returns h' = R h.
+inline Vector3 set_rigid_inertia(Matrix6& I, const Matrix3& R, const Matrix6& Ib) {
+  const double m = Ib(0, 0);
+  const Vector3 h = R * Vector3(Ib(5, 1), Ib(3, 2), Ib(4, 0));  // [h]x = Ib(3:6, 0:3)
+  const Matrix3 hx = skew(h);
+  I.topLeftCorner<3, 3>() = m * Matrix3::Identity();
+  I.topRightCorner<3, 3>() = -hx;
+  I.bottomLeftCorner<3, 3>() = hx;
+  I.bottomRightCorner<3, 3>() = rotate_symmetric(R, Ib.bottomRightCorner<3, 3>());
+  return h;
+}
+
+// M.col(first) z0 + M.col(first + 1) z1 + M.col(first + 2) z2: I S for S = [0; z]
+// (first = 3) or [z; 0] (first = 0).
+inline Pairs combine_columns(const Matrix6& M, int first, const Vector3& z) {
+  return (column(M, first) * splat(z[0]) + column(M, first + 1) * splat(z[1])) +
+         column(M, first + 2) * splat(z[2]);
+}
+
+// M x, column by column.
+inline Pairs times(const Matrix6& M, const Vector6& x) {
+  Pairs y = column(M, 0) * splat(x[0]);
+  for (int j = 1; j < 6; ++j) y = y + column(M, j) * splat(x[j]);
+  return y;
+}
+
+// M -= U U^T / D, column by column: M.col(j) -= U (U_j / D).
+inline void subtract_rank_one(Matrix6& M, const Pairs& U, double Dinv) {
+  const double u[6] = {U.p[0][0], U.p[0][1], U.p[1][0], U.p[1][1], U.p[2][0], U.p[2][1]};
+  for (int j = 0; j < 6; ++j) store_pairs(M.data() + 6 * j, column(M, j) - U * splat(u[j] * Dinv));
+}
+
+// P += M moved from the child's origin to the parent's: X^T M X for the translation
+// X = [1, -x; 0, 1], x = [r]x.
+//   N = M X:  N.col(j) = M.col(j), N.col(3 + j) = M.col(3 + j) - (M.col(0:3) x).col(j)
+//   X^T N:    every column's rows 3..5 gain r x (its rows 0..2), as force_to_parent
+inline void add_shifted(const Matrix6& M, const Shift& s, Matrix6& P) {
+  Pairs n[6];
+  for (int j = 0; j < 3; ++j) n[j] = column(M, j);
+  // (M.col(0:3) x).col(0) = r2 M.col(1) - r1 M.col(2), col(1) = r0 M.col(2) - r2 M.col(0),
+  // col(2) = r1 M.col(0) - r0 M.col(1)
+  n[3] = column(M, 3) - (n[1] * s.r2 - n[2] * s.r1);
+  n[4] = column(M, 4) - (n[2] * s.r0 - n[0] * s.r2);
+  n[5] = column(M, 5) - (n[0] * s.r1 - n[1] * s.r0);
+  for (int j = 0; j < 6; ++j) {
+    force_to_parent(n[j], s);
+    store_pairs(P.data() + 6 * j, column(P, j) + n[j]);
+  }
+}
+
+}  // namespace achd
