@@ -4,15 +4,18 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
 #include <console_bridge/console.h>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "achd/error.hpp"
+#include "sin_cos.hpp"
 
 namespace achd {
 namespace {
@@ -47,21 +50,76 @@ bool finite3(double x, double y, double z) {
   return std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
 }
 
-Transform to_transform(const urdf::Pose& pose, const std::string& where) {
+// The rpy attributes of the joints' origins and of the links' inertial origins, read as
+// urdfdom reads them. urdfdom turns rpy into a quaternion with the C library's sin and
+// cos, whose last bits differ between glibc (native) and musl (wasm): the two builds would
+// load a URDF into models an ulp apart, which a long chain amplifies past 1e-12. With the
+// angles themselves, the loader builds every rotation with achd's sin_cos instead.
+struct OriginAngles {
+  std::map<std::string, urdf::Vector3> joint, inertial;  // by joint / link name
+};
+
+OriginAngles read_origin_angles(const std::string& xml) {
+  OriginAngles angles;
+  TiXmlDocument doc;
+  doc.Parse(xml.c_str());
+  const TiXmlElement* robot = doc.FirstChildElement("robot");
+  if (!robot) return angles;  // urdfdom has accepted the text: it had one
+  auto rpy_of = [](const TiXmlElement* origin, urdf::Vector3& out) {
+    const char* rpy = origin ? origin->Attribute("rpy") : nullptr;
+    if (rpy) out.init(rpy);
+    return rpy != nullptr;
+  };
+  for (auto* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    urdf::Vector3 rpy;
+    if (j->Attribute("name") && rpy_of(j->FirstChildElement("origin"), rpy)) angles.joint[j->Attribute("name")] = rpy;
+  }
+  for (auto* l = robot->FirstChildElement("link"); l; l = l->NextSiblingElement("link")) {
+    const TiXmlElement* inertial = l->FirstChildElement("inertial");
+    urdf::Vector3 rpy;
+    if (l->Attribute("name") && inertial && rpy_of(inertial->FirstChildElement("origin"), rpy))
+      angles.inertial[l->Attribute("name")] = rpy;
+  }
+  return angles;
+}
+
+// R = Rz(yaw) Ry(pitch) Rx(roll): URDF's fixed-axis roll, pitch, yaw.
+Matrix3 rotation_from_rpy(const urdf::Vector3& rpy) {
+  double sr, cr, sp, cp, sy, cy;
+  sin_cos(rpy.x, sr, cr);
+  sin_cos(rpy.y, sp, cp);
+  sin_cos(rpy.z, sy, cy);
+  Matrix3 R;
+  R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,  //
+      sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,   //
+      -sp, cp * sr, cp * cr;
+  return R;
+}
+
+// The pose of an origin; `rpy`, when the element had one, gives its rotation.
+Transform to_transform(const urdf::Pose& pose, const urdf::Vector3* rpy, const std::string& where) {
   const urdf::Vector3& p = pose.position;
   const urdf::Rotation& r = pose.rotation;
-  if (!finite3(p.x, p.y, p.z) || !finite3(r.x, r.y, r.z) || !std::isfinite(r.w))
+  if (!finite3(p.x, p.y, p.z) || !finite3(r.x, r.y, r.z) || !std::isfinite(r.w) ||
+      (rpy && !finite3(rpy->x, rpy->y, rpy->z)))
     throw Error(where + ": origin is not finite");
   Transform t;
-  t.R = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
+  t.R = rpy ? rotation_from_rpy(*rpy)
+            : Matrix3(Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix());
   t.p = Vector3(p.x, p.y, p.z);
   return t;
+}
+
+template <class Map>
+const urdf::Vector3* find_angles(const Map& map, const std::string& name) {
+  const auto it = map.find(name);
+  return it == map.end() ? nullptr : &it->second;
 }
 
 // Spatial inertia of a URDF link about the link frame origin. Checks mass >= 0, the
 // rotational inertia at the COM positive semi-definite and the triangle inequality
 // (each principal moment <= the sum of the other two) to 1e-9 relative.
-Matrix6 link_inertia(const urdf::Link& link) {
+Matrix6 link_inertia(const urdf::Link& link, const urdf::Vector3* rpy) {
   if (!link.inertial) return Matrix6::Zero();  // massless link: valid
   const urdf::Inertial& in = *link.inertial;
   const std::string where = "link '" + link.name + "'";
@@ -85,7 +143,7 @@ Matrix6 link_inertia(const urdf::Link& link) {
     throw Error(where + ": inertia violates the triangle inequality (principal moments " +
                 std::to_string(m[0]) + ", " + std::to_string(m[1]) + ", " + std::to_string(m[2]) +
                 ")");
-  const Transform com = to_transform(in.origin, where + " <inertial>");
+  const Transform com = to_transform(in.origin, rpy, where + " <inertial>");
   return spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
 }
 
@@ -151,8 +209,8 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3
   return b;
 }
 
-Model build(const urdf::ModelInterface& urdf_model, const std::string& root, const std::string& tip,
-            const std::string& source) {
+Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
+            const std::string& root, const std::string& tip, const std::string& source) {
   const auto root_link = urdf_model.getLink(root);
   if (!root_link) throw Error(source + ": unknown root link '" + root + "'");
   const auto tip_link = urdf_model.getLink(tip);
@@ -181,9 +239,10 @@ Model build(const urdf::ModelInterface& urdf_model, const std::string& root, con
   for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
     const urdf::Joint& j = **it;
     const Transform X = offset * to_transform(j.parent_to_joint_origin_transform,
+                                              find_angles(angles.joint, j.name),
                                               "joint '" + j.name + "'");
     const auto child = urdf_model.getLink(j.child_link_name);
-    const Matrix6 inertia = link_inertia(*child);
+    const Matrix6 inertia = link_inertia(*child, find_angles(angles.inertial, child->name));
     if (j.type == urdf::Joint::FIXED) {
       offset = X;  // the child rides on the current body
       if (body >= 0) model.bodies[body].inertia += inertia_to_parent(offset, inertia);
@@ -226,7 +285,7 @@ Model load(const std::string& xml, const std::string& root, const std::string& t
   if (!parsed || !why.empty())
     throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
   try {
-    return build(*parsed, root, tip, source);
+    return build(*parsed, read_origin_angles(xml), root, tip, source);
   } catch (const Error& e) {
     const std::string msg = e.what();
     throw Error(msg.rfind(source + ":", 0) == 0 ? msg : source + ": " + msg);
