@@ -16,11 +16,12 @@ constexpr double kCholeskyMinRatio = 1e-11;
 
 // The smallest eigenvalue of the symmetric K (nc <= 6), without eigenvectors:
 // Householder reduction to a tridiagonal T = Q^T K Q, then Laguerre's iteration on
-// p(x) = det(T - x 1) started below every eigenvalue (Gershgorin), which for a
-// polynomial with real roots rises monotonically and cubically to the smallest one.
+// p(x) = det(T - x 1) started below every eigenvalue, which for a polynomial with real
+// roots rises monotonically and cubically to the smallest one. The start is the larger
+// of Gershgorin's bound and `below`, a lower bound the caller may know (0 if none).
 // (n is a template parameter so that the short loops unroll; see smallest_eigenvalue.)
 template <int n>
-double smallest_eigenvalue_n(const CouplingMatrix& K) {
+double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
   double A[kMaxConstraints][kMaxConstraints], d[kMaxConstraints] = {0}, e[kMaxConstraints] = {0};
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) A[i][j] = K(i, j);
@@ -57,6 +58,7 @@ double smallest_eigenvalue_n(const CouplingMatrix& K) {
     x = std::min(x, d[k] - r);
     scale = std::max(scale, std::abs(d[k]) + r);
   }
+  x = std::max(x, below);
   for (int it = 0; it < 100; ++it) {
     // p_k = (d_k - x) p_{k-1} - e_{k-1}^2 p_{k-2}, with its first and second derivatives
     double p0 = 1, p1 = 0, q0 = 0, q1 = 0, r0 = 0, r1 = 0;
@@ -78,47 +80,94 @@ double smallest_eigenvalue_n(const CouplingMatrix& K) {
   return x;
 }
 
-static_assert(kMaxConstraints == 6, "smallest_eigenvalue dispatches n = 1..6");
-double smallest_eigenvalue(const CouplingMatrix& K) {
-  switch (K.rows()) {
-    case 1: return smallest_eigenvalue_n<1>(K);
-    case 2: return smallest_eigenvalue_n<2>(K);
-    case 3: return smallest_eigenvalue_n<3>(K);
-    case 4: return smallest_eigenvalue_n<4>(K);
-    case 5: return smallest_eigenvalue_n<5>(K);
-    default: return smallest_eigenvalue_n<6>(K);
-  }
-}
+// A lower triangular Cholesky factor, K = L L^T, of an n x n K (n fixed, so that the
+// loops unroll), with the reciprocals of its diagonal.
+template <int n>
+struct Cholesky {
+  double L[n][n], inv[n];
 
-// x = K^-1 b by K = L L^T (L lower triangular), then L y = b, L^T x = y. False if a
-// pivot is not positive.
-bool cholesky_solve(const CouplingMatrix& K, const ConstraintVector& b, ConstraintVector& x) {
-  const int n = static_cast<int>(K.rows());
-  double L[kMaxConstraints][kMaxConstraints], y[kMaxConstraints];
-  for (int j = 0; j < n; ++j) {
-    double djj = K(j, j);
-    for (int k = 0; k < j; ++k) djj -= L[j][k] * L[j][k];
-    if (!(djj > 0)) return false;
-    L[j][j] = std::sqrt(djj);
-    const double inv = 1 / L[j][j];
-    for (int i = j + 1; i < n; ++i) {
-      double lij = K(i, j);
-      for (int k = 0; k < j; ++k) lij -= L[i][k] * L[j][k];
-      L[i][j] = lij * inv;
+  // False if a pivot is not positive.
+  bool factor(const CouplingMatrix& K) {
+    for (int j = 0; j < n; ++j) {
+      double djj = K(j, j);
+      for (int k = 0; k < j; ++k) djj -= L[j][k] * L[j][k];
+      if (!(djj > 0)) return false;
+      L[j][j] = std::sqrt(djj);
+      inv[j] = 1 / L[j][j];
+      for (int i = j + 1; i < n; ++i) {
+        double lij = K(i, j);
+        for (int k = 0; k < j; ++k) lij -= L[i][k] * L[j][k];
+        L[i][j] = lij * inv[j];
+      }
+    }
+    return true;
+  }
+
+  // x = K^-1 b: L y = b, L^T x = y.
+  void solve(const ConstraintVector& b, ConstraintVector& x) const {
+    double y[n];
+    for (int i = 0; i < n; ++i) {
+      double s = b[i];
+      for (int k = 0; k < i; ++k) s -= L[i][k] * y[k];
+      y[i] = s * inv[i];
+    }
+    x.resize(n);
+    for (int i = n - 1; i >= 0; --i) {
+      double s = y[i];
+      for (int k = i + 1; k < n; ++k) s -= L[k][i] * x[k];
+      x[i] = s * inv[i];
     }
   }
-  for (int i = 0; i < n; ++i) {
-    double s = b[i];
-    for (int k = 0; k < i; ++k) s -= L[i][k] * y[k];
-    y[i] = s / L[i][i];
+
+  // trace(K^-1) = ||L^-1||_F^2, column by column of L^-1 (forward substitution).
+  double inverse_trace() const {
+    double t = 0;
+    for (int j = 0; j < n; ++j) {
+      double c[n];
+      for (int i = j; i < n; ++i) {
+        double s = i == j ? 1.0 : 0.0;
+        for (int k = j; k < i; ++k) s -= L[i][k] * c[k];
+        c[i] = s * inv[i];
+        t += c[i] * c[i];
+      }
+    }
+    return t;
   }
-  x.resize(n);
-  for (int i = n - 1; i >= 0; --i) {
-    double s = y[i];
-    for (int k = i + 1; k < n; ++k) s -= L[k][i] * x[k];
-    x[i] = s / L[i][i];
-  }
+};
+
+// The truncate policy's fast path for an n x n K: when its smallest eigenvalue is above
+// both the truncation threshold and kCholeskyMinRatio * trace(K) >= kCholeskyMinRatio *
+// sigma_max, nothing is truncated, and nu = K^-1 rhs is accurate by Cholesky. Laguerre's
+// iteration starts at 1 / trace(K^-1) <= lambda_min (trace(K^-1) = sum 1/lambda), within
+// a factor n of lambda_min, shrunk by a few ulps to stay below it despite its own
+// round-off. False (nothing written) when K needs the eigen-decomposition.
+template <int n>
+bool solve_by_cholesky_n(Data& data, const Options& options) {
+  const CouplingMatrix& K = data.M0;
+  Cholesky<n> chol;
+  if (!chol.factor(K)) return false;
+  const double below = (1 - 16 * n * std::numeric_limits<double>::epsilon()) / chol.inverse_trace();
+  const double lambda_min = n == 1 ? K(0, 0) : smallest_eigenvalue_n<n>(K, below);
+  const double trace = K.trace();
+  const double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
+  if (!(lambda_min > threshold && lambda_min >= kCholeskyMinRatio * trace)) return false;
+  chol.solve(data.rhs, data.nu);
+  data.rank = n;
+  data.sigma_min = lambda_min;
+  data.dropped.resize(n, 0);
   return true;
+}
+
+static_assert(kMaxConstraints == 6, "solve_by_cholesky dispatches n = 1..6");
+bool solve_by_cholesky(Data& data, const Options& options) {
+  switch (data.M0.rows()) {
+    case 1: return solve_by_cholesky_n<1>(data, options);
+    case 2: return solve_by_cholesky_n<2>(data, options);
+    case 3: return solve_by_cholesky_n<3>(data, options);
+    case 4: return solve_by_cholesky_n<4>(data, options);
+    case 5: return solve_by_cholesky_n<5>(data, options);
+    default: return solve_by_cholesky_n<6>(data, options);
+  }
 }
 
 // nu = K^-1 rhs by the eigen-decomposition K = V diag(sigma) V^T with the singularity
@@ -163,23 +212,7 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
 }  // namespace
 
 void solve_coupling(Data& data, const Options& options) {
-  const CouplingMatrix& K = data.M0;
-  const int nc = static_cast<int>(K.rows());
-  if (options.policy == SingularityPolicy::Truncate) {
-    // sigma_max <= trace(K): a smallest eigenvalue above both the truncation threshold and
-    // kCholeskyMinRatio * trace(K) means full rank, nothing truncated, and nu = K^-1 rhs
-    // is accurate by Cholesky.
-    const double trace = K.trace();
-    const double lambda_min = smallest_eigenvalue(K);
-    const double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
-    if (lambda_min > threshold && lambda_min >= kCholeskyMinRatio * trace &&
-        cholesky_solve(K, data.rhs, data.nu)) {
-      data.rank = nc;
-      data.sigma_min = lambda_min;
-      data.dropped.resize(nc, 0);
-      return;
-    }
-  }
+  if (options.policy == SingularityPolicy::Truncate && solve_by_cholesky(data, options)) return;
   solve_by_eigen_decomposition(data, options);
 }
 
