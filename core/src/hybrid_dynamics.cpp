@@ -124,10 +124,16 @@ void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc
   }
 }
 
-// Step 2, for i = n-1 .. 0. IA_i is overwritten with Ia_i (what the parent adds to its
-// own, shifted by r_i); E holds the unit constraint forces at body i, rolled towards the
-// base.
-void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) {
+// Step 2, for i = n-1 .. 0, with nc = NC constraints (a template parameter, so that the
+// loops over the constraint columns unroll). IA_i is overwritten with Ia_i (what the
+// parent adds to its own, shifted by r_i); E holds the unit constraint forces at body i,
+// rolled towards the base; M_0 is accumulated on its lower triangle.
+template <int NC>
+void inward_sweep(const Model& model, Data& d, bool moving, bool rotor) {
+  // E, G and M live in locals during the sweep (no aliasing with the bodies' data).
+  Pairs E[NC > 0 ? NC : 1];
+  double G[NC > 0 ? NC : 1] = {}, M[NC > 0 ? NC : 1][NC > 0 ? NC : 1] = {};
+  for (int k = 0; k < NC; ++k) E[k] = load_pairs(d.E.data() + 6 * k);
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     const bool rotational = is_rotational(b);
@@ -157,27 +163,43 @@ void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) 
       force_to_parent(pa, shift);
       store_pairs(d.pA[p], load_pairs(d.pA[p]) + pa);
     }
-    if (!nc) continue;
+    if (NC == 0) continue;
     // EZ = E^T S;  E <- E - U EZ^T / D                        (eq. c)
     // G  += E^T c + EZ u / D;  M -= EZ EZ^T / D                (eqs. e, d)
     // then E moves to the parent's origin.
-    ConstraintVector& EZ = d.EZ[i];
-    EZ.resize(nc);
+    double EZ[NC > 0 ? NC : 1];
     const Pairs ci = load_pairs(d.c[i]);
     const double uD = u * Dinv;
-    for (int k = 0; k < nc; ++k) {
-      double* col = d.E.data() + 6 * k;
-      Pairs e = load_pairs(col);
-      EZ[k] = subspace_dot(rotational, z, e);
-      e = e - U * splat(EZ[k] * Dinv);
-      d.G0[k] += (moving ? dot(e, ci) : 0.0) + EZ[k] * uD;
-      force_to_parent(e, shift);
-      store_pairs(col, e);
+    for (int k = 0; k < NC; ++k) {
+      EZ[k] = subspace_dot(rotational, z, E[k]);
+      E[k] = E[k] - U * splat(EZ[k] * Dinv);
+      G[k] += (moving ? dot(E[k], ci) : 0.0) + EZ[k] * uD;
+      force_to_parent(E[k], shift);
     }
-    for (int k = 0; k < nc; ++k) {
+    for (int k = 0; k < NC; ++k) {
       const double EZk = EZ[k] * Dinv;
-      for (int l = 0; l < nc; ++l) d.M0(l, k) -= EZ[l] * EZk;
+      for (int l = k; l < NC; ++l) M[l][k] -= EZ[l] * EZk;
     }
+    d.EZ[i].resize(NC);
+    for (int k = 0; k < NC; ++k) d.EZ[i][k] = EZ[k];
+  }
+  for (int k = 0; k < NC; ++k) {
+    store_pairs(d.E.data() + 6 * k, E[k]);
+    d.G0[k] = G[k];
+    for (int l = k; l < NC; ++l) d.M0(l, k) = d.M0(k, l) = M[l][k];
+  }
+}
+
+static_assert(kMaxConstraints == 6, "inward_sweep dispatches nc = 0..6");
+void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) {
+  switch (nc) {
+    case 0: return inward_sweep<0>(model, d, moving, rotor);
+    case 1: return inward_sweep<1>(model, d, moving, rotor);
+    case 2: return inward_sweep<2>(model, d, moving, rotor);
+    case 3: return inward_sweep<3>(model, d, moving, rotor);
+    case 4: return inward_sweep<4>(model, d, moving, rotor);
+    case 5: return inward_sweep<5>(model, d, moving, rotor);
+    default: return inward_sweep<6>(model, d, moving, rotor);
   }
 }
 
