@@ -5,14 +5,19 @@
 //   node bench/wasm_vs_native.mjs          (native CLI: $ACHD_CLI, else build/achd)
 //
 // Prints {"cases": [{"name", "wasm_ns", "native_ns", "ratio"}]}, ratio = wasm / native.
-// wasm: 2e4 warm-up calls (V8 tiers wasm up late), then the median of 15 repeats.
+// wasm: 2e4 warm-up calls (V8 tiers wasm up late). Then REPEATS rounds, each timing
+// ~10 ms of wasm solves and one `achd bench --clock wall` round of the same length, one
+// after the other, so that the shared machine's load changes hit both alike. Both sides
+// use the wall clock (Node has no per-thread CPU clock, and process.cpuUsage also counts
+// V8's compiler and GC threads). Reported: the medians of each side and the median of
+// the per-round ratios.
 import { execFileSync } from 'node:child_process';
 
 import { loadAchd, nativeCli, robots, scratchDir } from '../tests/node/helpers.mjs';
 
 const WARMUP = 2e4;
-const REPEATS = 15;
-const TARGET_NS_PER_REPEAT = 2e7;  // ~20 ms per timed repeat
+const REPEATS = 31;
+const TARGET_NS_PER_REPEAT = 1e7;  // ~10 ms per timed repeat
 
 // Six independent constraints: the tip's full acceleration is prescribed.
 const ALL_SIX = [0, 1, 2, 3, 4, 5].map((k) => [0, 1, 2, 3, 4, 5].map((r) => (r === k ? 1 : 0)));
@@ -37,7 +42,8 @@ function median(xs) {
   return s[Math.floor(s.length / 2)];
 }
 
-function wasmNs(achd, entry, c) {
+// The zero-copy solver on the case, warmed up.
+function wasmSolver(achd, entry, c) {
   const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
   const solver = robot.createSolver({ maxConstraints: 6 });
   solver.q.set(c.q);
@@ -49,26 +55,39 @@ function wasmNs(achd, entry, c) {
   for (let k = 0; k < nc; ++k) solver.alpha.set(c.alpha[k], 6 * k);
   if (nc) solver.beta.set(c.beta);
   for (let i = 0; i < WARMUP; ++i) solver.solve();
-  // Calibrate the calls per repeat, then time REPEATS repeats.
-  let n = 1000, t0 = process.hrtime.bigint();
-  for (let i = 0; i < n; ++i) solver.solve();
-  const perCall = Number(process.hrtime.bigint() - t0) / n;
-  n = Math.max(1000, Math.round(TARGET_NS_PER_REPEAT / perCall));
-  const samples = [];
+  return { robot, solver };
+}
+
+// Wall-clock ns per call of fn over n calls.
+function nsPerCall(fn, n) {
+  const t0 = process.hrtime.bigint();
+  for (let i = 0; i < n; ++i) fn();
+  return Number(process.hrtime.bigint() - t0) / n;
+}
+
+// One native round: `achd bench` with a fixed count (its own warm-up round, then one
+// timed round on its thread's CPU clock).
+function nativeRound(cli, entry, casePath, iterations) {
+  const out = execFileSync(cli, ['bench', entry.path, '--root', entry.root, '--tip', entry.tip,
+    '--case', casePath, '--iterations', String(iterations), '--repeats', '1', '--clock', 'wall'],
+    { encoding: 'utf8' });
+  return JSON.parse(out).achd_ns;
+}
+
+function measure(achd, cli, entry, c, casePath) {
+  const { robot, solver } = wasmSolver(achd, entry, c);
+  const solve = () => solver.solve();
+  const wasmN = Math.max(1000, Math.round(TARGET_NS_PER_REPEAT / nsPerCall(solve, 5000)));
+  const nativeN = Math.max(1000, Math.round(TARGET_NS_PER_REPEAT / nativeRound(cli, entry, casePath, 1000)));
+  const wasm = [], native = [], ratios = [];
   for (let r = 0; r < REPEATS; ++r) {
-    t0 = process.hrtime.bigint();
-    for (let i = 0; i < n; ++i) solver.solve();
-    samples.push(Number(process.hrtime.bigint() - t0) / n);
+    wasm.push(nsPerCall(solve, wasmN));
+    native.push(nativeRound(cli, entry, casePath, nativeN));
+    ratios.push(wasm[r] / native[r]);
   }
   solver.delete();
   robot.delete();
-  return median(samples);
-}
-
-function nativeNs(cli, entry, casePath) {
-  const out = execFileSync(cli, ['bench', entry.path, '--root', entry.root, '--tip', entry.tip,
-    '--case', casePath, '--repeats', String(REPEATS)], { encoding: 'utf8' });
-  return JSON.parse(out).achd_ns;
+  return { wasm_ns: median(wasm), native_ns: median(native), ratio: median(ratios) };
 }
 
 const achd = await loadAchd();
@@ -82,9 +101,9 @@ try {
     const entry = byName[robotName];
     const c = benchCase(entry, nc);
     const casePath = scratch.write(`${name}.json`, JSON.stringify(c));
-    const native_ns = nativeNs(cli, entry, casePath);
-    const wasm_ns = wasmNs(achd, entry, c);
-    results.push({ name, wasm_ns: Number(wasm_ns.toFixed(1)), native_ns, ratio: Number((wasm_ns / native_ns).toFixed(3)) });
+    const m = measure(achd, cli, entry, c, casePath);
+    results.push({ name, wasm_ns: Number(m.wasm_ns.toFixed(1)), native_ns: Number(m.native_ns.toFixed(1)),
+                   ratio: Number(m.ratio.toFixed(3)) });
   }
 } finally {
   scratch.remove();

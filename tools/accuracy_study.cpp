@@ -1,8 +1,6 @@
 // The accuracy-versus-time study: runs, the reference, timing, and the knob variants.
 #include "accuracy_study.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,15 +9,10 @@
 
 #include "achd/error.hpp"
 #include "pareto_front.hpp"
+#include "timing.hpp"
 
 namespace achd::cli {
 namespace {
-
-double thread_cpu_ns() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec * 1e9 + t.tv_nsec;
-}
 
 long steps_for(double duration, double dt) { return std::lround(duration / dt); }
 
@@ -194,13 +187,13 @@ double ns_per_step(const Scene& scene, const SimulatorOptions& options, double d
   std::vector<double> samples;
   for (int r = 0; r <= repeats; ++r) {  // round 0 warms caches and is discarded
     start_scene(scene, sim);
-    const double t0 = thread_cpu_ns();
+    const double t0 = now_ns();
     try {
       sim.run(static_cast<int>(n), dt);
     } catch (const Error&) {
       // An unstable run may stop early; its cost is still the time per step taken.
     }
-    const double ns = thread_cpu_ns() - t0;
+    const double ns = now_ns() - t0;
     const double taken = std::max(1.0, std::round(sim.t / dt));
     if (r > 0) samples.push_back(ns / taken);
   }

@@ -1,10 +1,11 @@
 // achd bench ROBOT.urdf --root LINK --tip LINK --case CASE.json [--iterations N]
-//            [--repeats R] [--against kdl] [solver options]
+//            [--repeats R] [--clock cpu|wall] [--against kdl] [solver options]
 // Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R rounds of N
 // calls (default: about 2 ms per round, 51 rounds) after a warm-up round; with --against
 // kdl also KDL's ChainHdSolver_Vereshchagin on the same chain and case, timed in the same
 // rounds, "ratio" = the median of the per-round ratios achd / KDL, and the relative
-// difference of the two qdd (a check that both solved the same problem).
+// difference of the two qdd (a check that both solved the same problem). The clock is the
+// thread's CPU time unless --clock wall.
 #include <cstdio>
 #include <iostream>
 
@@ -19,7 +20,7 @@
 namespace achd::cli {
 
 int cmd_bench(int argc, char** argv) {
-  std::set<std::string> valued = {"--root", "--tip", "--case", "--iterations", "--repeats", "--against"};
+  std::set<std::string> valued = {"--root", "--tip", "--case", "--iterations", "--repeats", "--against", "--clock"};
   valued.insert(kSolverValued.begin(), kSolverValued.end());
   const Args args(argc, argv, valued, kSolverFlags);
   if (args.positional().size() != 1) throw Error("bench: expected one URDF file, see `achd help`");
@@ -32,6 +33,10 @@ int cmd_bench(int argc, char** argv) {
                             case_path);
   const int repeats = static_cast<int>(args.integer("--repeats", 51));
   const std::string against = args.get("--against", "");
+  const std::string clock_name = args.get("--clock", "cpu");
+  if (clock_name != "cpu" && clock_name != "wall")
+    throw Error("option --clock: expected 'cpu' or 'wall', got '" + clock_name + "'");
+  const Clock clock = clock_name == "wall" ? Clock::Wall : Clock::ThreadCpu;
   if (!against.empty() && against != "kdl")
     throw Error("option --against: expected 'kdl', got '" + against + "'");
 
@@ -49,8 +54,8 @@ int cmd_bench(int argc, char** argv) {
   std::vector<long> iterations;
   for (const auto& fn : fns)
     iterations.push_back(args.has("--iterations") ? args.integer("--iterations", 1)
-                                                  : calibrate_iterations(fn, 2e6));
-  const std::vector<std::vector<double>> samples = sample_ns(fns, iterations, repeats);
+                                                  : calibrate_iterations(fn, 2e6, clock));
+  const std::vector<std::vector<double>> samples = sample_ns(fns, iterations, repeats, clock);
 
   char buf[512];
   std::snprintf(buf, sizeof buf, "{\"achd_ns\": %.1f, \"iterations\": %ld, \"repeats\": %d", median(samples[0]),
