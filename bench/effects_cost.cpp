@@ -1,17 +1,19 @@
 // What each effect costs (issue 4): KUKA LWR 4 from its default pose, effect sets from
 // "gravity only, at rest" to "everything on, 6 constraints", each timed as one
 // hybrid_dynamics solve and as one RK4 step of the Simulator (4 solves + the held
-// directions' kinematics), in one run. Prints Google Benchmark's table, then a markdown
-// table with the increment of each row over the previous one.
-#include <benchmark/benchmark.h>
-
+// directions' kinematics), in one run: every row's solve and step are timed in each of 31
+// interleaved rounds (thread CPU time, tools/timing.hpp), so that the shared machine's
+// speed changes hit all rows alike. Prints the medians as a markdown table with the
+// increment of each row over the previous one.
 #include <cstdio>
-#include <map>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "achd/achd.hpp"
 #include "achd/simulator.hpp"
+#include "timing.hpp"
 
 namespace {
 
@@ -60,81 +62,72 @@ Robot lwr() {
 }
 
 // One solve: the held directions of the simulator as a Case (alpha columns, beta = 0).
-void solve(benchmark::State& st, const Robot& r, const EffectSet& s) {
-  Case c = Case::zeros(r.model);
-  c.q = r.q0;
-  c.qd = s.moving ? r.qd0 : Eigen::VectorXd::Zero(7);
-  if (s.effects & kExternalWrenches) c.f_ext = r.f_ext;
-  c.alpha.setZero(6, s.nc);
-  for (int k = 0; k < s.nc; ++k) c.alpha(k, k) = 1;
-  c.beta.setZero(s.nc);
-  Options o;
-  o.effects = s.effects;
-  Data d(r.model);
-  for (auto _ : st) {
-    hybrid_dynamics(r.model, d, c, o);
-    benchmark::DoNotOptimize(d.qdd.data());
+struct Solve {
+  Solve(const Robot& r, const EffectSet& s) : model(r.model), c(Case::zeros(r.model)), d(r.model) {
+    c.q = r.q0;
+    c.qd = s.moving ? r.qd0 : Eigen::VectorXd::Zero(7);
+    if (s.effects & kExternalWrenches) c.f_ext = r.f_ext;
+    c.alpha.setZero(6, s.nc);
+    for (int k = 0; k < s.nc; ++k) c.alpha(k, k) = 1;
+    c.beta.setZero(s.nc);
+    o.effects = s.effects;
   }
-}
+  void operator()() { hybrid_dynamics(model, d, c, o); }
+  const Model& model;
+  Case c;
+  Data d;
+  Options o;
+};
 
 // One RK4 step from the same state every time (the state is restored, 14 copies).
-void step(benchmark::State& st, const Robot& r, const EffectSet& s) {
-  SimulatorOptions o;
-  o.effects = s.effects;
-  o.limits = LimitPolicy::Ignore;
-  Simulator sim(r.model, o);
-  const Eigen::VectorXd qd = s.moving ? r.qd0 : Eigen::VectorXd::Zero(7);
-  sim.reset(r.q0, qd);
-  if (s.effects & kExternalWrenches) sim.f_ext = r.f_ext;
-  for (int k = 0; k < s.nc; ++k) sim.set_direction(k, DirectionMode::Hold);
-  for (auto _ : st) {
-    sim.q = r.q0;
-    sim.qd = qd;
+struct Step {
+  Step(const Robot& r, const EffectSet& s)
+      : q0(r.q0), qd0(s.moving ? r.qd0 : Eigen::VectorXd::Zero(7)), sim(r.model, options(s)) {
+    sim.reset(q0, qd0);
+    if (s.effects & kExternalWrenches) sim.f_ext = r.f_ext;
+    for (int k = 0; k < s.nc; ++k) sim.set_direction(k, DirectionMode::Hold);
+  }
+  static SimulatorOptions options(const EffectSet& s) {
+    SimulatorOptions o;
+    o.effects = s.effects;
+    o.limits = LimitPolicy::Ignore;
+    return o;
+  }
+  void operator()() {
+    sim.q = q0;
+    sim.qd = qd0;
     sim.step(1e-3);
-    benchmark::DoNotOptimize(sim.q.data());
   }
-}
-
-class Collector : public benchmark::ConsoleReporter {
- public:
-  std::map<std::string, double> ns;
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) ns[run.benchmark_name()] = run.GetAdjustedCPUTime();
-    ConsoleReporter::ReportRuns(runs);
-  }
+  Eigen::VectorXd q0, qd0;
+  Simulator sim;
 };
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main() {
   const Robot robot = lwr();
-  int row = 0;
+  std::vector<std::unique_ptr<Solve>> solves;
+  std::vector<std::unique_ptr<Step>> steps;
+  std::vector<std::function<void()>> fns;
   for (const EffectSet& s : kSets) {
-    char id[8];
-    std::snprintf(id, sizeof id, "%02d", row++);
-    benchmark::RegisterBenchmark((std::string("solve/") + id).c_str(),
-                                 [&robot, &s](benchmark::State& st) { solve(st, robot, s); });
-    benchmark::RegisterBenchmark((std::string("rk4_step/") + id).c_str(),
-                                 [&robot, &s](benchmark::State& st) { step(st, robot, s); });
+    solves.push_back(std::make_unique<Solve>(robot, s));
+    steps.push_back(std::make_unique<Step>(robot, s));
   }
-  benchmark::Initialize(&argc, argv);
-  Collector collector;
-  benchmark::RunSpecifiedBenchmarks(&collector);
-
-  std::printf("\nKUKA LWR 4 (7 joints), CPU ns, one run:\n\n");
+  for (auto& f : solves) fns.push_back([p = f.get()] { (*p)(); });
+  for (auto& f : steps) fns.push_back([p = f.get()] { (*p)(); });
+  std::vector<long> iterations;
+  for (const auto& f : fns) iterations.push_back(cli::calibrate_iterations(f, 2e6));
+  const std::vector<std::vector<double>> ns = cli::sample_ns(fns, iterations, 31);
+  const int rows = static_cast<int>(solves.size());
+  std::printf("KUKA LWR 4 (7 joints), CPU ns, medians of 31 interleaved rounds:\n\n");
   std::printf("| effect set | ns per solve | + over previous | ns per RK4 step |\n");
   std::printf("| --- | ---: | ---: | ---: |\n");
   double previous = 0;
-  row = 0;
-  for (const EffectSet& s : kSets) {
-    char id[8];
-    std::snprintf(id, sizeof id, "%02d", row);
-    const double solve_ns = collector.ns[std::string("solve/") + id];
-    const double step_ns = collector.ns[std::string("rk4_step/") + id];
-    if (solve_ns > 0)
-      std::printf("| %s | %.0f | %+.0f | %.0f |\n", s.name, solve_ns, row ? solve_ns - previous : 0.0, step_ns);
+  for (int row = 0; row < rows; ++row) {
+    const double solve_ns = cli::median(ns[row]), step_ns = cli::median(ns[rows + row]);
+    std::printf("| %s | %.0f | %+.0f | %.0f |\n", kSets[row].name, solve_ns, row ? solve_ns - previous : 0.0,
+                step_ns);
     previous = solve_ns;
-    ++row;
   }
   return 0;
 }
