@@ -59,6 +59,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   case_.f_ext.reserve(model_.num_links());
   limit_hits_.reserve(n);
   X0_.resize(n);
+  r_.assign(n, Vector3::Zero());
   v_.assign(n, Vector6::Zero());
   q0_ = qd0_ = q_stage_ = qd_stage_ = Eigen::VectorXd::Zero(n);
   for (auto& k : k_q_) k = Eigen::VectorXd::Zero(n);
@@ -112,12 +113,12 @@ double Simulator::setpoint(int index) const {
 }
 
 Transform Simulator::tip_pose() const {
-  body_motion(model_, q, qd, X0_, v_);
+  body_motion(model_, q, qd, X0_, r_, v_);
   return tip_state(model_, X0_, v_).pose;
 }
 
 Vector6 Simulator::tip_velocity() const {
-  body_motion(model_, q, qd, X0_, v_);
+  body_motion(model_, q, qd, X0_, r_, v_);
   const TipState tip = tip_state(model_, X0_, v_);
   Vector6 out;
   out << tip.v, tip.w;
@@ -125,7 +126,7 @@ Vector6 Simulator::tip_velocity() const {
 }
 
 std::array<double, kNumDirections> Simulator::residuals() const {
-  body_motion(model_, q, qd, X0_, v_);
+  body_motion(model_, q, qd, X0_, r_, v_);
   const TipState tip = tip_state(model_, X0_, v_);
   std::array<double, kNumDirections> r{};
   for (int k = 0; k < kNumDirections; ++k) r[k] = direction_error(held_, k, tip);
@@ -143,7 +144,7 @@ std::array<double, kNumDirections> Simulator::max_residuals() const {
 void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_at,
                          const std::array<double, kNumDirections>& angle, double w_n, Data& out,
                          std::array<double, kNumDirections>& angle_rate) {
-  body_motion(model_, q_at, qd_at, X0_, v_);
+  body_motion(model_, q_at, qd_at, X0_, r_, v_);
   const TipState tip = tip_state(model_, X0_, v_);
   stage_held_ = held_;
   stage_held_.angle = angle;
@@ -167,7 +168,7 @@ void Simulator::step(double dt) {
   case_.ff_torques = ff_torques;
   case_.f_ext = f_ext;
   // Record the residuals of the state this step starts from.
-  body_motion(model_, q, qd, X0_, v_);
+  body_motion(model_, q, qd, X0_, r_, v_);
   const TipState tip = tip_state(model_, X0_, v_);
   for (int k = 0; k < kNumDirections; ++k)
     max_residual_[k] = std::max(max_residual_[k], std::abs(direction_error(held_, k, tip)));
@@ -213,7 +214,7 @@ void Simulator::step_explicit_euler(double dt, double w_n) {
 void Simulator::step_semi_implicit_euler(double dt, double w_n) {
   evaluate(q, qd, held_.angle, w_n, data_, k_angle_[0]);
   qd += dt * data_.qdd;
-  body_motion(model_, q, qd, X0_, v_);
+  body_motion(model_, q, qd, X0_, r_, v_);
   const Vector3 w = tip_state(model_, X0_, v_).w;
   for (int k = 0; k < kNumDirections; ++k)
     if (held_.mode[k] == DirectionMode::Hold && !is_linear_direction(k))

@@ -6,18 +6,16 @@
 namespace achd {
 
 void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                 std::vector<Transform>& X0, std::vector<Vector6>& v) {
+                 std::vector<Transform>& X0, std::vector<Vector3>& r, std::vector<Vector6>& v) {
+  body_poses(model, q, X0, r);
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
-    const Transform Xup = joint_transform(b, q[i]);
-    const Vector6 vJ = subspace_times(b, qd[i]);
-    if (b.parent < 0) {
-      X0[i] = Xup;
-      v[i] = vJ;
-    } else {
-      X0[i] = X0[b.parent] * Xup;
-      v[i] = Xup.motion_to_child(v[b.parent]) + vJ;
-    }
+    const Vector3 zq = X0[i].R.col(2) * qd[i];  // S qd: about (revolute) or along z
+    Vector6& vi = v[i];
+    if (b.parent < 0) vi.setZero();
+    else vi = motion_shift(v[b.parent], r[i]);
+    if (is_rotational(b)) vi.tail<3>() += zq;
+    else vi.head<3>() += zq;
   }
 }
 
@@ -32,8 +30,8 @@ TipState tip_state(const Model& model, const std::vector<Transform>& X0,
   const Transform& X = X0[tip.body];
   const Vector6& vb = v[tip.body];
   s.pose = X * tip.offset;
-  s.w = X.R * vb.tail<3>();
-  s.v = X.R * (vb.head<3>() + vb.tail<3>().cross(tip.offset.p));
+  s.w = vb.tail<3>();
+  s.v = vb.head<3>() + vb.tail<3>().cross(X.R * tip.offset.p);
   return s;
 }
 

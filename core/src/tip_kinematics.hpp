@@ -15,14 +15,14 @@ struct TipState {
   Vector3 w = Vector3::Zero();  // angular velocity, base orientation
 };
 
-// Body poses and body velocities (each body's own frame, at its origin) of the whole
-// chain: X0_i = X0_p Xj(q_i),  v_i = Xup_i v_p + S qd_i  (RBDA table 5.1, outward).
-// X0 and v must hold num_joints() entries.
+// Body poses (kinematics.hpp's body_poses, as the solver sees them) and body velocities
+// of the whole chain, in base axes about each body's origin:
+// v_i = [v_p + w_p x r_i; w_p] + S qd_i. X0, r and v must hold num_joints() entries.
 void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                 std::vector<Transform>& X0, std::vector<Vector6>& v);
+                 std::vector<Transform>& X0, std::vector<Vector3>& r, std::vector<Vector6>& v);
 
-// The tip from body_motion's output: p = X0_b * offset;  v_tip = R0 (v_b + w_b x o),
-// w_tip = R0 w_b, with o the tip's offset from its body's origin.
+// The tip from body_motion's output: p = X0_b * offset;  v_tip = v_b + w_b x (R0 o),
+// w_tip = w_b, with o the tip's offset from its body's origin.
 TipState tip_state(const Model& model, const std::vector<Transform>& X0,
                    const std::vector<Vector6>& v);
 

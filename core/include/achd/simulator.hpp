@@ -130,6 +130,7 @@ class Simulator {
   std::vector<double> axial_inertia_;  // S^T I S of each body alone
   // Workspace (sized once): body poses and velocities, integrator stages.
   mutable std::vector<Transform> X0_;
+  mutable std::vector<Vector3> r_;
   mutable std::vector<Vector6> v_;
   Eigen::VectorXd q0_, qd0_, q_stage_, qd_stage_, k_q_[4], k_qd_[4];
   std::array<double, kNumDirections> angle0_{}, angle_stage_{}, k_angle_[4]{};
