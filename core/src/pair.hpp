@@ -1,15 +1,15 @@
 #pragma once
-// Two doubles operated on together. Natively (x86-64's SSE2, which every 64-bit x86 has)
-// a Pair is the vector type that gcc and clang share. In the wasm build it is two plain
-// doubles, which clang's own vectoriser maps onto wasm SIMD (-msimd128): Emscripten
-// 3.1.6 miscompiled the vector-type version there (the Node parity tests caught it).
-// Every operation is lane by lane, so the rounding is the scalar code's either way:
-// native and wasm agree to the bit.
+// Two doubles operated on together: the vector type that gcc and clang share, on SSE2
+// natively (every x86-64 has it) and on wasm SIMD in the wasm build (-msimd128); two
+// plain doubles where neither is available. Every operation is lane by lane, so the
+// rounding is the scalar code's either way: native and wasm agree to the bit (the Node
+// parity tests check it, which matters: Emscripten 3.1.6's clang has miscompiled code
+// around these, see spatial.cpp).
 #include <cstring>
 
 namespace achd {
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || defined(__wasm_simd128__)
 
 typedef double Pair __attribute__((vector_size(16)));
 

@@ -14,6 +14,18 @@ Matrix6 spatial_inertia(double mass, const Vector3& com, const Matrix3& inertia_
   return I;
 }
 
+namespace {
+
+// Not inlined: with add_shifted inlined into add_inertia_to_parent, Emscripten 3.1.6's
+// clang (-O2 and up, -msimd128) computed the wrong shift (a compiler bug, reproduced in
+// isolation; called through this function it is right). Only the loader and CRBA come
+// through here.
+__attribute__((noinline)) void add_shifted_out_of_line(const Matrix6& I, const Vector3& p, Matrix6& Ip) {
+  add_shifted(I, Shift(p), Ip);
+}
+
+}  // namespace
+
 void add_inertia_to_parent(const Transform& X, const Matrix6& Ic, Matrix6& Ip) {
   // Rotate the blocks [A B; B^T C] into P's orientation: A' = R A R^T, B' = R B R^T, C';
   // then shift the reference point from C's origin to P's origin.
@@ -23,7 +35,7 @@ void add_inertia_to_parent(const Transform& X, const Matrix6& Ic, Matrix6& Ip) {
   I.topRightCorner<3, 3>() = R * Ic.topRightCorner<3, 3>() * R.transpose();
   I.bottomLeftCorner<3, 3>() = I.topRightCorner<3, 3>().transpose();
   I.bottomRightCorner<3, 3>() = rotate_symmetric(R, Ic.bottomRightCorner<3, 3>());
-  add_shifted(I, Shift(X.p), Ip);
+  add_shifted_out_of_line(I, X.p, Ip);
 }
 
 Matrix6 inertia_to_parent(const Transform& X, const Matrix6& Ic) {
