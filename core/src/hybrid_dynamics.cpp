@@ -124,21 +124,76 @@ void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc
   }
 }
 
+// The constraint quantities of step 2 for NC columns, held two columns to a Pair: E row by
+// row (E[r][j] = E(r, 2j..2j+1)), G and the columns of M likewise; an odd NC leaves a
+// zero lane. Every update of a body is then a handful of pair products per row, the
+// same for every column, with no shuffles.
+template <int NC>
+struct ConstraintColumns {
+  static constexpr int NP = (NC + 1) / 2;
+  Pair E[6][NP > 0 ? NP : 1], G[NP > 0 ? NP : 1], M[NC > 0 ? NC : 1][NP > 0 ? NP : 1];
+
+  explicit ConstraintColumns(const ConstraintForceMatrix& E0) {
+    for (int j = 0; j < NP; ++j) {
+      for (int r = 0; r < 6; ++r) E[r][j] = Pair{E0(r, 2 * j), 2 * j + 1 < NC ? E0(r, 2 * j + 1) : 0.0};
+      G[j] = splat(0);
+      for (int k = 0; k < NC; ++k) M[k][j] = splat(0);
+    }
+  }
+
+  // Body i, with U = IA S, D, u, c and the shift to its parent:
+  //   EZ = E^T S;  E <- E - U EZ^T / D                      (eq. c)
+  //   G += E^T c + EZ u / D;  M -= EZ EZ^T / D              (eqs. e, d)
+  // then E moves to the parent's origin (rows 3..5 += r x rows 0..2). Writes EZ.
+  void update(bool rotational, const Vector3& z, const Pairs& U, double Dinv, double u,
+              const Vector6* c, const Shift& s, double* EZ_out) {
+    const int o = rotational ? 3 : 0;
+    const Pair z0 = splat(z[0]), z1 = splat(z[1]), z2 = splat(z[2]), dinv = splat(Dinv);
+    const double Ur[6] = {U.p[0][0], U.p[0][1], U.p[1][0], U.p[1][1], U.p[2][0], U.p[2][1]};
+    Pair EZ[NP], EZD[NP];
+    for (int j = 0; j < NP; ++j) {
+      EZ[j] = (E[o][j] * z0 + E[o + 1][j] * z1) + E[o + 2][j] * z2;
+      EZD[j] = EZ[j] * dinv;
+      for (int r = 0; r < 6; ++r) E[r][j] -= splat(Ur[r]) * EZD[j];
+      Pair g = EZ[j] * splat(u * Dinv);
+      if (c)
+        for (int r = 0; r < 6; ++r) g += splat((*c)[r]) * E[r][j];
+      G[j] += g;
+    }
+    for (int k = 0; k < NC; ++k) {
+      const Pair ezd = splat(EZD[k / 2][k % 2]);
+      for (int j = 0; j < NP; ++j) M[k][j] -= EZ[j] * ezd;
+    }
+    for (int j = 0; j < NP; ++j) {
+      E[3][j] += s.r1 * E[2][j] - s.r2 * E[1][j];
+      E[4][j] += s.r2 * E[0][j] - s.r0 * E[2][j];
+      E[5][j] += s.r0 * E[1][j] - s.r1 * E[0][j];
+    }
+    for (int k = 0; k < NC; ++k) EZ_out[k] = EZ[k / 2][k % 2];
+  }
+
+  // E_0, G_0 and M_0 (symmetric: its lower triangle mirrored).
+  void store(Data& d) const {
+    for (int k = 0; k < NC; ++k) {
+      for (int r = 0; r < 6; ++r) d.E(r, k) = E[r][k / 2][k % 2];
+      d.G0[k] = G[k / 2][k % 2];
+      for (int l = k; l < NC; ++l) d.M0(l, k) = d.M0(k, l) = M[k][l / 2][l % 2];
+    }
+  }
+};
+
 // Step 2, for i = n-1 .. 0, with nc = NC constraints (a template parameter, so that the
-// loops over the constraint columns unroll). IA_i is overwritten with Ia_i (what the
-// parent adds to its own, shifted by r_i); E holds the unit constraint forces at body i,
-// rolled towards the base; M_0 is accumulated on its lower triangle.
+// loops over the constraint columns unroll). Body i's Ia_i = IA_i - U U^T / D is formed
+// in locals and added, shifted by r_i, to its parent's IA; the constraint columns roll
+// towards the base in locals too (ConstraintColumns).
 template <int NC>
 void inward_sweep(const Model& model, Data& d, bool moving, bool rotor) {
-  // E, G and M live in locals during the sweep (no aliasing with the bodies' data).
-  Pairs E[NC > 0 ? NC : 1];
-  double G[NC > 0 ? NC : 1] = {}, M[NC > 0 ? NC : 1][NC > 0 ? NC : 1] = {};
-  for (int k = 0; k < NC; ++k) E[k] = load_pairs(d.E.data() + 6 * k);
+  ConstraintColumns<NC> cols(d.E);
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     const bool rotational = is_rotational(b);
     const Vector3 z = joint_axis(d, i);
-    Matrix6& IA = d.IA[i];
+    const Matrix6& IA = d.IA[i];
     // U = IA S (the columns 3..5, revolute, or 0..2, prismatic, combined by z),
     // D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
     const Pairs U = combine_columns(IA, rotational ? 3 : 0, z);
@@ -156,38 +211,19 @@ void inward_sweep(const Model& model, Data& d, bool moving, bool rotor) {
     const int p = b.parent;
     if (p >= 0) {
       // Ia = IA - U U^T / D;  pa = pA + Ia c + U u / D;  the parent adds both, shifted
-      subtract_rank_one(IA, U, Dinv);
+      Pairs Ia[6];
+      minus_rank_one(IA, U, Dinv, Ia);
       Pairs pa = pA + U * splat(u * Dinv);
-      if (moving) pa = pa + times(IA, d.c[i]);
-      add_shifted(IA, shift, d.IA[p]);
+      if (moving) pa = pa + times(Ia, d.c[i]);
+      add_shifted(Ia, shift, d.IA[p]);
       force_to_parent(pa, shift);
       store_pairs(d.pA[p], load_pairs(d.pA[p]) + pa);
     }
     if (NC == 0) continue;
-    // EZ = E^T S;  E <- E - U EZ^T / D                        (eq. c)
-    // G  += E^T c + EZ u / D;  M -= EZ EZ^T / D                (eqs. e, d)
-    // then E moves to the parent's origin.
-    double EZ[NC > 0 ? NC : 1];
-    const Pairs ci = load_pairs(d.c[i]);
-    const double uD = u * Dinv;
-    for (int k = 0; k < NC; ++k) {
-      EZ[k] = subspace_dot(rotational, z, E[k]);
-      E[k] = E[k] - U * splat(EZ[k] * Dinv);
-      G[k] += (moving ? dot(E[k], ci) : 0.0) + EZ[k] * uD;
-      force_to_parent(E[k], shift);
-    }
-    for (int k = 0; k < NC; ++k) {
-      const double EZk = EZ[k] * Dinv;
-      for (int l = k; l < NC; ++l) M[l][k] -= EZ[l] * EZk;
-    }
     d.EZ[i].resize(NC);
-    for (int k = 0; k < NC; ++k) d.EZ[i][k] = EZ[k];
+    cols.update(rotational, z, U, Dinv, u, moving ? &d.c[i] : nullptr, shift, d.EZ[i].data());
   }
-  for (int k = 0; k < NC; ++k) {
-    store_pairs(d.E.data() + 6 * k, E[k]);
-    d.G0[k] = G[k];
-    for (int l = k; l < NC; ++l) d.M0(l, k) = d.M0(k, l) = M[l][k];
-  }
+  if (NC) cols.store(d);
 }
 
 static_assert(kMaxConstraints == 6, "inward_sweep dispatches nc = 0..6");
@@ -203,6 +239,13 @@ void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) 
   }
 }
 
+// EZ_i^T nu over the nc columns (a loop of at most kMaxConstraints terms).
+inline double dot_nc(const ConstraintVector& a, const ConstraintVector& b, int nc) {
+  double s = 0;
+  for (int k = 0; k < nc; ++k) s += a[k] * b[k];
+  return s;
+}
+
 // Step 4. a'_i = a_p (shifted) + c_i;  qdd_i = (u_i - U_i^T a'_i - EZ_i^T nu) / D_i;
 // a_i = a'_i + S qdd_i.
 void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
@@ -211,7 +254,7 @@ void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int n
     Pairs a = load_pairs(b.parent < 0 ? a0 : d.a[b.parent]);
     motion_to_child(a, Shift(d.r[i]));
     a = a + load_pairs(d.c[i]);
-    const double ct = nc ? -d.EZ[i].dot(d.nu) : 0.0;  // KDL's constraint torque -S^T E nu
+    const double ct = -dot_nc(d.EZ[i], d.nu, nc);  // KDL's constraint torque -S^T E nu
     const double qdd = (d.u[i] - dot(load_pairs(d.U[i]), a) + ct) / d.D[i];
     store_pairs(d.a[i], a + subspace_times(is_rotational(b), joint_axis(d, i), qdd));
     d.qdd[i] = qdd;
@@ -235,6 +278,15 @@ void link_accelerations(const Model& model, Data& d, const Vector6& a0, const Ve
   }
 }
 
+// The constraint wrench alpha nu at the tip link's origin.
+Vector6 constraint_wrench(const Case& c, const ConstraintVector& nu, int nc) {
+  Pairs w = kZero;
+  for (int k = 0; k < nc; ++k) w = w + load_pairs(c.alpha.col(k).data()) * splat(nu[k]);
+  Vector6 out;
+  store_pairs(out, w);
+  return out;
+}
+
 // joint_torques = ff - J^T (alpha nu): the tip wrench w = alpha nu carried from the tip
 // link's origin down the chain, tau_i -= S_i^T w (w about body i's origin).
 void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
@@ -242,9 +294,8 @@ void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
   else d.joint_torques.setZero();
   if (!nc) return;
   const Link& tip = model.tip();
-  const Vector6 w_tip = c.alpha * d.nu;
-  Vector6 w = force_shift(w_tip, d.X0[tip.body].R * tip.offset.p);
-  Pairs wp = load_pairs(w);
+  Pairs wp = load_pairs(d.constraint_wrench);
+  if (!tip.offset.p.isZero()) force_to_parent(wp, Shift(d.X0[tip.body].R * tip.offset.p));  // to the body origin
   for (int i = tip.body; i >= 0; --i) {
     d.joint_torques[i] -= subspace_dot(is_rotational(model.bodies[i]), joint_axis(d, i), wp);
     force_to_parent(wp, Shift(d.r[i]));
@@ -275,10 +326,19 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   if (gravity) a0.head<3>() = -c.gravity;
   d.nu.setZero(nc);
   if (nc) {
-    // K nu = E_0^T a_0 + G_0 - beta_kdl, with beta_kdl = beta - alpha_lin^T g (physical).
-    d.rhs.noalias() = d.E.transpose() * a0 + d.G0 - c.beta;
-    if (o.convention == Convention::Physical && gravity)
-      d.rhs.noalias() += c.alpha.topRows<3>().transpose() * c.gravity;
+    // K nu = E_0^T a_0 + G_0 - beta_kdl, with beta_kdl = beta - alpha_lin^T g (physical);
+    // a_0 = [-g; 0] when gravity is on.
+    const bool physical = o.convention == Convention::Physical;
+    d.rhs.resize(nc);
+    for (int k = 0; k < nc; ++k) {
+      double r = d.G0[k] - c.beta[k];
+      if (gravity) {
+        const Vector3 e = d.E.col(k).head<3>();
+        r -= e.dot(c.gravity);
+        if (physical) r += c.alpha.col(k).head<3>().dot(c.gravity);
+      }
+      d.rhs[k] = r;
+    }
     d.M0 = -d.M0;
     solve_coupling(d, o);
   } else {
@@ -291,8 +351,8 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   Vector6 shift = Vector6::Zero();
   if (o.convention == Convention::Physical && gravity) shift.head<3>() = c.gravity;
   link_accelerations(model, d, a0, shift);
+  d.constraint_wrench = constraint_wrench(c, d.nu, nc);
   joint_torques(model, d, c, nc);
-  d.constraint_wrench = nc ? Vector6(c.alpha * d.nu) : Vector6::Zero();
 }
 
 }  // namespace achd

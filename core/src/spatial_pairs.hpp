@@ -61,13 +61,6 @@ inline void motion_to_child(Pairs& m, const Shift& s) {
   m.p[1] += s.r1z * swapped(m.p[1]) - s.r0z * m.p[2];
 }
 
-// p x M, column by column: [p]x M without forming [p]x.
-inline Matrix3 cross_columns(const Vector3& p, const Matrix3& M) {
-  Matrix3 r;
-  for (int j = 0; j < 3; ++j) r.col(j) = p.cross(M.col(j));
-  return r;
-}
-
 // R S R^T for a symmetric S: the lower triangle computed, the upper mirrored.
 inline Matrix3 rotate_symmetric(const Matrix3& R, const Matrix3& S) {
   const Matrix3 RS = R * S;
@@ -105,28 +98,40 @@ inline Pairs times(const Matrix6& M, const Vector6& x) {
   return y;
 }
 
-// M -= U U^T / D, column by column: M.col(j) -= U (U_j / D).
-inline void subtract_rank_one(Matrix6& M, const Pairs& U, double Dinv) {
+// The columns of M - U U^T / D: column j is M.col(j) - U (U_j / D).
+inline void minus_rank_one(const Matrix6& M, const Pairs& U, double Dinv, Pairs (&out)[6]) {
   const double u[6] = {U.p[0][0], U.p[0][1], U.p[1][0], U.p[1][1], U.p[2][0], U.p[2][1]};
-  for (int j = 0; j < 6; ++j) store_pairs(M.data() + 6 * j, column(M, j) - U * splat(u[j] * Dinv));
+  for (int j = 0; j < 6; ++j) out[j] = column(M, j) - U * splat(u[j] * Dinv);
 }
 
-// P += M moved from the child's origin to the parent's: X^T M X for the translation
-// X = [1, -x; 0, 1], x = [r]x.
+// M x for M given by its columns.
+inline Pairs times(const Pairs (&M)[6], const Vector6& x) {
+  Pairs y = M[0] * splat(x[0]);
+  for (int j = 1; j < 6; ++j) y = y + M[j] * splat(x[j]);
+  return y;
+}
+
+// P += M moved from the child's origin to the parent's, M given by its columns (which
+// are overwritten): X^T M X for the translation X = [1, -x; 0, 1], x = [r]x.
 //   N = M X:  N.col(j) = M.col(j), N.col(3 + j) = M.col(3 + j) - (M.col(0:3) x).col(j)
 //   X^T N:    every column's rows 3..5 gain r x (its rows 0..2), as force_to_parent
-inline void add_shifted(const Matrix6& M, const Shift& s, Matrix6& P) {
-  Pairs n[6];
-  for (int j = 0; j < 3; ++j) n[j] = column(M, j);
+inline void add_shifted(Pairs (&n)[6], const Shift& s, Matrix6& P) {
   // (M.col(0:3) x).col(0) = r2 M.col(1) - r1 M.col(2), col(1) = r0 M.col(2) - r2 M.col(0),
   // col(2) = r1 M.col(0) - r0 M.col(1)
-  n[3] = column(M, 3) - (n[1] * s.r2 - n[2] * s.r1);
-  n[4] = column(M, 4) - (n[2] * s.r0 - n[0] * s.r2);
-  n[5] = column(M, 5) - (n[0] * s.r1 - n[1] * s.r0);
+  n[3] = n[3] - (n[1] * s.r2 - n[2] * s.r1);
+  n[4] = n[4] - (n[2] * s.r0 - n[0] * s.r2);
+  n[5] = n[5] - (n[0] * s.r1 - n[1] * s.r0);
   for (int j = 0; j < 6; ++j) {
     force_to_parent(n[j], s);
     store_pairs(P.data() + 6 * j, column(P, j) + n[j]);
   }
+}
+
+// The same for M given as a matrix.
+inline void add_shifted(const Matrix6& M, const Shift& s, Matrix6& P) {
+  Pairs n[6];
+  for (int j = 0; j < 6; ++j) n[j] = column(M, j);
+  add_shifted(n, s, P);
 }
 
 }  // namespace achd

@@ -37,7 +37,7 @@ struct Data {
   std::vector<Transform> X0;     // body pose in the base (axes R, origin p)
   std::vector<Vector3> r;        // p_i - p_parent, base axes (kinematics.hpp's body_poses)
   std::vector<Vector6> v, c, a;  // velocity, velocity-product acceleration, acceleration
-  std::vector<Matrix6> IA;       // articulated-body inertia; after the sweep Ia = IA - U U^T / D
+  std::vector<Matrix6> IA;       // articulated-body inertia
   std::vector<Vector6> pA;       // articulated-body bias force; after the sweep pa
   std::vector<Vector6> U;        // IA S
   std::vector<double> D, u;      // S^T IA S (+ rotor), tau - S^T pA
