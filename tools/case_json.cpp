@@ -124,7 +124,7 @@ std::string result_json(const Model& model, const Data& d) {
     s += std::string(i ? ",\n    " : "\n    ") + array(d.link_accelerations[i]);
   s += "\n  ],\n";
   s += "  \"rank\": " + std::to_string(d.rank) + ",\n";
-  s += "  \"sigma_min\": " + fmt(d.sigma_min) + ",\n";
+  s += "  \"sigma_min\": " + fmt(sigma_min(d)) + ",\n";
   s += "  \"dropped\": [";
   for (Eigen::Index k = 0; k < d.dropped.cols(); ++k)
     s += (k ? ", " : "") + array(d.dropped.col(k));

@@ -8,11 +8,12 @@
 namespace achd {
 namespace {
 
-// K is solved by Cholesky when its smallest eigenvalue is at least this fraction of
-// trace(K) >= sigma_max and above the truncation threshold: then no direction is
-// truncated, and Cholesky, backward stable for any positive definite K, keeps its pivots
-// well away from round-off (the eigen-decomposition is as accurate there, not more).
-constexpr double kCholeskyMinRatio = 1e-11;
+// K is solved by its LDL^T factor when its smallest eigenvalue is provably at least this
+// fraction of trace(K) >= sigma_max and above the truncation threshold: then no direction
+// is truncated, and the factorisation, backward stable for any positive definite K, keeps
+// its pivots well away from round-off (the eigen-decomposition is as accurate there, not
+// more).
+constexpr double kFactorMinRatio = 1e-11;
 
 // The smallest eigenvalue of the symmetric K (nc <= 6), without eigenvectors:
 // Householder reduction to a tridiagonal T = Q^T K Q, then Laguerre's iteration on
@@ -80,94 +81,116 @@ double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
   return x;
 }
 
-// A lower triangular Cholesky factor, K = L L^T, of an n x n K (n fixed, so that the
-// loops unroll), with the reciprocals of its diagonal.
+// K = L D L^T for an n x n K (n fixed, so that the loops unroll), L unit lower
+// triangular, D diagonal, kept with the pivots' reciprocals. No square roots: one
+// division per column is the whole sequential part.
 template <int n>
-struct Cholesky {
-  double L[n][n], inv[n];
+struct Ldlt {
+  double L[n][n], Dinv[n];
 
-  // False if a pivot is not positive.
+  // False if a pivot is not positive (K is not numerically positive definite).
   bool factor(const CouplingMatrix& K) {
+    double W[n][n];  // W[i][k] = L[i][k] d_k
     for (int j = 0; j < n; ++j) {
-      double djj = K(j, j);
-      for (int k = 0; k < j; ++k) djj -= L[j][k] * L[j][k];
-      if (!(djj > 0)) return false;
-      L[j][j] = std::sqrt(djj);
-      inv[j] = 1 / L[j][j];
+      // d_j = K_jj - sum_k L_jk W_jk;  L_ij = (K_ij - sum_k L_ik W_jk) / d_j
+      double d = K(j, j);
+      for (int k = 0; k < j; ++k) d -= L[j][k] * W[j][k];
+      if (!(d > 0)) return false;
+      Dinv[j] = 1 / d;
       for (int i = j + 1; i < n; ++i) {
-        double lij = K(i, j);
-        for (int k = 0; k < j; ++k) lij -= L[i][k] * L[j][k];
-        L[i][j] = lij * inv[j];
+        double w = K(i, j);
+        for (int k = 0; k < j; ++k) w -= L[i][k] * W[j][k];
+        W[i][j] = w;
+        L[i][j] = w * Dinv[j];
       }
     }
     return true;
   }
 
-  // x = K^-1 b: L y = b, L^T x = y.
+  // x = K^-1 b: L y = b, then L^T x = D^-1 y.
   void solve(const ConstraintVector& b, ConstraintVector& x) const {
     double y[n];
     for (int i = 0; i < n; ++i) {
       double s = b[i];
       for (int k = 0; k < i; ++k) s -= L[i][k] * y[k];
-      y[i] = s * inv[i];
+      y[i] = s;
     }
     x.resize(n);
     for (int i = n - 1; i >= 0; --i) {
-      double s = y[i];
+      double s = y[i] * Dinv[i];
       for (int k = i + 1; k < n; ++k) s -= L[k][i] * x[k];
-      x[i] = s * inv[i];
+      x[i] = s;
     }
   }
 
-  // trace(K^-1) = ||L^-1||_F^2, column by column of L^-1 (forward substitution).
+  // trace(K^-1) = sum_ij (L^-1)_ij^2 / d_i, column by column of L^-1 (forward
+  // substitution; the columns are independent).
   double inverse_trace() const {
     double t = 0;
     for (int j = 0; j < n; ++j) {
       double c[n];
-      for (int i = j; i < n; ++i) {
-        double s = i == j ? 1.0 : 0.0;
-        for (int k = j; k < i; ++k) s -= L[i][k] * c[k];
-        c[i] = s * inv[i];
-        t += c[i] * c[i];
+      t += Dinv[j];
+      c[j] = 1;
+      for (int i = j + 1; i < n; ++i) {
+        double s = -L[i][j];
+        for (int k = j + 1; k < i; ++k) s -= L[i][k] * c[k];
+        c[i] = s;
+        t += s * s * Dinv[i];
       }
     }
     return t;
   }
 };
 
-// The truncate policy's fast path for an n x n K: when its smallest eigenvalue is above
-// both the truncation threshold and kCholeskyMinRatio * trace(K) >= kCholeskyMinRatio *
-// sigma_max, nothing is truncated, and nu = K^-1 rhs is accurate by Cholesky. Laguerre's
-// iteration starts at 1 / trace(K^-1) <= lambda_min (trace(K^-1) = sum 1/lambda), within
-// a factor n of lambda_min, shrunk by a few ulps to stay below it despite its own
-// round-off. False (nothing written) when K needs the eigen-decomposition.
+// 1 / trace(K^-1) <= lambda_min (trace(K^-1) = sum 1/lambda), within a factor n of it;
+// shrunk by a few ulps to stay below it despite its own round-off.
 template <int n>
-bool solve_by_cholesky_n(Data& data, const Options& options) {
+double lower_bound_of_lambda_min(const Ldlt<n>& f) {
+  return (1 - 16 * n * std::numeric_limits<double>::epsilon()) / f.inverse_trace();
+}
+
+// The truncate policy's fast path for an n x n K: when the lower bound of its smallest
+// eigenvalue is above both the truncation threshold and kFactorMinRatio * trace(K) >=
+// kFactorMinRatio * sigma_max, nothing is truncated, and nu = K^-1 rhs is accurate by
+// LDL^T. False (nothing written) when K needs the eigen-decomposition.
+template <int n>
+bool solve_by_ldlt_n(Data& data, const Options& options) {
   const CouplingMatrix& K = data.M0;
-  Cholesky<n> chol;
-  if (!chol.factor(K)) return false;
-  const double below = (1 - 16 * n * std::numeric_limits<double>::epsilon()) / chol.inverse_trace();
-  const double lambda_min = n == 1 ? K(0, 0) : smallest_eigenvalue_n<n>(K, below);
+  Ldlt<n> f;
+  if (!f.factor(K)) return false;
+  const double below = lower_bound_of_lambda_min(f);
   const double trace = K.trace();
   const double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
-  if (!(lambda_min > threshold && lambda_min >= kCholeskyMinRatio * trace)) return false;
-  chol.solve(data.rhs, data.nu);
+  if (!(below > threshold && below >= kFactorMinRatio * trace)) return false;
+  f.solve(data.rhs, data.nu);
   data.rank = n;
-  data.sigma_min = lambda_min;
   data.dropped.resize(n, 0);
   return true;
 }
 
-static_assert(kMaxConstraints == 6, "solve_by_cholesky dispatches n = 1..6");
-bool solve_by_cholesky(Data& data, const Options& options) {
+static_assert(kMaxConstraints == 6, "solve_by_ldlt dispatches n = 1..6");
+bool solve_by_ldlt(Data& data, const Options& options) {
   switch (data.M0.rows()) {
-    case 1: return solve_by_cholesky_n<1>(data, options);
-    case 2: return solve_by_cholesky_n<2>(data, options);
-    case 3: return solve_by_cholesky_n<3>(data, options);
-    case 4: return solve_by_cholesky_n<4>(data, options);
-    case 5: return solve_by_cholesky_n<5>(data, options);
-    default: return solve_by_cholesky_n<6>(data, options);
+    case 1: return solve_by_ldlt_n<1>(data, options);
+    case 2: return solve_by_ldlt_n<2>(data, options);
+    case 3: return solve_by_ldlt_n<3>(data, options);
+    case 4: return solve_by_ldlt_n<4>(data, options);
+    case 5: return solve_by_ldlt_n<5>(data, options);
+    default: return solve_by_ldlt_n<6>(data, options);
   }
+}
+
+// The smallest eigenvalue of the n x n K: by Laguerre's iteration from the LDL^T bound
+// when K is clearly positive definite, else from the eigen-decomposition (round-off
+// negatives count as zero).
+template <int n>
+double smallest_eigenvalue_of(const CouplingMatrix& K) {
+  Ldlt<n> f;
+  if (f.factor(K)) {
+    const double below = lower_bound_of_lambda_min(f);
+    if (below >= kFactorMinRatio * K.trace()) return n == 1 ? K(0, 0) : smallest_eigenvalue_n<n>(K, below);
+  }
+  return Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().cwiseMax(0.0).minCoeff();
 }
 
 // nu = K^-1 rhs by the eigen-decomposition K = V diag(sigma) V^T with the singularity
@@ -203,7 +226,6 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
     if (w != 0.0) data.nu.noalias() += V.col(k) * (w * V.col(k).dot(data.rhs));
     ndropped += dropped[k];
   }
-  data.sigma_min = nc ? sigma.minCoeff() : 0.0;
   data.dropped.resize(nc, ndropped);
   for (int k = 0, j = 0; k < nc; ++k)
     if (dropped[k]) data.dropped.col(j++) = V.col(k);
@@ -212,8 +234,20 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
 }  // namespace
 
 void solve_coupling(Data& data, const Options& options) {
-  if (options.policy == SingularityPolicy::Truncate && solve_by_cholesky(data, options)) return;
+  if (options.policy == SingularityPolicy::Truncate && solve_by_ldlt(data, options)) return;
   solve_by_eigen_decomposition(data, options);
+}
+
+double sigma_min(const Data& data) {
+  switch (data.M0.rows()) {
+    case 0: return 0;
+    case 1: return smallest_eigenvalue_of<1>(data.M0);
+    case 2: return smallest_eigenvalue_of<2>(data.M0);
+    case 3: return smallest_eigenvalue_of<3>(data.M0);
+    case 4: return smallest_eigenvalue_of<4>(data.M0);
+    case 5: return smallest_eigenvalue_of<5>(data.M0);
+    default: return smallest_eigenvalue_of<6>(data.M0);
+  }
 }
 
 }  // namespace achd

@@ -6,7 +6,7 @@
 
 namespace achd {
 
-// Writes data.nu, data.rank, data.sigma_min and data.dropped from data.M0 (holding K)
+// Writes data.nu, data.rank and data.dropped from data.M0 (holding K)
 // and data.rhs. No allocation: every matrix has at most kMaxConstraints rows.
 void solve_coupling(Data& data, const Options& options);
 

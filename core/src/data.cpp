@@ -12,15 +12,16 @@ Data::Data(const Model& model) {
   X0.resize(n);
   r.assign(n, Vector3::Zero());
   v.assign(n, Vector6::Zero());
-  c.assign(n, Vector6::Zero());
+  kappa.assign(n, Vector6::Zero());
   a.assign(n, Vector6::Zero());
   IA.assign(n, Matrix6::Zero());
   pA.assign(n, Vector6::Zero());
   U.assign(n, Vector6::Zero());
   D.assign(n, 0.0);
+  Dinv.assign(n, 0.0);
   u.assign(n, 0.0);
   E.resize(6, 0);
-  EZ.assign(n, ConstraintVector(0));
+  EZ.assign(n, {});
 }
 
 }  // namespace achd

@@ -1,11 +1,10 @@
 // The Popov-Vereshchagin solver in Featherstone's notation, in four steps:
-//   1. outward sweep: body poses, joint subspaces, velocities, velocity-product terms,
-//      rigid inertias and bias forces;
-//   2. inward sweep: articulated inertias IA and bias forces pA (ABA, RBDA 7.3), plus the
-//      unit constraint forces E, their acceleration energy G and coupling M
-//      (Vereshchagin 1989 eqs. a-e, KDL's P_tilde, R_tilde, E, G, M);
-//   3. at the base: the constraint magnitudes nu from K nu = E_0^T a_0 + G_0 - beta,
-//      K = -M_0 (eq. f);
+//   1. outward sweep: body poses, joint subspaces, velocities, velocity-product
+//      accelerations, rigid inertias and bias forces;
+//   2. inward sweep: articulated inertias IA and bias forces pA (ABA, RBDA 7.3), then the
+//      unit constraint forces E and, from them, the coupling K = -M_0 and the bias
+//      energy G_0 (Vereshchagin 1989 eqs. a-e, KDL's P_tilde, R_tilde, E, M, G);
+//   3. at the base: the constraint magnitudes nu from K nu = E_0^T a_0 + G_0 - beta (eq. f);
 //   4. outward sweep: joint and link accelerations (eq. g).
 // Every quantity is in base axes, and body i's are taken about its origin p_i: between a
 // body and its parent, vectors and inertias move by the shift r_i = p_i - p_parent alone
@@ -14,6 +13,15 @@
 // so no transform ever rotates, and each body's rigid inertia is turned into base axes
 // once, in step 1. Gravity enters as the fictitious base acceleration a_0 = [-g; 0], so
 // the sweeps compute KDL's accelerations a - [g; 0].
+//
+// Velocity products enter as accelerations: kappa_i = kappa_p (shifted) + c_i, with
+// c_i = v_p x S qd_i, is what body i's acceleration would be with qdd = 0 and no gravity.
+// Writing a_i = a~_i + kappa_i turns body i's equation of motion
+//   f_i = I_i a_i + v_i x* I_i v_i   into   f_i = I_i a~_i + (v_i x* I_i v_i + I_i kappa_i),
+// the equations of a chain whose velocity-product accelerations are zero and whose bias
+// forces carry I kappa: the sweeps need no Ia c and no E^T c (RBDA 7.3's and
+// Vereshchagin's c terms), and the constraint alpha^T a_tip = beta reads
+// alpha^T a~_tip = beta - alpha^T kappa_tip.
 #include "achd/hybrid_dynamics.hpp"
 
 #include <cmath>
@@ -64,8 +72,9 @@ inline Pairs subspace_times(bool rotational, const Vector3& z, double s) {
 const Pairs kZero = {{Pair{0, 0}, Pair{0, 0}, Pair{0, 0}}};
 
 // Step 1. Poses (body_poses); IA_i = I_i in base axes;
-// v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  pA_i = v_i x* I_i v_i,
-// with I_i v = [m v_lin - h x w; h x v_lin + C w] for I_i = [m 1, -[h]x; [h]x, C].
+// v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  kappa_i = kappa_p (shifted) + c_i;
+// pA_i = v_i x* I_i v_i + I_i kappa_i,
+// with I_i x = [m x_lin - h x x_ang; h x x_lin + C x_ang] for I_i = [m 1, -[h]x; [h]x, C].
 void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving) {
   body_poses(model, c.q, d.X0, d.r);
   for (int i = 0; i < model.num_joints(); ++i) {
@@ -75,26 +84,36 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
     const Vector3 h = set_rigid_inertia(I, d.X0[i].R, b.inertia);
     if (!moving) {
       d.v[i].setZero();
-      d.c[i].setZero();
+      d.kappa[i].setZero();
       d.pA[i].setZero();
       continue;
     }
     const Vector3 z = joint_axis(d, i), zq = z * c.qd[i];
-    Pairs vp = kZero;
+    Pairs vp = kZero, kappa = kZero;
     if (p >= 0) {
+      const Shift s(d.r[i]);
       vp = load_pairs(d.v[p]);
-      motion_to_child(vp, Shift(d.r[i]));
+      motion_to_child(vp, s);
+      kappa = load_pairs(d.kappa[p]);
+      motion_to_child(kappa, s);
     }
     const Vector3 vl_p = linear_part(vp), w_p = angular_part(vp);
     const bool rotational = is_rotational(b);
     store_pairs(d.v[i], vp + subspace_times(rotational, z, c.qd[i]));
     // c = v_p x S qd: [v_lin x zq; w x zq] (revolute) or [w x zq; 0] (prismatic)
-    if (rotational) d.c[i] << vl_p.cross(zq), w_p.cross(zq);
-    else d.c[i] << w_p.cross(zq), Vector3::Zero();
+    Vector6 ci;
+    if (rotational) ci << vl_p.cross(zq), w_p.cross(zq);
+    else ci << w_p.cross(zq), Vector3::Zero();
+    kappa = kappa + load_pairs(ci);
+    store_pairs(d.kappa[i], kappa);
+    const double m = b.inertia(0, 0);
+    const Matrix3 C = I.bottomRightCorner<3, 3>();
     const Vector3 vl = d.v[i].head<3>(), w = d.v[i].tail<3>();
-    const Vector3 f = b.inertia(0, 0) * vl - h.cross(w);
-    const Vector3 n = h.cross(vl) + I.bottomRightCorner<3, 3>() * w;
-    d.pA[i] << w.cross(f), w.cross(n) + vl.cross(f);  // v x* [f; n]
+    const Vector3 kl = linear_part(kappa), kw = angular_part(kappa);
+    const Vector3 f = m * vl - h.cross(w);
+    const Vector3 n = h.cross(vl) + C * w;
+    // v x* [f; n] + I kappa
+    d.pA[i] << w.cross(f) + (m * kl - h.cross(kw)), (w.cross(n) + vl.cross(f)) + (h.cross(kl) + C * kw);
   }
 }
 
@@ -112,83 +131,10 @@ void add_external_wrenches(const Model& model, Data& d, const Case& c) {
   }
 }
 
-// E = alpha moved from the tip link's origin to the tip body's origin.
-void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc) {
-  const Link& tip = model.tip();
-  const Vector3 r = d.X0[tip.body].R * tip.offset.p;
-  d.E.resize(6, nc);
-  for (int k = 0; k < nc; ++k) {
-    const Vector3 f = c.alpha.col(k).head<3>();
-    d.E.col(k).head<3>() = f;
-    d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() + r.cross(f);
-  }
-}
-
-// The constraint quantities of step 2 for NC columns, held two columns to a Pair: E row by
-// row (E[r][j] = E(r, 2j..2j+1)), G and the columns of M likewise; an odd NC leaves a
-// zero lane. Every update of a body is then a handful of pair products per row, the
-// same for every column, with no shuffles.
-template <int NC>
-struct ConstraintColumns {
-  static constexpr int NP = (NC + 1) / 2;
-  Pair E[6][NP > 0 ? NP : 1], G[NP > 0 ? NP : 1], M[NC > 0 ? NC : 1][NP > 0 ? NP : 1];
-
-  explicit ConstraintColumns(const ConstraintForceMatrix& E0) {
-    for (int j = 0; j < NP; ++j) {
-      for (int r = 0; r < 6; ++r) E[r][j] = Pair{E0(r, 2 * j), 2 * j + 1 < NC ? E0(r, 2 * j + 1) : 0.0};
-      G[j] = splat(0);
-      for (int k = 0; k < NC; ++k) M[k][j] = splat(0);
-    }
-  }
-
-  // Body i, with U = IA S, D, u, c and the shift to its parent:
-  //   EZ = E^T S;  E <- E - U EZ^T / D                      (eq. c)
-  //   G += E^T c + EZ u / D;  M -= EZ EZ^T / D              (eqs. e, d)
-  // then E moves to the parent's origin (rows 3..5 += r x rows 0..2). Writes EZ.
-  void update(bool rotational, const Vector3& z, const Pairs& U, double Dinv, double u,
-              const Vector6* c, const Shift& s, double* EZ_out) {
-    const int o = rotational ? 3 : 0;
-    const Pair z0 = splat(z[0]), z1 = splat(z[1]), z2 = splat(z[2]), dinv = splat(Dinv);
-    const double Ur[6] = {U.p[0][0], U.p[0][1], U.p[1][0], U.p[1][1], U.p[2][0], U.p[2][1]};
-    Pair EZ[NP], EZD[NP];
-    for (int j = 0; j < NP; ++j) {
-      EZ[j] = (E[o][j] * z0 + E[o + 1][j] * z1) + E[o + 2][j] * z2;
-      EZD[j] = EZ[j] * dinv;
-      for (int r = 0; r < 6; ++r) E[r][j] -= splat(Ur[r]) * EZD[j];
-      Pair g = EZ[j] * splat(u * Dinv);
-      if (c)
-        for (int r = 0; r < 6; ++r) g += splat((*c)[r]) * E[r][j];
-      G[j] += g;
-    }
-    for (int k = 0; k < NC; ++k) {
-      const Pair ezd = splat(EZD[k / 2][k % 2]);
-      for (int j = 0; j < NP; ++j) M[k][j] -= EZ[j] * ezd;
-    }
-    for (int j = 0; j < NP; ++j) {
-      E[3][j] += s.r1 * E[2][j] - s.r2 * E[1][j];
-      E[4][j] += s.r2 * E[0][j] - s.r0 * E[2][j];
-      E[5][j] += s.r0 * E[1][j] - s.r1 * E[0][j];
-    }
-    for (int k = 0; k < NC; ++k) EZ_out[k] = EZ[k / 2][k % 2];
-  }
-
-  // E_0, G_0 and M_0 (symmetric: its lower triangle mirrored).
-  void store(Data& d) const {
-    for (int k = 0; k < NC; ++k) {
-      for (int r = 0; r < 6; ++r) d.E(r, k) = E[r][k / 2][k % 2];
-      d.G0[k] = G[k / 2][k % 2];
-      for (int l = k; l < NC; ++l) d.M0(l, k) = d.M0(k, l) = M[k][l / 2][l % 2];
-    }
-  }
-};
-
-// Step 2, for i = n-1 .. 0, with nc = NC constraints (a template parameter, so that the
-// loops over the constraint columns unroll). Body i's Ia_i = IA_i - U U^T / D is formed
-// in locals and added, shifted by r_i, to its parent's IA; the constraint columns roll
-// towards the base in locals too (ConstraintColumns).
-template <int NC>
-void inward_sweep(const Model& model, Data& d, bool moving, bool rotor) {
-  ConstraintColumns<NC> cols(d.E);
+// Step 2, for i = n-1 .. 0: the articulated-body inertias and bias forces (RBDA 7.3,
+// with c = 0: the velocity products are in pA as I kappa). Body i's
+// Ia_i = IA_i - U U^T / D is formed in locals and added, shifted by r_i, to its parent's IA.
+void inward_sweep(const Model& model, Data& d, bool rotor) {
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     const bool rotational = is_rotational(b);
@@ -203,59 +149,128 @@ void inward_sweep(const Model& model, Data& d, bool moving, bool rotor) {
     if (!(D > 0) || !std::isfinite(D))
       throw Error("joint '" + b.joint_name + "': nothing to move (D = S^T IA S = " +
                   std::to_string(D) + ")");
+    const double Dinv = 1.0 / D;
     store_pairs(d.U[i], U);
     d.D[i] = D;
+    d.Dinv[i] = Dinv;
     d.u[i] = u;
-    const double Dinv = 1.0 / D;
-    const Shift shift(d.r[i]);
     const int p = b.parent;
-    if (p >= 0) {
-      // Ia = IA - U U^T / D;  pa = pA + Ia c + U u / D;  the parent adds both, shifted
-      Pairs Ia[6];
-      minus_rank_one(IA, U, Dinv, Ia);
-      Pairs pa = pA + U * splat(u * Dinv);
-      if (moving) pa = pa + times(Ia, d.c[i]);
-      add_shifted(Ia, shift, d.IA[p]);
-      force_to_parent(pa, shift);
-      store_pairs(d.pA[p], load_pairs(d.pA[p]) + pa);
+    if (p < 0) continue;
+    // Ia = IA - U U^T / D;  pa = pA + U u / D;  the parent adds both, shifted
+    const Shift shift(d.r[i]);
+    Pairs Ia[6];
+    minus_rank_one(IA, U, Dinv, Ia);
+    Pairs pa = pA + U * splat(u * Dinv);
+    add_shifted(Ia, shift, d.IA[p]);
+    force_to_parent(pa, shift);
+    store_pairs(d.pA[p], load_pairs(d.pA[p]) + pa);
+  }
+}
+
+// E = alpha moved from the tip link's origin to the tip body's origin.
+void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc) {
+  const Link& tip = model.tip();
+  const Vector3 r = d.X0[tip.body].R * tip.offset.p;
+  d.E.resize(6, nc);
+  for (int k = 0; k < nc; ++k) {
+    const Vector3 f = c.alpha.col(k).head<3>();
+    d.E.col(k).head<3>() = f;
+    d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() + r.cross(f);
+  }
+}
+
+// Step 2 for the nc = NC constraints, after the articulated-body sweep: the unit
+// constraint forces E roll from the tip to the base, two columns at a time (a column
+// pair is one Pair per row, so that the update is the same pair product for every row):
+//   EZ_i = E^T S_i;  E <- E - U_i EZ_i^T / D_i   (Vereshchagin eq. c),
+// then E moves to the parent's origin: rows 3..5 += r_i x rows 0..2.
+template <int NC>
+void constraint_columns(const Model& model, Data& d) {
+  for (int k = 0; k < NC; k += 2) {
+    Pair E[6];
+    for (int row = 0; row < 6; ++row) E[row] = Pair{d.E(row, k), k + 1 < NC ? d.E(row, k + 1) : 0.0};
+    for (int i = model.num_joints() - 1; i >= 0; --i) {
+      const Vector3 z = joint_axis(d, i);
+      const int o = is_rotational(model.bodies[i]) ? 3 : 0;
+      const Pair ez = (E[o] * splat(z[0]) + E[o + 1] * splat(z[1])) + E[o + 2] * splat(z[2]);
+      store_pair(d.EZ[i].data() + k, ez);
+      const Pair ezd = ez * splat(d.Dinv[i]);
+      for (int row = 0; row < 6; ++row) E[row] -= splat(d.U[i][row]) * ezd;
+      const Pair r0 = splat(d.r[i][0]), r1 = splat(d.r[i][1]), r2 = splat(d.r[i][2]);
+      E[3] += r1 * E[2] - r2 * E[1];
+      E[4] += r2 * E[0] - r0 * E[2];
+      E[5] += r0 * E[1] - r1 * E[0];
     }
-    if (NC == 0) continue;
-    d.EZ[i].resize(NC);
-    cols.update(rotational, z, U, Dinv, u, moving ? &d.c[i] : nullptr, shift, d.EZ[i].data());
+    for (int row = 0; row < 6; ++row) {
+      d.E(row, k) = E[row][0];
+      if (k + 1 < NC) d.E(row, k + 1) = E[row][1];
+    }
   }
-  if (NC) cols.store(d);
 }
 
-static_assert(kMaxConstraints == 6, "inward_sweep dispatches nc = 0..6");
-void inward_sweep(const Model& model, Data& d, int nc, bool moving, bool rotor) {
+// The coupling at the base from the stored EZ_i, two rows to a Pair:
+//   K = -M_0 = sum_i EZ_i EZ_i^T / D_i   (eq. d),   G_0 = sum_i EZ_i u_i / D_i   (eq. e,
+// whose E^T c term vanishes with c = 0). K's lower triangle is summed, then mirrored.
+template <int NC>
+void coupling_terms(const Model& model, Data& d) {
+  constexpr int NP = (NC + 1) / 2;
+  Pair K[NC][NP], G[NP];
+  for (int j = 0; j < NP; ++j) {
+    G[j] = splat(0);
+    for (int k = 0; k < NC; ++k) K[k][j] = splat(0);
+  }
+  for (int i = 0; i < model.num_joints(); ++i) {
+    const double* ez = d.EZ[i].data();
+    const double Dinv = d.Dinv[i];
+    for (int k = 0; k < NC; ++k) {
+      const Pair s = splat(ez[k] * Dinv);
+      for (int j = k / 2; j < NP; ++j) K[k][j] += load_pair(ez + 2 * j) * s;
+    }
+    const Pair s = splat(d.u[i] * Dinv);
+    for (int j = 0; j < NP; ++j) G[j] += load_pair(ez + 2 * j) * s;
+  }
+  d.M0.resize(NC, NC);
+  d.G0.resize(NC);
+  for (int k = 0; k < NC; ++k) {
+    d.G0[k] = G[k / 2][k % 2];
+    for (int l = k; l < NC; ++l) d.M0(l, k) = d.M0(k, l) = K[k][l / 2][l % 2];
+  }
+}
+
+template <int NC>
+void constraint_sweep(const Model& model, Data& d) {
+  constraint_columns<NC>(model, d);
+  coupling_terms<NC>(model, d);
+}
+
+static_assert(kMaxConstraints == 6, "constraint_sweep dispatches nc = 1..6");
+void constraint_sweep(const Model& model, Data& d, int nc) {
   switch (nc) {
-    case 0: return inward_sweep<0>(model, d, moving, rotor);
-    case 1: return inward_sweep<1>(model, d, moving, rotor);
-    case 2: return inward_sweep<2>(model, d, moving, rotor);
-    case 3: return inward_sweep<3>(model, d, moving, rotor);
-    case 4: return inward_sweep<4>(model, d, moving, rotor);
-    case 5: return inward_sweep<5>(model, d, moving, rotor);
-    default: return inward_sweep<6>(model, d, moving, rotor);
+    case 1: return constraint_sweep<1>(model, d);
+    case 2: return constraint_sweep<2>(model, d);
+    case 3: return constraint_sweep<3>(model, d);
+    case 4: return constraint_sweep<4>(model, d);
+    case 5: return constraint_sweep<5>(model, d);
+    default: return constraint_sweep<6>(model, d);
   }
 }
 
-// EZ_i^T nu over the nc columns (a loop of at most kMaxConstraints terms).
-inline double dot_nc(const ConstraintVector& a, const ConstraintVector& b, int nc) {
+// EZ_i^T nu over the nc columns.
+inline double dot_nc(const std::array<double, kMaxConstraints>& a, const ConstraintVector& b, int nc) {
   double s = 0;
   for (int k = 0; k < nc; ++k) s += a[k] * b[k];
   return s;
 }
 
-// Step 4. a'_i = a_p (shifted) + c_i;  qdd_i = (u_i - U_i^T a'_i - EZ_i^T nu) / D_i;
-// a_i = a'_i + S qdd_i.
+// Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i - EZ_i^T nu) / D_i;
+// a~_i += S qdd_i.
 void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
     Pairs a = load_pairs(b.parent < 0 ? a0 : d.a[b.parent]);
     motion_to_child(a, Shift(d.r[i]));
-    a = a + load_pairs(d.c[i]);
     const double ct = -dot_nc(d.EZ[i], d.nu, nc);  // KDL's constraint torque -S^T E nu
-    const double qdd = (d.u[i] - dot(load_pairs(d.U[i]), a) + ct) / d.D[i];
+    const double qdd = (d.u[i] - dot(load_pairs(d.U[i]), a) + ct) * d.Dinv[i];
     store_pairs(d.a[i], a + subspace_times(is_rotational(b), joint_axis(d, i), qdd));
     d.qdd[i] = qdd;
     d.constraint_torques[i] = ct;
@@ -263,7 +278,8 @@ void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int n
   }
 }
 
-// Spatial acceleration of every link at its origin, base orientation: the body's, moved
+// Spatial acceleration of every link at its origin, base orientation: the body's
+// (a~ + kappa), moved
 // from the body origin to the link origin. `shift` = [g; 0] turns the sweeps' KDL
 // accelerations into physical ones.
 void link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
@@ -272,8 +288,10 @@ void link_accelerations(const Model& model, Data& d, const Vector6& a0, const Ve
     const Link& link = model.links[l];
     Vector6& out = d.link_accelerations[l + 1];
     if (link.body < 0) out = a0;
-    else if (link.offset.p.isZero()) out = d.a[link.body];
-    else out = motion_shift(d.a[link.body], d.X0[link.body].R * link.offset.p);
+    else {
+      out = d.a[link.body] + d.kappa[link.body];
+      if (!link.offset.p.isZero()) out = motion_shift(out, d.X0[link.body].R * link.offset.p);
+    }
     out += shift;
   }
 }
@@ -317,21 +335,29 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   outward_kinematics(model, d, c, moving);
   if (wrenches) add_external_wrenches(model, d, c);
 
-  d.M0.setZero(nc, nc);
-  d.G0.setZero(nc);
-  if (nc) constraint_forces_at_tip(model, d, c, nc);
-  inward_sweep(model, d, nc, moving, o.effects & kRotorInertia);
+  inward_sweep(model, d, o.effects & kRotorInertia);
+  if (nc) {
+    constraint_forces_at_tip(model, d, c, nc);
+    constraint_sweep(model, d, nc);
+  }
 
   Vector6 a0 = Vector6::Zero();  // base acceleration: [-g; 0]
   if (gravity) a0.head<3>() = -c.gravity;
   d.nu.setZero(nc);
   if (nc) {
-    // K nu = E_0^T a_0 + G_0 - beta_kdl, with beta_kdl = beta - alpha_lin^T g (physical);
-    // a_0 = [-g; 0] when gravity is on.
+    // K nu = E_0^T a_0 + G_0 - beta', with beta' = beta_kdl - alpha^T kappa_tip (the
+    // constraint on a~ = a - kappa at the tip link's origin), beta_kdl = beta - alpha_lin^T g
+    // (physical convention) and a_0 = [-g; 0] when gravity is on.
     const bool physical = o.convention == Convention::Physical;
+    Vector6 kappa_tip = Vector6::Zero();
+    if (moving) {
+      const Link& tip = model.tip();
+      kappa_tip = motion_shift(d.kappa[tip.body], d.X0[tip.body].R * tip.offset.p);
+    }
     d.rhs.resize(nc);
     for (int k = 0; k < nc; ++k) {
       double r = d.G0[k] - c.beta[k];
+      if (moving) r += c.alpha.col(k).dot(kappa_tip);
       if (gravity) {
         const Vector3 e = d.E.col(k).head<3>();
         r -= e.dot(c.gravity);
@@ -339,11 +365,10 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
       }
       d.rhs[k] = r;
     }
-    d.M0 = -d.M0;
     solve_coupling(d, o);
   } else {
     d.rank = 0;
-    d.sigma_min = 0;
+    d.M0.resize(0, 0);
     d.dropped.resize(0, 0);
   }
   outward_accelerations(model, d, a0, nc);

@@ -55,7 +55,7 @@ void check_against_kkt(const Model& m, const Case& c, Worst& w) {
   if (nc) {
     const Eigen::MatrixXd K = A * M.ldlt().solve(A.transpose());
     const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(K).singularValues();
-    const double e_sigma = std::abs(d.sigma_min - s[nc - 1]) / s[0];
+    const double e_sigma = std::abs(sigma_min(d) - s[nc - 1]) / s[0];
     EXPECT_LE(e_sigma, 1e-10) << "nc " << nc;
     EXPECT_EQ(d.rank, nc);
     w.sigma = std::max(w.sigma, e_sigma);

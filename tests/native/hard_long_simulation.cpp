@@ -37,7 +37,7 @@ TEST(HardLongSimulation, KukaPassingNearSingularitiesWithHeldDirectionsStaysBoun
   generic.beta.setZero(1);
   Data dg(model);
   hybrid_dynamics(model, dg, generic);
-  const double sigma_generic = dg.sigma_min;
+  const double sigma_generic = sigma_min(dg);
 
   const double dt = 1e-3, E0 = sim.energy();
   // The energy scale: total mass times g times the arm's reach (~1.2 m).
@@ -50,8 +50,8 @@ TEST(HardLongSimulation, KukaPassingNearSingularitiesWithHeldDirectionsStaysBoun
     const Data& d = sim.data();
     ASSERT_TRUE(sim.q.allFinite() && sim.qd.allFinite() && d.nu.allFinite()) << "step " << step;
     max_dE = std::max(max_dE, std::abs(sim.energy() - E0));
-    min_sigma = std::min(min_sigma, d.sigma_min);
-    max_sigma = std::max(max_sigma, d.sigma_min);
+    min_sigma = std::min(min_sigma, sigma_min(d));
+    max_sigma = std::max(max_sigma, sigma_min(d));
     max_speed = std::max(max_speed, sim.qd.cwiseAbs().maxCoeff());
   }
   const auto drift = sim.max_residuals();

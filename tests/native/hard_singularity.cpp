@@ -114,9 +114,9 @@ TEST(HardSingularity, TruncateReportsTheDroppedDirectionAndHoldsTheOthers) {
   int dropped_seen = 0;
   for (double theta : sweep_angles()) {
     const Solve s = solve(model, theta, o);
-    const double cond = s.sigma_max / std::max(s.data.sigma_min, 1e-300);
+    const double cond = s.sigma_max / std::max(sigma_min(s.data), 1e-300);
     ASSERT_TRUE(s.data.nu.allFinite() && s.data.qdd.allFinite()) << theta;
-    if (s.data.sigma_min > o.tolerance * s.sigma_max) {
+    if (sigma_min(s.data) > o.tolerance * s.sigma_max) {
       EXPECT_EQ(s.data.rank, 2) << theta;
       EXPECT_EQ(s.data.dropped.cols(), 0) << theta;
       // Both constraints hold. The base solve is backward stable: its residual is

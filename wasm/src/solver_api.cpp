@@ -110,7 +110,7 @@ ACHD_EXPORT int achd_solver_solve(Solver* s) {
 }
 
 ACHD_EXPORT int achd_solver_rank(const Solver* s) { return s->data.rank; }
-ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) { return s->data.sigma_min; }
+ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) { return achd::sigma_min(s->data); }
 ACHD_EXPORT int achd_solver_nu_size(const Solver* s) { return static_cast<int>(s->data.nu.size()); }
 ACHD_EXPORT int achd_solver_dropped_rows(const Solver* s) { return static_cast<int>(s->data.dropped.rows()); }
 ACHD_EXPORT int achd_solver_dropped_cols(const Solver* s) { return static_cast<int>(s->data.dropped.cols()); }

@@ -1,6 +1,7 @@
 #pragma once
 // The workspace of the algorithms, sized once from a Model: solves write here and
 // never allocate. Outputs are the public members in the "results" block.
+#include <array>
 #include <vector>
 
 #include "achd/case.hpp"
@@ -23,8 +24,8 @@ struct Data {
   ConstraintVector nu;                 // constraint force magnitudes
   Vector6 constraint_wrench;           // alpha nu: what the tip exerts on the constraint
   std::vector<Vector6> link_accelerations;  // root link first, then Model::links
-  int rank = 0;                  // of the coupling matrix K = -M_0 (nc x nc)
-  double sigma_min = 0;          // its smallest singular value (0 when nc = 0)
+  int rank = 0;                  // of the coupling matrix K = -M_0 (nc x nc); its
+                                 // smallest singular value: sigma_min(data)
   CouplingMatrix dropped;        // nc x k: constraint-space directions truncated/damped
 
   // ---- per body workspace (Featherstone's names; index = body) ----
@@ -36,15 +37,18 @@ struct Data {
   // body's z axis, X0_i.R.col(2).
   std::vector<Transform> X0;     // body pose in the base (axes R, origin p)
   std::vector<Vector3> r;        // p_i - p_parent, base axes (kinematics.hpp's body_poses)
-  std::vector<Vector6> v, c, a;  // velocity, velocity-product acceleration, acceleration
-  std::vector<Matrix6> IA;       // articulated-body inertia
-  std::vector<Vector6> pA;       // articulated-body bias force; after the sweep pa
+  std::vector<Vector6> v;        // velocity
+  std::vector<Vector6> kappa;    // velocity-product acceleration, summed from the base
+  std::vector<Vector6> a;        // acceleration less kappa (a - kappa)
+  std::vector<Matrix6> IA;       // rigid inertia in base axes, then articulated inertia
+  std::vector<Vector6> pA;       // bias force (with I kappa), then articulated bias force
   std::vector<Vector6> U;        // IA S
-  std::vector<double> D, u;      // S^T IA S (+ rotor), tau - S^T pA
-  std::vector<ConstraintVector> EZ;      // E^T S at each body
+  std::vector<double> D, Dinv, u;  // S^T IA S (+ rotor), 1 / D, tau - S^T pA
+  std::vector<std::array<double, kMaxConstraints>> EZ;  // E^T S at each body
   ConstraintForceMatrix E;               // unit constraint forces, rolled from the tip
                                          // to the base (after the sweep: E_0)
-  CouplingMatrix M0;                     // acceleration-energy coupling at the base
+  CouplingMatrix M0;                     // K = -M_0, the coupling at the base (sigma_min()
+                                         // reads it)
   ConstraintVector G0;                   // acceleration energy of the bias terms
   ConstraintVector rhs;                  // E_0^T a_0 + G_0 - beta
   Eigen::VectorXd tau;                   // joint torques fed to the sweeps

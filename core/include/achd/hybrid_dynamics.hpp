@@ -13,4 +13,11 @@ namespace achd {
 // achd::Error naming the field); does not allocate.
 void hybrid_dynamics(const Model& model, Data& data, const Case& c, const Options& options = {});
 
+// The smallest singular value of the last solve's coupling matrix K (its smallest
+// eigenvalue: K is symmetric positive semi-definite), 0 without constraints: how close
+// the constraint set is to singular. Computed when called, from the K kept in `data`
+// (data.M0): exactly, by a tridiagonal reduction and Laguerre's iteration, which costs
+// about a third of a six-constraint solve, so a solve alone does not pay for it.
+double sigma_min(const Data& data);
+
 }  // namespace achd
