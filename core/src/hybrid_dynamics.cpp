@@ -80,8 +80,7 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
-    Matrix6& I = d.IA[i];
-    const Vector3 h = set_rigid_inertia(I, d.X0[i].R, b.inertia);
+    const RigidInertia I = set_rigid_inertia(d.IA[i], d.X0[i].R, b.inertia);
     if (!moving) {
       d.v[i].setZero();
       d.kappa[i].setZero();
@@ -99,21 +98,21 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
     }
     const Vector3 vl_p = linear_part(vp), w_p = angular_part(vp);
     const bool rotational = is_rotational(b);
-    store_pairs(d.v[i], vp + subspace_times(rotational, z, c.qd[i]));
+    const Pairs v = vp + subspace_times(rotational, z, c.qd[i]);
+    store_pairs(d.v[i], v);
     // c = v_p x S qd: [v_lin x zq; w x zq] (revolute) or [w x zq; 0] (prismatic)
     Vector6 ci;
     if (rotational) ci << vl_p.cross(zq), w_p.cross(zq);
     else ci << w_p.cross(zq), Vector3::Zero();
     kappa = kappa + load_pairs(ci);
     store_pairs(d.kappa[i], kappa);
-    const double m = b.inertia(0, 0);
-    const Matrix3 C = I.bottomRightCorner<3, 3>();
-    const Vector3 vl = d.v[i].head<3>(), w = d.v[i].tail<3>();
-    const Vector3 kl = linear_part(kappa), kw = angular_part(kappa);
-    const Vector3 f = m * vl - h.cross(w);
-    const Vector3 n = h.cross(vl) + C * w;
-    // v x* [f; n] + I kappa
-    d.pA[i] << w.cross(f) + (m * kl - h.cross(kw)), (w.cross(n) + vl.cross(f)) + (h.cross(kl) + C * kw);
+    // v x* I v + I kappa, with v x* [f; n] = [w x f; w x n + v_lin x f]
+    const Vector3 vl = linear_part(v), w = angular_part(v);
+    Vector3 f, n, fk, nk;
+    rigid_times(I, vl, w, f, n);
+    rigid_times(I, linear_part(kappa), angular_part(kappa), fk, nk);
+    d.pA[i].head<3>() = w.cross(f) + fk;
+    d.pA[i].tail<3>() = (w.cross(n) + vl.cross(f)) + nk;
   }
 }
 

@@ -1,6 +1,7 @@
 #include "achd/kinematics.hpp"
 
 #include "joint.hpp"
+#include "matrix3_pairs.hpp"
 #include "sin_cos.hpp"
 
 namespace achd {
@@ -26,24 +27,27 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
     const Body& b = model.bodies[i];
     const int p = b.parent;
     Transform& X = X0[i];
-    Matrix3 T;  // R_parent R_tree: the joint frame at q = 0
+    Mat3p T;  // R_parent R_tree: the joint frame at q = 0
+    Vec3p ri;
     if (p < 0) {
-      T = b.X_tree.R;
-      r[i] = b.X_tree.p;
+      T = load_columns(b.X_tree.R);
+      ri = load3(b.X_tree.p.data());
     } else {
-      T.noalias() = X0[p].R * b.X_tree.R;
-      r[i].noalias() = X0[p].R * b.X_tree.p;
+      const Mat3p Rp = load_columns(X0[p].R);
+      T = product(Rp, b.X_tree.R.data());
+      ri = times(Rp, b.X_tree.p.data());
     }
     if (is_rotational(b)) {
       double s, c;
       sin_cos(q[i], s, c);
-      X.R.col(0) = c * T.col(0) + s * T.col(1);
-      X.R.col(1) = c * T.col(1) - s * T.col(0);
-      X.R.col(2) = T.col(2);
+      const Vec3p t0 = T.col[0];
+      T.col[0] = t0 * c + T.col[1] * s;
+      T.col[1] = T.col[1] * c - t0 * s;
     } else {
-      X.R = T;
-      r[i] += q[i] * T.col(2);
+      ri = ri + T.col[2] * q[i];
     }
+    store_columns(X.R, T);
+    store3(r[i].data(), ri);
     X.p = p < 0 ? r[i] : Vector3(X0[p].p + r[i]);
   }
 }

@@ -5,6 +5,7 @@
 // quantities share base axes, so moving one from a body to its parent is a change of
 // reference point alone (Shift).
 #include "achd/spatial.hpp"
+#include "matrix3_pairs.hpp"
 #include "pair.hpp"
 
 namespace achd {
@@ -70,18 +71,43 @@ inline Matrix3 rotate_symmetric(const Matrix3& R, const Matrix3& S) {
   return r;
 }
 
+// A rigid body's inertia I = [m 1, -[h]x; [h]x, C] about its origin by its parts.
+struct RigidInertia {
+  double m;
+  Vec3p h;  // m c
+  Mat3p C;  // rotational inertia about the origin
+};
+
+// I x = [m x_lin - h x x_ang; h x x_lin + C x_ang].
+inline void rigid_times(const RigidInertia& I, const Vector3& xl, const Vector3& xa, Vector3& f,
+                        Vector3& n) {
+  const Vector3 h(I.h.xy[0], I.h.xy[1], I.h.z);
+  const Vec3p Cx = times(I.C, xa.data());
+  f = I.m * xl - h.cross(xa);
+  n = h.cross(xl) + Vector3(Cx.xy[0], Cx.xy[1], Cx.z);
+}
+
 // A rigid body's inertia about its origin, given in its own axes as the 6x6
 // I_b = [m 1, -[h]x; [h]x, I_o] (h = m c), in the axes of a frame where the body's axes
-// are the columns of R: [m 1, -[R h]x; [R h]x, R I_o R^T]. Also returns h' = R h.
-inline Vector3 set_rigid_inertia(Matrix6& I, const Matrix3& R, const Matrix6& Ib) {
+// are the columns of R: [m 1, -[R h]x; [R h]x, R I_o R^T], written to I and returned by
+// its parts.
+inline RigidInertia set_rigid_inertia(Matrix6& I, const Matrix3& R, const Matrix6& Ib) {
+  const Mat3p Rc = load_columns(R);
   const double m = Ib(0, 0);
-  const Vector3 h = R * Vector3(Ib(5, 1), Ib(3, 2), Ib(4, 0));  // [h]x = Ib(3:6, 0:3)
-  const Matrix3 hx = skew(h);
-  I.topLeftCorner<3, 3>() = m * Matrix3::Identity();
-  I.topRightCorner<3, 3>() = -hx;
-  I.bottomLeftCorner<3, 3>() = hx;
-  I.bottomRightCorner<3, 3>() = rotate_symmetric(R, Ib.bottomRightCorner<3, 3>());
-  return h;
+  const Vec3p h = times(Rc, Ib(5, 1), Ib(3, 2), Ib(4, 0));  // [h]x = Ib(3:6, 0:3)
+  const Mat3p C = rotate_symmetric(Rc, Ib.data() + 6 * 3 + 3, 6);
+  const double h0 = h.xy[0], h1 = h.xy[1], h2 = h.z;
+  const Vec3p* c = C.col;
+  // Written as the pairs of rows (0,1), (2,3), (4,5) that the sweeps load (a load that
+  // spans two separate stores could not be forwarded from them).
+  const Pairs columns[6] = {{{Pair{m, 0}, Pair{0, 0}, Pair{h2, -h1}}},
+                            {{Pair{0, m}, Pair{0, -h2}, Pair{0, h0}}},
+                            {{Pair{0, 0}, Pair{m, h1}, Pair{-h0, 0}}},
+                            {{Pair{0, -h2}, Pair{h1, c[0].xy[0]}, Pair{c[0].xy[1], c[0].z}}},
+                            {{Pair{h2, 0}, Pair{-h0, c[1].xy[0]}, Pair{c[1].xy[1], c[1].z}}},
+                            {{Pair{-h1, h0}, Pair{0, c[2].xy[0]}, Pair{c[2].xy[1], c[2].z}}}};
+  for (int j = 0; j < 6; ++j) store_pairs(I.data() + 6 * j, columns[j]);
+  return {m, h, C};
 }
 
 // M.col(first) z0 + M.col(first + 1) z1 + M.col(first + 2) z2: I S for S = [0; z]
@@ -89,6 +115,16 @@ inline Vector3 set_rigid_inertia(Matrix6& I, const Matrix3& R, const Matrix6& Ib
 inline Pairs combine_columns(const Matrix6& M, int first, const Vector3& z) {
   return (column(M, first) * splat(z[0]) + column(M, first + 1) * splat(z[1])) +
          column(M, first + 2) * splat(z[2]);
+}
+
+// M x, column by column, for x given as pairs.
+inline Pairs times(const Matrix6& M, const Pairs& x) {
+  Pairs y = column(M, 0) * splat(x.p[0][0]);
+  y = y + column(M, 1) * splat(x.p[0][1]);
+  y = y + column(M, 2) * splat(x.p[1][0]);
+  y = y + column(M, 3) * splat(x.p[1][1]);
+  y = y + column(M, 4) * splat(x.p[2][0]);
+  return y + column(M, 5) * splat(x.p[2][1]);
 }
 
 // M x, column by column.
