@@ -87,7 +87,8 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       d.pA[i].setZero();
       continue;
     }
-    const Vector3 z = joint_axis(d, i), zq = z * c.qd[i];
+    const Vector3 z = joint_axis(d, i);
+    const double qd = c.qd[i];
     Pairs vp = kZero, kappa = kZero;
     if (p >= 0) {
       const Shift s(d.r[i]);
@@ -96,23 +97,33 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       kappa = load_pairs(d.kappa[p]);
       motion_to_child(kappa, s);
     }
-    const Vector3 vl_p = linear_part(vp), w_p = angular_part(vp);
     const bool rotational = is_rotational(b);
-    const Pairs v = vp + subspace_times(rotational, z, c.qd[i]);
+    // c = v_p x S qd: [v_lin x zq; w x zq] (revolute) or [w x zq; 0] (prismatic), zq = z qd
+    const Pair zq[3] = {splat(z[0] * qd), splat(z[1] * qd), splat(z[2] * qd)};
+    const Rows3 vxz = cross(halves(vp), zq);  // rows (v_lin x zq, w x zq)
+    const Pairs ci = rotational ? from_halves(vxz)
+                                : Pairs{{high_lanes(vxz.r[0], vxz.r[1]), Pair{vxz.r[2][1], 0}, Pair{0, 0}}};
+    kappa = kappa + ci;
+    const Pairs v = vp + subspace_times(rotational, z, qd);
     store_pairs(d.v[i], v);
-    // c = v_p x S qd: [v_lin x zq; w x zq] (revolute) or [w x zq; 0] (prismatic)
-    Vector6 ci;
-    if (rotational) ci << vl_p.cross(zq), w_p.cross(zq);
-    else ci << w_p.cross(zq), Vector3::Zero();
-    kappa = kappa + load_pairs(ci);
     store_pairs(d.kappa[i], kappa);
-    // v x* I v + I kappa, with v x* [f; n] = [w x f; w x n + v_lin x f]
-    const Vector3 vl = linear_part(v), w = angular_part(v);
-    Vector3 f, n, fk, nk;
-    rigid_times(I, vl, w, f, n);
-    rigid_times(I, linear_part(kappa), angular_part(kappa), fk, nk);
-    d.pA[i].head<3>() = w.cross(f) + fk;
-    d.pA[i].tail<3>() = (w.cross(n) + vl.cross(f)) + nk;
+    // pA = v x* I v + I kappa. I acts on v and kappa at once (rows (v_k, kappa_k)), and
+    // v x* [f; n] = [w x f; w x n + v_lin x f] takes f and n at once (rows (f_k, n_k)).
+    const Rows3 lin = {{low_lanes(v.p[0], kappa.p[0]), high_lanes(v.p[0], kappa.p[0]), low_lanes(v.p[1], kappa.p[1])}};
+    const Rows3 ang = {{high_lanes(v.p[1], kappa.p[1]), low_lanes(v.p[2], kappa.p[2]), high_lanes(v.p[2], kappa.p[2])}};
+    Rows3 f, n;  // lanes: (I v, I kappa)
+    rigid_times(I, lin, ang, f, n);
+    Rows3 fn, Ikappa;  // rows (f_k, n_k) of I v, and I kappa as rows (linear, angular)
+    for (int k = 0; k < 3; ++k) {
+      fn.r[k] = low_lanes(f.r[k], n.r[k]);
+      Ikappa.r[k] = high_lanes(f.r[k], n.r[k]);
+    }
+    const Pair w[3] = {splat(v.p[1][1]), splat(v.p[2][0]), splat(v.p[2][1])};
+    const Pair vl[3] = {splat(v.p[0][0]), splat(v.p[0][1]), splat(v.p[1][0])};
+    const Rows3 wx = cross(w, fn), vx = cross(vl, fn);  // (w x f, w x n), (v_lin x f, -)
+    Rows3 bias = wx + Ikappa;
+    for (int k = 0; k < 3; ++k) bias.r[k] += low_lanes(Pair{0, 0}, vx.r[k]);  // ang += v_lin x f
+    store_pairs(d.pA[i], from_halves(bias));
   }
 }
 
@@ -179,32 +190,39 @@ void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc
 }
 
 // Step 2 for the nc = NC constraints, after the articulated-body sweep: the unit
-// constraint forces E roll from the tip to the base, two columns at a time (a column
-// pair is one Pair per row, so that the update is the same pair product for every row):
+// constraint forces E roll from the tip to the base, held two columns to a Pair (a row
+// of a column pair is one Pair, so that every update is the same pair product for every
+// row, and the column pairs are independent chains the processor overlaps):
 //   EZ_i = E^T S_i;  E <- E - U_i EZ_i^T / D_i   (Vereshchagin eq. c),
 // then E moves to the parent's origin: rows 3..5 += r_i x rows 0..2.
 template <int NC>
 void constraint_columns(const Model& model, Data& d) {
-  for (int k = 0; k < NC; k += 2) {
-    Pair E[6];
-    for (int row = 0; row < 6; ++row) E[row] = Pair{d.E(row, k), k + 1 < NC ? d.E(row, k + 1) : 0.0};
-    for (int i = model.num_joints() - 1; i >= 0; --i) {
-      const Vector3 z = joint_axis(d, i);
-      const int o = is_rotational(model.bodies[i]) ? 3 : 0;
-      const Pair ez = (E[o] * splat(z[0]) + E[o + 1] * splat(z[1])) + E[o + 2] * splat(z[2]);
-      store_pair(d.EZ[i].data() + k, ez);
-      const Pair ezd = ez * splat(d.Dinv[i]);
-      for (int row = 0; row < 6; ++row) E[row] -= splat(d.U[i][row]) * ezd;
-      const Pair r0 = splat(d.r[i][0]), r1 = splat(d.r[i][1]), r2 = splat(d.r[i][2]);
-      E[3] += r1 * E[2] - r2 * E[1];
-      E[4] += r2 * E[0] - r0 * E[2];
-      E[5] += r0 * E[1] - r1 * E[0];
-    }
-    for (int row = 0; row < 6; ++row) {
-      d.E(row, k) = E[row][0];
-      if (k + 1 < NC) d.E(row, k + 1) = E[row][1];
+  constexpr int NP = (NC + 1) / 2;
+  Pair E[NP][6];
+  for (int j = 0; j < NP; ++j)
+    for (int row = 0; row < 6; ++row)
+      E[j][row] = Pair{d.E(row, 2 * j), 2 * j + 1 < NC ? d.E(row, 2 * j + 1) : 0.0};
+  for (int i = model.num_joints() - 1; i >= 0; --i) {
+    const Vector3 z = joint_axis(d, i);
+    const int o = is_rotational(model.bodies[i]) ? 3 : 0;
+    const Pair z0 = splat(z[0]), z1 = splat(z[1]), z2 = splat(z[2]), Dinv = splat(d.Dinv[i]);
+    const Pair r0 = splat(d.r[i][0]), r1 = splat(d.r[i][1]), r2 = splat(d.r[i][2]);
+    for (int j = 0; j < NP; ++j) {
+      Pair* e = E[j];
+      const Pair ez = (e[o] * z0 + e[o + 1] * z1) + e[o + 2] * z2;
+      store_pair(d.EZ[i].data() + 2 * j, ez);
+      const Pair ezd = ez * Dinv;
+      for (int row = 0; row < 6; ++row) e[row] -= splat(d.U[i][row]) * ezd;
+      e[3] += r1 * e[2] - r2 * e[1];
+      e[4] += r2 * e[0] - r0 * e[2];
+      e[5] += r0 * e[1] - r1 * e[0];
     }
   }
+  for (int j = 0; j < NP; ++j)
+    for (int row = 0; row < 6; ++row) {
+      d.E(row, 2 * j) = E[j][row][0];
+      if (2 * j + 1 < NC) d.E(row, 2 * j + 1) = E[j][row][1];
+    }
 }
 
 // The coupling at the base from the stored EZ_i, two rows to a Pair:
@@ -262,15 +280,15 @@ inline double dot_nc(const std::array<double, kMaxConstraints>& a, const Constra
 }
 
 // Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i - EZ_i^T nu) / D_i;
-// a~_i += S qdd_i.
+// a~_i += S qdd_i. (The chain is in order, parent i - 1: a~ stays in registers.)
 void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
+  Pairs a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
-    const Body& b = model.bodies[i];
-    Pairs a = load_pairs(b.parent < 0 ? a0 : d.a[b.parent]);
     motion_to_child(a, Shift(d.r[i]));
     const double ct = -dot_nc(d.EZ[i], d.nu, nc);  // KDL's constraint torque -S^T E nu
     const double qdd = (d.u[i] - dot(load_pairs(d.U[i]), a) + ct) * d.Dinv[i];
-    store_pairs(d.a[i], a + subspace_times(is_rotational(b), joint_axis(d, i), qdd));
+    a = a + subspace_times(is_rotational(model.bodies[i]), joint_axis(d, i), qdd);
+    store_pairs(d.a[i], a);
     d.qdd[i] = qdd;
     d.constraint_torques[i] = ct;
     d.total_torques[i] = d.D[i] * qdd;

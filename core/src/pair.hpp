@@ -24,6 +24,9 @@ inline Pair swapped(Pair a) { return __builtin_shufflevector(a, a, 1, 0); }
 // (a[0], b[0]) and (a[1], b[1])
 inline Pair low_lanes(Pair a, Pair b) { return __builtin_shufflevector(a, b, 0, 2); }
 inline Pair high_lanes(Pair a, Pair b) { return __builtin_shufflevector(a, b, 1, 3); }
+// (a[0], b[1]) and (a[1], b[0])
+inline Pair blend(Pair a, Pair b) { return __builtin_shufflevector(a, b, 0, 3); }
+inline Pair cross_lanes(Pair a, Pair b) { return __builtin_shufflevector(a, b, 1, 2); }
 
 #else
 
@@ -42,6 +45,8 @@ inline void store_pair(double* p, Pair v) { p[0] = v.lane[0], p[1] = v.lane[1]; 
 inline Pair swapped(Pair a) { return {{a.lane[1], a.lane[0]}}; }
 inline Pair low_lanes(Pair a, Pair b) { return {{a.lane[0], b.lane[0]}}; }
 inline Pair high_lanes(Pair a, Pair b) { return {{a.lane[1], b.lane[1]}}; }
+inline Pair blend(Pair a, Pair b) { return {{a.lane[0], b.lane[1]}}; }
+inline Pair cross_lanes(Pair a, Pair b) { return {{a.lane[1], b.lane[0]}}; }
 
 #endif
 

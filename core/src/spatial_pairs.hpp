@@ -37,6 +37,33 @@ inline double dot(const Pairs& a, const Pairs& b) {
 inline Vector3 linear_part(const Pairs& v) { return Vector3(v.p[0][0], v.p[0][1], v.p[1][0]); }
 inline Vector3 angular_part(const Pairs& v) { return Vector3(v.p[1][1], v.p[2][0], v.p[2][1]); }
 
+// Two 3-vectors a and b held component by component: row k is the Pair (a_k, b_k), so
+// that one pair operation acts on both (two cross products with one vector cost one).
+struct Rows3 {
+  Pair r[3];
+};
+
+inline Rows3 operator+(const Rows3& a, const Rows3& b) { return {{a.r[0] + b.r[0], a.r[1] + b.r[1], a.r[2] + b.r[2]}}; }
+inline Rows3 operator-(const Rows3& a, const Rows3& b) { return {{a.r[0] - b.r[0], a.r[1] - b.r[1], a.r[2] - b.r[2]}}; }
+inline Rows3 operator*(const Rows3& a, Pair s) { return {{a.r[0] * s, a.r[1] * s, a.r[2] * s}}; }
+
+// The linear and angular parts of a 6-vector x as rows (x_k, x_{3+k}), and back.
+inline Rows3 halves(const Pairs& x) {
+  return {{blend(x.p[0], x.p[1]), cross_lanes(x.p[0], x.p[2]), blend(x.p[1], x.p[2])}};
+}
+inline Pairs from_halves(const Rows3& t) {
+  return {{low_lanes(t.r[0], t.r[1]), blend(t.r[2], t.r[0]), high_lanes(t.r[1], t.r[2])}};
+}
+
+// u x t and t x u for a 3-vector u given as its splatted components, row by row:
+//   u x t = (u1 t2 - u2 t1, u2 t0 - u0 t2, u0 t1 - u1 t0)
+inline Rows3 cross(const Pair (&u)[3], const Rows3& t) {
+  return {{u[1] * t.r[2] - u[2] * t.r[1], u[2] * t.r[0] - u[0] * t.r[2], u[0] * t.r[1] - u[1] * t.r[0]}};
+}
+inline Rows3 cross(const Rows3& t, const Pair (&u)[3]) {
+  return {{t.r[1] * u[2] - t.r[2] * u[1], t.r[2] * u[0] - t.r[0] * u[2], t.r[0] * u[1] - t.r[1] * u[0]}};
+}
+
 // A change of reference point by r (from a parent's origin to a child's), axes unchanged,
 // with the pairs of r's components that the cross products need.
 struct Shift {
@@ -78,13 +105,19 @@ struct RigidInertia {
   Mat3p C;  // rotational inertia about the origin
 };
 
-// I x = [m x_lin - h x x_ang; h x x_lin + C x_ang].
-inline void rigid_times(const RigidInertia& I, const Vector3& xl, const Vector3& xa, Vector3& f,
-                        Vector3& n) {
-  const Vector3 h(I.h.xy[0], I.h.xy[1], I.h.z);
-  const Vec3p Cx = times(I.C, xa.data());
-  f = I.m * xl - h.cross(xa);
-  n = h.cross(xl) + Vector3(Cx.xy[0], Cx.xy[1], Cx.z);
+// I applied to two 6-vectors x and y at once, given as rows: lin row k = (x_k, y_k),
+// ang row k = (x_{3+k}, y_{3+k}). I x = [m x_lin - h x x_ang; h x x_lin + C x_ang].
+inline void rigid_times(const RigidInertia& I, const Rows3& lin, const Rows3& ang, Rows3& f, Rows3& n) {
+  const Pair h[3] = {splat(I.h.xy[0]), splat(I.h.xy[1]), splat(I.h.z)};
+  f = lin * splat(I.m) - cross(h, ang);
+  const Vec3p* C = I.C.col;
+  Rows3 Ca;  // C ang: row r is sum_k C(r, k) ang_k
+  for (int r = 0; r < 3; ++r) {
+    const double c0 = r < 2 ? C[0].xy[r] : C[0].z, c1 = r < 2 ? C[1].xy[r] : C[1].z,
+                 c2 = r < 2 ? C[2].xy[r] : C[2].z;
+    Ca.r[r] = (splat(c0) * ang.r[0] + splat(c1) * ang.r[1]) + splat(c2) * ang.r[2];
+  }
+  n = cross(h, lin) + Ca;
 }
 
 // A rigid body's inertia about its origin, given in its own axes as the 6x6
