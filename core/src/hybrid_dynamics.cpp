@@ -35,6 +35,8 @@
 namespace achd {
 namespace {
 
+inline bool is_zero(const Vector3& p) { return p[0] == 0 && p[1] == 0 && p[2] == 0; }
+
 bool any_nonzero(const Eigen::VectorXd& v) {
   for (Eigen::Index i = 0; i < v.size(); ++i)
     if (v[i] != 0.0) return true;
@@ -134,10 +136,9 @@ void add_external_wrenches(const Model& model, Data& d, const Case& c) {
     const Link& link = model.links[l];
     const int b = link.body;
     if (b < 0) continue;  // a link fixed to the root: the base takes the wrench
-    const Vector3 f = c.f_ext[l].head<3>();
-    d.pA[b].head<3>() -= f;
-    d.pA[b].tail<3>() -= c.f_ext[l].tail<3>();
-    if (!link.offset.p.isZero()) d.pA[b].tail<3>() -= (d.X0[b].R * link.offset.p).cross(f);
+    Pairs f = load_pairs(c.f_ext[l]);
+    if (!is_zero(link.offset.p)) force_to_parent(f, Shift(d.X0[b].R * link.offset.p));
+    store_pairs(d.pA[b], load_pairs(d.pA[b]) - f);
   }
 }
 
@@ -296,20 +297,20 @@ void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int n
 }
 
 // Spatial acceleration of every link at its origin, base orientation: the body's
-// (a~ + kappa), moved
-// from the body origin to the link origin. `shift` = [g; 0] turns the sweeps' KDL
-// accelerations into physical ones.
+// (a~ + kappa), moved from the body origin to the link origin. `shift` = [g; 0] turns the
+// sweeps' KDL accelerations into physical ones.
 void link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
-  d.link_accelerations[0] = a0 + shift;
+  const Pairs s = load_pairs(shift), base = load_pairs(a0);
+  store_pairs(d.link_accelerations[0], base + s);
   for (int l = 0; l < model.num_links(); ++l) {
     const Link& link = model.links[l];
-    Vector6& out = d.link_accelerations[l + 1];
-    if (link.body < 0) out = a0;
-    else {
-      out = d.a[link.body] + d.kappa[link.body];
-      if (!link.offset.p.isZero()) out = motion_shift(out, d.X0[link.body].R * link.offset.p);
+    const int b = link.body;
+    Pairs out = base;
+    if (b >= 0) {
+      out = load_pairs(d.a[b]) + load_pairs(d.kappa[b]);
+      if (!is_zero(link.offset.p)) motion_to_child(out, Shift(d.X0[b].R * link.offset.p));
     }
-    out += shift;
+    store_pairs(d.link_accelerations[l + 1], out + s);
   }
 }
 
@@ -330,7 +331,7 @@ void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
   if (!nc) return;
   const Link& tip = model.tip();
   Pairs wp = load_pairs(d.constraint_wrench);
-  if (!tip.offset.p.isZero()) force_to_parent(wp, Shift(d.X0[tip.body].R * tip.offset.p));  // to the body origin
+  if (!is_zero(tip.offset.p)) force_to_parent(wp, Shift(d.X0[tip.body].R * tip.offset.p));  // to the body origin
   for (int i = tip.body; i >= 0; --i) {
     d.joint_torques[i] -= subspace_dot(is_rotational(model.bodies[i]), joint_axis(d, i), wp);
     force_to_parent(wp, Shift(d.r[i]));
