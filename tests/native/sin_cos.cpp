@@ -1,9 +1,12 @@
 // achd::sin_cos against long double sinl/cosl: within 1 ulp over joint-angle ranges up
-// to the reduction limit, exact at the quadrant points' signs, and std::sin/std::cos past it.
+// to the reduction limit, exact at the quadrant points' signs, and std::sin/std::cos past
+// it; the two-angle form against the one-angle form, bit for bit.
 #include "../../core/src/sin_cos.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -62,6 +65,25 @@ TEST(SinCos, LargeAnglesFallBackToLibm) {
     achd::sin_cos(x, s, c);
     EXPECT_EQ(s, std::sin(x)) << x;
     EXPECT_EQ(c, std::cos(x)) << x;
+  }
+}
+
+// The two-angle form (body_poses evaluates joints two at a time) gives the bits of two
+// one-angle calls, in every quadrant, at 0, and when either angle needs the libm fallback.
+TEST(SinCos, TwoAnglesGiveTheBitsOfTwoCalls) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> angle(-50.0, 50.0);
+  std::vector<double> xs = {0.0, -0.0, 1e-300, 1e5, -3e5, 1e300};
+  for (int i = 0; i < 10000; ++i) xs.push_back(angle(rng));
+  for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+    const double x[2] = {xs[i], xs[i + 1]};
+    double s[2], c[2], s1, c1;
+    achd::sin_cos(x, s, c);
+    for (int j = 0; j < 2; ++j) {
+      achd::sin_cos(x[j], s1, c1);
+      ASSERT_EQ(std::memcmp(&s[j], &s1, sizeof s1), 0) << "sin " << x[j];
+      ASSERT_EQ(std::memcmp(&c[j], &c1, sizeof c1), 0) << "cos " << x[j];
+    }
   }
 }
 
