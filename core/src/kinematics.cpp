@@ -31,6 +31,7 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
   constexpr int kBlock = 8;
   double sines[kBlock], cosines[kBlock];
   const int n = model.num_joints();
+  Mat3p R;  // the last body's axes, the next one's parent (the chain is in order)
   for (int i0 = 0; i0 < n; i0 += kBlock) {
     const int m = std::min(kBlock, n - i0);
     for (int j = 0; j < m; j += 2) {
@@ -49,9 +50,8 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
         T = load_columns(b.X_tree.R);
         ri = load3(b.X_tree.p.data());
       } else {
-        const Mat3p Rp = load_columns(X0[p].R);
-        T = product(Rp, b.X_tree.R.data());
-        ri = times(Rp, b.X_tree.p.data());
+        T = product(R, b.X_tree.R.data());
+        ri = times(R, b.X_tree.p.data());
       }
       if (is_rotational(b)) {
         const double s = sines[i - i0], c = cosines[i - i0];
@@ -61,6 +61,7 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
       } else {
         ri = ri + T.col[2] * q[i];
       }
+      R = T;
       store_columns(X0[i].R, T);
       store3(r[i].data(), ri);
       X0[i].p = p < 0 ? r[i] : Vector3(X0[p].p + r[i]);
