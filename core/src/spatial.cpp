@@ -30,11 +30,15 @@ void add_inertia_to_parent(const Transform& X, const Matrix6& Ic, Matrix6& Ip) {
   // Rotate the blocks [A B; B^T C] into P's orientation: A' = R A R^T, B' = R B R^T, C';
   // then shift the reference point from C's origin to P's origin.
   const Matrix3& R = X.R;
+  const Mat3p Rc = load_columns(R);
+  Matrix3 A, C;
+  store_columns(A, rotate_symmetric(Rc, Ic.data(), 6));
+  store_columns(C, rotate_symmetric(Rc, Ic.data() + 6 * 3 + 3, 6));
   Matrix6 I;
-  I.topLeftCorner<3, 3>() = rotate_symmetric(R, Ic.topLeftCorner<3, 3>());
+  I.topLeftCorner<3, 3>() = A;
   I.topRightCorner<3, 3>() = R * Ic.topRightCorner<3, 3>() * R.transpose();
   I.bottomLeftCorner<3, 3>() = I.topRightCorner<3, 3>().transpose();
-  I.bottomRightCorner<3, 3>() = rotate_symmetric(R, Ic.bottomRightCorner<3, 3>());
+  I.bottomRightCorner<3, 3>() = C;
   add_shifted_out_of_line(I, X.p, Ip);
 }
 

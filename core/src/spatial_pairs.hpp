@@ -89,15 +89,6 @@ inline void motion_to_child(Pairs& m, const Shift& s) {
   m.p[1] += s.r1z * swapped(m.p[1]) - s.r0z * m.p[2];
 }
 
-// R S R^T for a symmetric S: the lower triangle computed, the upper mirrored.
-inline Matrix3 rotate_symmetric(const Matrix3& R, const Matrix3& S) {
-  const Matrix3 RS = R * S;
-  Matrix3 r;
-  for (int j = 0; j < 3; ++j)
-    for (int i = j; i < 3; ++i) r(i, j) = r(j, i) = RS.row(i).dot(R.row(j));
-  return r;
-}
-
 // A rigid body's inertia I = [m 1, -[h]x; [h]x, C] about its origin by its parts.
 struct RigidInertia {
   double m;
@@ -150,16 +141,6 @@ inline Pairs combine_columns(const Matrix6& M, int first, const Vector3& z) {
          column(M, first + 2) * splat(z[2]);
 }
 
-// M x, column by column, for x given as pairs.
-inline Pairs times(const Matrix6& M, const Pairs& x) {
-  Pairs y = column(M, 0) * splat(x.p[0][0]);
-  y = y + column(M, 1) * splat(x.p[0][1]);
-  y = y + column(M, 2) * splat(x.p[1][0]);
-  y = y + column(M, 3) * splat(x.p[1][1]);
-  y = y + column(M, 4) * splat(x.p[2][0]);
-  return y + column(M, 5) * splat(x.p[2][1]);
-}
-
 // M x, column by column.
 inline Pairs times(const Matrix6& M, const Vector6& x) {
   Pairs y = column(M, 0) * splat(x[0]);
@@ -171,13 +152,6 @@ inline Pairs times(const Matrix6& M, const Vector6& x) {
 inline void minus_rank_one(const Matrix6& M, const Pairs& U, double Dinv, Pairs (&out)[6]) {
   const double u[6] = {U.p[0][0], U.p[0][1], U.p[1][0], U.p[1][1], U.p[2][0], U.p[2][1]};
   for (int j = 0; j < 6; ++j) out[j] = column(M, j) - U * splat(u[j] * Dinv);
-}
-
-// M x for M given by its columns.
-inline Pairs times(const Pairs (&M)[6], const Vector6& x) {
-  Pairs y = M[0] * splat(x[0]);
-  for (int j = 1; j < 6; ++j) y = y + M[j] * splat(x[j]);
-  return y;
 }
 
 // P += M moved from the child's origin to the parent's, M given by its columns (which
