@@ -17,6 +17,7 @@ Data::Data(const Model& model) {
   IA.assign(n, Matrix6::Zero());
   pA.assign(n, Vector6::Zero());
   U.assign(n, Vector6::Zero());
+  W.assign(n, Vector6::Zero());
   D.assign(n, 0.0);
   Dinv.assign(n, 0.0);
   u.assign(n, 0.0);

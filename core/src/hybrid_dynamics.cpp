@@ -162,6 +162,9 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
                   std::to_string(D) + ")");
     const double Dinv = 1.0 / D;
     store_pairs(d.U[i], U);
+    Pairs W = U * splat(Dinv);  // X^T U / D, for step 4
+    force_to_parent(W, Shift(d.r[i]));
+    store_pairs(d.W[i], W);
     d.D[i] = D;
     d.Dinv[i] = Dinv;
     d.u[i] = u;
@@ -285,9 +288,11 @@ inline double dot_nc(const std::array<double, kMaxConstraints>& a, const Constra
 void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
   Pairs a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
-    motion_to_child(a, Shift(d.r[i]));
     const double ct = -dot_nc(d.EZ[i], d.nu, nc);  // KDL's constraint torque -S^T E nu
-    const double qdd = (d.u[i] - dot(load_pairs(d.U[i]), a) + ct) * d.Dinv[i];
+    // U^T a~_i / D = W^T a~_p with W = X^T U / D (shift_forces_up): the product needs
+    // only the parent's acceleration, and the shift of a~ runs beside it
+    const double qdd = (d.u[i] + ct) * d.Dinv[i] - dot(load_pairs(d.W[i]), a);
+    motion_to_child(a, Shift(d.r[i]));
     a = a + subspace_times(is_rotational(model.bodies[i]), joint_axis(d, i), qdd);
     store_pairs(d.a[i], a);
     d.qdd[i] = qdd;

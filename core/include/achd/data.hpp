@@ -43,6 +43,7 @@ struct Data {
   std::vector<Matrix6> IA;       // rigid inertia in base axes, then articulated inertia
   std::vector<Vector6> pA;       // bias force (with I kappa), then articulated bias force
   std::vector<Vector6> U;        // IA S
+  std::vector<Vector6> W;        // U / D about the parent's origin (X^T U / D)
   std::vector<double> D, Dinv, u;  // S^T IA S (+ rotor), 1 / D, tau - S^T pA
   std::vector<std::array<double, kMaxConstraints>> EZ;  // E^T S at each body
   ConstraintForceMatrix E;               // unit constraint forces, rolled from the tip
