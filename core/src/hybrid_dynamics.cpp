@@ -162,22 +162,22 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
                   std::to_string(D) + ")");
     const double Dinv = 1.0 / D;
     store_pairs(d.U[i], U);
-    Pairs W = U * splat(Dinv);  // X^T U / D, for step 4
-    force_to_parent(W, Shift(d.r[i]));
-    store_pairs(d.W[i], W);
+    const Shift shift(d.r[i]);
+    Pairs Us = U;  // X^T U
+    force_to_parent(Us, shift);
+    store_pairs(d.W[i], Us * splat(Dinv));  // X^T U / D, for step 4
     d.D[i] = D;
     d.Dinv[i] = Dinv;
     d.u[i] = u;
     const int p = b.parent;
     if (p < 0) continue;
     // Ia = IA - U U^T / D;  pa = pA + U u / D;  the parent adds both, shifted
-    const Shift shift(d.r[i]);
-    Pairs Ia[6];
-    minus_rank_one(IA, U, Dinv, Ia);
-    Pairs pa = pA + U * splat(u * Dinv);
-    add_shifted(Ia, shift, d.IA[p]);
+    Pairs columns[6];
+    for (int j = 0; j < 6; ++j) columns[j] = column(IA, j);
+    add_shifted_minus_rank_one(columns, Us, Dinv, shift, d.IA[p]);
+    Pairs pa = pA;
     force_to_parent(pa, shift);
-    store_pairs(d.pA[p], load_pairs(d.pA[p]) + pa);
+    store_pairs(d.pA[p], load_pairs(d.pA[p]) + (pa + Us * splat(u * Dinv)));
   }
 }
 

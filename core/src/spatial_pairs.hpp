@@ -148,12 +148,6 @@ inline Pairs times(const Matrix6& M, const Vector6& x) {
   return y;
 }
 
-// The columns of M - U U^T / D: column j is M.col(j) - U (U_j / D).
-inline void minus_rank_one(const Matrix6& M, const Pairs& U, double Dinv, Pairs (&out)[6]) {
-  const double u[6] = {U.p[0][0], U.p[0][1], U.p[1][0], U.p[1][1], U.p[2][0], U.p[2][1]};
-  for (int j = 0; j < 6; ++j) out[j] = column(M, j) - U * splat(u[j] * Dinv);
-}
-
 // P += M moved from the child's origin to the parent's, M given by its columns (which
 // are overwritten): X^T M X for the translation X = [1, -x; 0, 1], x = [r]x.
 //   N = M X:  N.col(j) = M.col(j), N.col(3 + j) = M.col(3 + j) - (M.col(0:3) x).col(j)
@@ -167,6 +161,21 @@ inline void add_shifted(Pairs (&n)[6], const Shift& s, Matrix6& P) {
   for (int j = 0; j < 6; ++j) {
     force_to_parent(n[j], s);
     store_pairs(P.data() + 6 * j, column(P, j) + n[j]);
+  }
+}
+
+// P += X^T (M - U U^T / D) X for M given by its columns (overwritten), computed as
+// X^T M X - Us Us^T / D with Us = X^T U: the shift of M does not wait for D, which keeps
+// the division off the path from one body's articulated inertia to its parent's.
+inline void add_shifted_minus_rank_one(Pairs (&n)[6], const Pairs& Us, double Dinv, const Shift& s,
+                                       Matrix6& P) {
+  const double us[6] = {Us.p[0][0], Us.p[0][1], Us.p[1][0], Us.p[1][1], Us.p[2][0], Us.p[2][1]};
+  n[3] = n[3] - (n[1] * s.r2 - n[2] * s.r1);
+  n[4] = n[4] - (n[2] * s.r0 - n[0] * s.r2);
+  n[5] = n[5] - (n[0] * s.r1 - n[1] * s.r0);
+  for (int j = 0; j < 6; ++j) {
+    force_to_parent(n[j], s);
+    store_pairs(P.data() + 6 * j, column(P, j) + (n[j] - Us * splat(us[j] * Dinv)));
   }
 }
 
