@@ -276,19 +276,23 @@ void constraint_sweep(const Model& model, Data& d, int nc) {
   }
 }
 
-// EZ_i^T nu over the nc columns.
-inline double dot_nc(const std::array<double, kMaxConstraints>& a, const ConstraintVector& b, int nc) {
-  double s = 0;
-  for (int k = 0; k < nc; ++k) s += a[k] * b[k];
-  return s;
+// EZ_i^T nu, two columns at a time: nu's pairs are padded with 0 past nc, and EZ_i's
+// last pair has 0 in its second lane when nc is odd (constraint_columns).
+inline double dot_nc(const std::array<double, kMaxConstraints>& ez, const Pair (&nu)[3], int np) {
+  Pair s = splat(0);
+  for (int j = 0; j < np; ++j) s += load_pair(ez.data() + 2 * j) * nu[j];
+  return s[0] + s[1];
 }
 
 // Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i - EZ_i^T nu) / D_i;
 // a~_i += S qdd_i. (The chain is in order, parent i - 1: a~ stays in registers.)
 void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
+  Pair nu[3] = {splat(0), splat(0), splat(0)};
+  for (int k = 0; k < nc; k += 2) nu[k / 2] = Pair{d.nu[k], k + 1 < nc ? d.nu[k + 1] : 0.0};
+  const int np = (nc + 1) / 2;
   Pairs a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
-    const double ct = -dot_nc(d.EZ[i], d.nu, nc);  // KDL's constraint torque -S^T E nu
+    const double ct = -dot_nc(d.EZ[i], nu, np);  // KDL's constraint torque -S^T E nu
     // U^T a~_i / D = W^T a~_p with W = X^T U / D (shift_forces_up): the product needs
     // only the parent's acceleration, and the shift of a~ runs beside it
     const double qdd = (d.u[i] + ct) * d.Dinv[i] - dot(load_pairs(d.W[i]), a);
@@ -328,18 +332,19 @@ Vector6 constraint_wrench(const Case& c, const ConstraintVector& nu, int nc) {
   return out;
 }
 
-// joint_torques = ff - J^T (alpha nu): the tip wrench w = alpha nu carried from the tip
-// link's origin down the chain, tau_i -= S_i^T w (w about body i's origin).
+// joint_torques = ff - J^T (alpha nu): with the tip wrench w = [f; n] = alpha nu at the tip
+// link's origin p_t, tau_i -= z_i . (n + (p_t - p_i) x f) (revolute) or z_i . f
+// (prismatic); each body on its own, from the poses.
 void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
   if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
   else d.joint_torques.setZero();
   if (!nc) return;
   const Link& tip = model.tip();
-  Pairs wp = load_pairs(d.constraint_wrench);
-  if (!is_zero(tip.offset.p)) force_to_parent(wp, Shift(d.X0[tip.body].R * tip.offset.p));  // to the body origin
-  for (int i = tip.body; i >= 0; --i) {
-    d.joint_torques[i] -= subspace_dot(is_rotational(model.bodies[i]), joint_axis(d, i), wp);
-    force_to_parent(wp, Shift(d.r[i]));
+  const Vector3 f = d.constraint_wrench.head<3>(), n = d.constraint_wrench.tail<3>();
+  const Vector3 p_tip = d.X0[tip.body].p + d.X0[tip.body].R * tip.offset.p;
+  for (int i = 0; i <= tip.body; ++i) {
+    const Vector3 z = joint_axis(d, i);
+    d.joint_torques[i] -= is_rotational(model.bodies[i]) ? z.dot(n + (p_tip - d.X0[i].p).cross(f)) : z.dot(f);
   }
 }
 
