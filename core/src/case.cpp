@@ -5,6 +5,7 @@
 
 #include "achd/error.hpp"
 #include "achd/options.hpp"
+#include "pair.hpp"
 
 namespace achd {
 
@@ -32,16 +33,15 @@ namespace {
 
 static_assert(sizeof(Vector6) == 6 * sizeof(double), "f_ext is checked as one array");
 
-// 0 when every x is finite, NaN otherwise (x * 0 is NaN for an infinity or a NaN): one
-// multiply and one add per number, in four independent sums, where the checks below
-// branch on each number.
+// 0 when every x is finite, NaN otherwise (x * 0 is NaN for an infinity or a NaN): a
+// multiply and an add per pair of numbers, where the checks below branch on each number.
 double finite_probe(const double* x, Eigen::Index n) {
-  double s[4] = {0, 0, 0, 0};
+  Pair s = splat(0);
   Eigen::Index i = 0;
-  for (; i + 4 <= n; i += 4)
-    for (int k = 0; k < 4; ++k) s[k] += x[i + k] * 0.0;
-  for (; i < n; ++i) s[0] += x[i] * 0.0;
-  return (s[0] + s[1]) + (s[2] + s[3]);
+  for (; i + 2 <= n; i += 2) s += load_pair(x + i) * splat(0);
+  double t = s[0] + s[1];
+  if (i < n) t += x[i] * 0.0;
+  return t;
 }
 
 // The common case, in one pass: right sizes and every number finite.
