@@ -129,6 +129,7 @@ export interface Solver {
   /** 6 * (numLinks + 1): root link first. */
   readonly link_accelerations: Float64Array;
   readonly rank: number;
+  /** smallest singular value of K of the last solve, computed when read (not by solve()). */
   readonly sigma_min: number;
   setOptions(options?: SolveOptions): void;
   /** hybrid dynamics in place on the views: no allocation, no copy. Throws on NaN input. */
