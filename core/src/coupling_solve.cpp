@@ -5,6 +5,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "achd/hybrid_dynamics.hpp"  // sigma_min
+
 namespace achd {
 namespace {
 
@@ -20,7 +22,7 @@ constexpr double kFactorMinRatio = 1e-11;
 // p(x) = det(T - x 1) started below every eigenvalue, which for a polynomial with real
 // roots rises monotonically and cubically to the smallest one. The start is the larger
 // of Gershgorin's bound and `below`, a lower bound the caller may know (0 if none).
-// (n is a template parameter so that the short loops unroll; see smallest_eigenvalue.)
+// (n is a template parameter so that the short loops unroll; see smallest_eigenvalue_of.)
 template <int n>
 double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
   double A[kMaxConstraints][kMaxConstraints], d[kMaxConstraints] = {0}, e[kMaxConstraints] = {0};
