@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "achd/hybrid_dynamics.hpp"  // sigma_min
+#include "constraint_count.hpp"
 
 namespace achd {
 namespace {
@@ -170,16 +171,9 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
   return true;
 }
 
-static_assert(kMaxConstraints == 6, "solve_by_ldlt dispatches n = 1..6");
 bool solve_by_ldlt(Data& data, const Options& options) {
-  switch (data.M0.rows()) {
-    case 1: return solve_by_ldlt_n<1>(data, options);
-    case 2: return solve_by_ldlt_n<2>(data, options);
-    case 3: return solve_by_ldlt_n<3>(data, options);
-    case 4: return solve_by_ldlt_n<4>(data, options);
-    case 5: return solve_by_ldlt_n<5>(data, options);
-    default: return solve_by_ldlt_n<6>(data, options);
-  }
+  return with_constraint_count(static_cast<int>(data.M0.rows()),
+                               [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
 }
 
 // The smallest eigenvalue of the n x n K: by Laguerre's iteration from the LDL^T bound
@@ -241,15 +235,10 @@ void solve_coupling(Data& data, const Options& options) {
 }
 
 double sigma_min(const Data& data) {
-  switch (data.M0.rows()) {
-    case 0: return 0;
-    case 1: return smallest_eigenvalue_of<1>(data.M0);
-    case 2: return smallest_eigenvalue_of<2>(data.M0);
-    case 3: return smallest_eigenvalue_of<3>(data.M0);
-    case 4: return smallest_eigenvalue_of<4>(data.M0);
-    case 5: return smallest_eigenvalue_of<5>(data.M0);
-    default: return smallest_eigenvalue_of<6>(data.M0);
-  }
+  const CouplingMatrix& K = data.M0;
+  if (K.rows() == 0) return 0;
+  return with_constraint_count(static_cast<int>(K.rows()),
+                               [&](auto n) { return smallest_eigenvalue_of<decltype(n)::value>(K); });
 }
 
 }  // namespace achd

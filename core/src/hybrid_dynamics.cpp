@@ -29,6 +29,7 @@
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
 #include "spatial_pairs.hpp"
+#include "constraint_count.hpp"
 #include "coupling_solve.hpp"
 #include "joint.hpp"
 
@@ -144,7 +145,8 @@ void add_external_wrenches(const Model& model, Data& d, const Case& c) {
 
 // Step 2, for i = n-1 .. 0: the articulated-body inertias and bias forces (RBDA 7.3,
 // with c = 0: the velocity products are in pA as I kappa). Body i's
-// Ia_i = IA_i - U U^T / D is formed in locals and added, shifted by r_i, to its parent's IA.
+// Ia_i = IA_i - U U^T / D and pa_i = pA_i + U u / D are added, shifted by r_i, to its
+// parent's IA and pA, as X^T IA X - Us Us^T / D and X^T pA + Us u / D with Us = X^T U.
 void inward_sweep(const Model& model, Data& d, bool rotor) {
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
@@ -264,16 +266,8 @@ void constraint_sweep(const Model& model, Data& d) {
   coupling_terms<NC>(model, d);
 }
 
-static_assert(kMaxConstraints == 6, "constraint_sweep dispatches nc = 1..6");
 void constraint_sweep(const Model& model, Data& d, int nc) {
-  switch (nc) {
-    case 1: return constraint_sweep<1>(model, d);
-    case 2: return constraint_sweep<2>(model, d);
-    case 3: return constraint_sweep<3>(model, d);
-    case 4: return constraint_sweep<4>(model, d);
-    case 5: return constraint_sweep<5>(model, d);
-    default: return constraint_sweep<6>(model, d);
-  }
+  with_constraint_count(nc, [&](auto n) { constraint_sweep<decltype(n)::value>(model, d); });
 }
 
 // EZ_i^T nu, two columns at a time: nu's pairs are padded with 0 past nc, and EZ_i's
@@ -293,8 +287,8 @@ void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int n
   Pairs a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
     const double ct = -dot_nc(d.EZ[i], nu, np);  // KDL's constraint torque -S^T E nu
-    // U^T a~_i / D = W^T a~_p with W = X^T U / D (shift_forces_up): the product needs
-    // only the parent's acceleration, and the shift of a~ runs beside it
+    // U^T a~_i / D = W^T a~_p with W = X^T U / D (from the inward sweep): the product
+    // needs only the parent's acceleration, and the shift of a~ runs beside it
     const double qdd = (d.u[i] + ct) * d.Dinv[i] - dot(load_pairs(d.W[i]), a);
     motion_to_child(a, Shift(d.r[i]));
     a = a + subspace_times(is_rotational(model.bodies[i]), joint_axis(d, i), qdd);

@@ -148,20 +148,17 @@ inline Pairs times(const Matrix6& M, const Vector6& x) {
   return y;
 }
 
-// P += M moved from the child's origin to the parent's, M given by its columns (which
-// are overwritten): X^T M X for the translation X = [1, -x; 0, 1], x = [r]x.
+// M moved from the child's origin to the parent's, M given by its columns (overwritten):
+// X^T M X for the translation X = [1, -x; 0, 1], x = [r]x.
 //   N = M X:  N.col(j) = M.col(j), N.col(3 + j) = M.col(3 + j) - (M.col(0:3) x).col(j)
 //   X^T N:    every column's rows 3..5 gain r x (its rows 0..2), as force_to_parent
-inline void add_shifted(Pairs (&n)[6], const Shift& s, Matrix6& P) {
+inline void shift_inertia(Pairs (&n)[6], const Shift& s) {
   // (M.col(0:3) x).col(0) = r2 M.col(1) - r1 M.col(2), col(1) = r0 M.col(2) - r2 M.col(0),
   // col(2) = r1 M.col(0) - r0 M.col(1)
   n[3] = n[3] - (n[1] * s.r2 - n[2] * s.r1);
   n[4] = n[4] - (n[2] * s.r0 - n[0] * s.r2);
   n[5] = n[5] - (n[0] * s.r1 - n[1] * s.r0);
-  for (int j = 0; j < 6; ++j) {
-    force_to_parent(n[j], s);
-    store_pairs(P.data() + 6 * j, column(P, j) + n[j]);
-  }
+  for (int j = 0; j < 6; ++j) force_to_parent(n[j], s);
 }
 
 // P += X^T (M - U U^T / D) X for M given by its columns (overwritten), computed as
@@ -170,20 +167,16 @@ inline void add_shifted(Pairs (&n)[6], const Shift& s, Matrix6& P) {
 inline void add_shifted_minus_rank_one(Pairs (&n)[6], const Pairs& Us, double Dinv, const Shift& s,
                                        Matrix6& P) {
   const double us[6] = {Us.p[0][0], Us.p[0][1], Us.p[1][0], Us.p[1][1], Us.p[2][0], Us.p[2][1]};
-  n[3] = n[3] - (n[1] * s.r2 - n[2] * s.r1);
-  n[4] = n[4] - (n[2] * s.r0 - n[0] * s.r2);
-  n[5] = n[5] - (n[0] * s.r1 - n[1] * s.r0);
-  for (int j = 0; j < 6; ++j) {
-    force_to_parent(n[j], s);
-    store_pairs(P.data() + 6 * j, column(P, j) + (n[j] - Us * splat(us[j] * Dinv)));
-  }
+  shift_inertia(n, s);
+  for (int j = 0; j < 6; ++j) store_pairs(P.data() + 6 * j, column(P, j) + (n[j] - Us * splat(us[j] * Dinv)));
 }
 
-// The same for M given as a matrix.
+// P += X^T M X (shift_inertia) for M given as a matrix.
 inline void add_shifted(const Matrix6& M, const Shift& s, Matrix6& P) {
   Pairs n[6];
   for (int j = 0; j < 6; ++j) n[j] = column(M, j);
-  add_shifted(n, s, P);
+  shift_inertia(n, s);
+  for (int j = 0; j < 6; ++j) store_pairs(P.data() + 6 * j, column(P, j) + n[j]);
 }
 
 }  // namespace achd
