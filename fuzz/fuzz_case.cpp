@@ -1,11 +1,40 @@
 // libFuzzer target: the case JSON parser of the CLI (tools/case_json.cpp) against the
-// KUKA LWR 4 (7 joints, 7 links). Any outcome but a Case or an achd::Error is a
-// finding; a parsed case must solve without error, both policies.
+// KUKA LWR 4 (7 joints, 7 links), then a solve under both policies and the result JSON.
+// Any outcome but a Case or an achd::Error is a finding, and so is a solve that returns
+// a number that is not finite (every result, sigma_min included) or a result JSON that
+// is not strict JSON.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "case_json.hpp"
+
+namespace {
+
+bool finite_results(const achd::Model& model, const achd::Data& d) {
+  bool ok = d.qdd.allFinite() && d.joint_torques.allFinite() && d.constraint_torques.allFinite() &&
+            d.total_torques.allFinite() && d.nu.allFinite() && d.constraint_wrench.allFinite() &&
+            d.dropped.allFinite();
+  for (int l = 0; l <= model.num_links(); ++l) ok = ok && d.link_accelerations[l].allFinite();
+  return ok;
+}
+
+// Finite results and a strict result JSON, or an achd::Error; anything else aborts.
+void solve_and_check(const achd::Model& model, achd::Data& data, const achd::Case& c,
+                     const achd::Options& options) {
+  try {
+    achd::hybrid_dynamics(model, data, c, options);
+    if (!finite_results(model, data) || !std::isfinite(achd::sigma_min(data))) std::abort();
+    (void)nlohmann::json::parse(achd::cli::result_json(model, data));  // throws on nan, inf
+  } catch (const achd::Error&) {
+  }
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
   static const achd::Model model = achd::load_urdf_file(
@@ -19,8 +48,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     return 0;
   }
   achd::Options options;
-  achd::hybrid_dynamics(model, data, c, options);
+  solve_and_check(model, data, c, options);
   options.policy = achd::SingularityPolicy::Damped;
-  achd::hybrid_dynamics(model, data, c, options);
+  solve_and_check(model, data, c, options);
   return 0;
 }

@@ -5,7 +5,7 @@
 
 #include "achd/error.hpp"
 #include "achd/options.hpp"
-#include "pair.hpp"
+#include "finite_probe.hpp"
 
 namespace achd {
 
@@ -32,17 +32,6 @@ void check_vector(const Eigen::VectorXd& v, int n, const char* field, bool optio
 namespace {
 
 static_assert(sizeof(Vector6) == 6 * sizeof(double), "f_ext is checked as one array");
-
-// 0 when every x is finite, NaN otherwise (x * 0 is NaN for an infinity or a NaN): a
-// multiply and an add per pair of numbers, where the checks below branch on each number.
-double finite_probe(const double* x, Eigen::Index n) {
-  Pair s = splat(0);
-  Eigen::Index i = 0;
-  for (; i + 2 <= n; i += 2) s += load_pair(x + i) * splat(0);
-  double t = s[0] + s[1];
-  if (i < n) t += x[i] * 0.0;
-  return t;
-}
 
 // The common case, in one pass: right sizes and every number finite.
 bool plainly_valid(const Model& model, const Case& c) {

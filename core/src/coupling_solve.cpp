@@ -1,10 +1,12 @@
 #include "coupling_solve.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include <Eigen/Eigenvalues>
 
+#include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"  // sigma_min
 #include "constraint_count.hpp"
 
@@ -235,10 +237,28 @@ void solve_coupling(Data& data, const Options& options) {
 }
 
 double sigma_min(const Data& data) {
-  const CouplingMatrix& K = data.M0;
-  if (K.rows() == 0) return 0;
-  return with_constraint_count(static_cast<int>(K.rows()),
-                               [&](auto n) { return smallest_eigenvalue_of<decltype(n)::value>(K); });
+  const int nc = static_cast<int>(data.M0.rows());
+  if (nc == 0) return 0;
+  // The coupling of the columns as given, K = S^-1 K_s S^-1 from K_s (data.M0) of the
+  // scaled columns alpha_k s_k: exact, as the s_k are powers of two, unless K itself is
+  // beyond the range of a double.
+  CouplingMatrix K = data.M0;
+  for (int i = 0; i < nc; ++i)
+    for (int j = 0; j < nc; ++j) K(i, j) = K(i, j) / data.alpha_scale[i] / data.alpha_scale[j];
+  if (!K.allFinite())
+    throw Error("sigma_min: the coupling matrix K = A M^-1 A^T of these alpha columns overflows a "
+                "double; scale the columns down (a column's scale does not change the solve)");
+  // K's largest entry is on its diagonal (K is positive semi-definite). The reduction
+  // squares K's entries, which would overflow for entries near 1e155 (a robot whose links
+  // weigh 1e-300 kg) or underflow near 1e-155, so it runs on K 2^-e, 2^e <= max K_ii:
+  // exact, undone on the result, and a no-op (e = 0) for K_ii of order one.
+  const double largest = K.diagonal().maxCoeff();
+  if (!(largest > 0)) return 0;  // K = 0: every constraint is singular
+  const int e = std::min(std::max(std::ilogb(largest), -1022), 1022);
+  K *= std::ldexp(1.0, -e);
+  const double smallest =
+      with_constraint_count(nc, [&](auto n) { return smallest_eigenvalue_of<decltype(n)::value>(K); });
+  return std::ldexp(smallest, e);
 }
 
 }  // namespace achd

@@ -24,7 +24,13 @@
 // alpha^T a~_tip = beta - alpha^T kappa_tip.
 #include "achd/hybrid_dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <iomanip>
+#include <limits>
+#include <sstream>
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
@@ -32,6 +38,7 @@
 #include "constraint_count.hpp"
 #include "coupling_solve.hpp"
 #include "joint.hpp"
+#include "overflow_error.hpp"
 
 namespace achd {
 namespace {
@@ -143,6 +150,22 @@ void add_external_wrenches(const Model& model, Data& d, const Case& c) {
   }
 }
 
+constexpr double kMaxDouble = std::numeric_limits<double>::max();
+
+// Why D = S^T IA S cannot be divided by: zero or negative (nothing to move), not finite,
+// or so small that 1 / D overflows.
+[[noreturn]] void bad_pivot(const Body& b, double D) {
+  const std::string where = "joint '" + b.joint_name + "': ";
+  std::ostringstream value;
+  value << std::setprecision(17) << D;
+  if (!(D == D) || D > kMaxDouble)
+    throw Error(where + "the articulated inertia about its axis, D = S^T IA S, is not finite (" +
+                value.str() + "): the links after it are too heavy or too far away");
+  if (!(D > 0)) throw Error(where + "nothing to move (D = S^T IA S = " + value.str() + ")");
+  throw Error(where + "the articulated inertia about its axis, D = S^T IA S = " + value.str() +
+              ", is too small to invert (1 / D overflows): the links after it are too light");
+}
+
 // Step 2, for i = n-1 .. 0: the articulated-body inertias and bias forces (RBDA 7.3,
 // with c = 0: the velocity products are in pA as I kappa). Body i's
 // Ia_i = IA_i - U U^T / D and pa_i = pA_i + U u / D are added, shifted by r_i, to its
@@ -159,10 +182,8 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
     const Pairs pA = load_pairs(d.pA[i]);
     const double D = subspace_dot(rotational, z, U) + (rotor ? b.rotor_inertia : 0.0);
     const double u = d.tau[i] - subspace_dot(rotational, z, pA);
-    if (!(D > 0) || !std::isfinite(D))
-      throw Error("joint '" + b.joint_name + "': nothing to move (D = S^T IA S = " +
-                  std::to_string(D) + ")");
     const double Dinv = 1.0 / D;
+    if (!(D > 0 && D <= kMaxDouble && Dinv <= kMaxDouble)) bad_pivot(b, D);
     store_pairs(d.U[i], U);
     const Shift shift(d.r[i]);
     Pairs Us = U;  // X^T U
@@ -183,15 +204,71 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
   }
 }
 
-// E = alpha moved from the tip link's origin to the tip body's origin.
+// floor(log2 x) for a finite x > 0, from its exponent bits (subnormals count as -1023).
+inline int exponent_of(double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  return static_cast<int>(bits >> 52) - 1023;  // x > 0: no sign bit
+}
+
+// 2^k for k in [-1022, 1023], from its exponent bits.
+inline double power_of_two(int k) {
+  const std::uint64_t bits = static_cast<std::uint64_t>(k + 1023) << 52;
+  double x;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
+// The power of two s_k = 2^-e, e = round(log2 |alpha_k|), that brings alpha column k to a
+// length in [2^-1/2, 2^1/2). The sweeps solve for the columns alpha_k s_k with beta_k s_k,
+// whose force is nu_k / s_k: multiplying by a power of two is exact, so the solve does not
+// depend on a column's scale (a column and its beta scaled by 2^j give the same qdd and
+// rank to the bit, nu_k scaled by 2^-j), a column of 1e-200 neither underflows K nor drops
+// out, and a unit column (s_k = 1) is untouched. With y = alpha_k 2^-m, 2^m <= max |entry|
+// (so that the squares neither overflow nor underflow): |alpha_k|^2 = |y|^2 4^m, and
+// round(log2 |alpha_k|) = ceil(floor(log2 |alpha_k|^2) / 2) = m + (floor(log2 |y|^2) + 1) / 2
+// (|y|^2 in [1, 24), so the last term is 0, 1 or 2, an integer shift).
+double column_scale(const double* column) {
+  // Every unit column, at the cost of |alpha_k|^2 by pairs: |alpha_k|^2 in [1/2, 2) is e = 0.
+  const Pair x0 = load_pair(column), x1 = load_pair(column + 2), x2 = load_pair(column + 4);
+  const Pair squares = x0 * x0 + x1 * x1 + x2 * x2;
+  const double length2 = squares[0] + squares[1];
+  if (length2 >= 0.5 && length2 < 2) return 1;
+  double largest = 0;
+  for (int r = 0; r < 6; ++r) largest = std::max(largest, std::abs(column[r]));
+  if (largest == 0) return 1;
+  const int m = std::min(std::max(exponent_of(largest), -1022), 1022);
+  const double down = power_of_two(-m);
+  double y2 = 0;
+  for (int r = 0; r < 6; ++r) y2 += (column[r] * down) * (column[r] * down);
+  const int e = m + ((exponent_of(y2) + 1) >> 1);
+  return power_of_two(-std::min(std::max(e, -1022), 1022));
+}
+
+// E = alpha s moved from the tip link's origin to the tip body's origin.
 void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc) {
   const Link& tip = model.tip();
   const Vector3 r = d.X0[tip.body].R * tip.offset.p;
   d.E.resize(6, nc);
+  d.alpha_scale.resize(nc);
   for (int k = 0; k < nc; ++k) {
-    const Vector3 f = c.alpha.col(k).head<3>();
+    const double s = column_scale(c.alpha.col(k).data());
+    const Vector3 f = c.alpha.col(k).head<3>() * s;
+    d.alpha_scale[k] = s;
     d.E.col(k).head<3>() = f;
-    d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() + r.cross(f);
+    d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() * s + r.cross(f);
+  }
+}
+
+// Back from the scaled columns to the user's: nu_k = s_k nu'_k, and the dropped
+// directions (combinations of the scaled columns) as unit combinations of the user's.
+// (nu needs no finite probe of its own: alpha nu does, and a non-finite nu_k makes it
+// non-finite, as alpha_k is finite.)
+void unscale_constraint_forces(Data& d, int nc) {
+  for (int k = 0; k < nc; ++k) d.nu[k] *= d.alpha_scale[k];
+  for (Eigen::Index j = 0; j < d.dropped.cols(); ++j) {
+    for (int k = 0; k < nc; ++k) d.dropped(k, j) *= d.alpha_scale[k];
+    d.dropped.col(j).normalize();
   }
 }
 
@@ -234,8 +311,9 @@ void constraint_columns(const Model& model, Data& d) {
 // The coupling at the base from the stored EZ_i, two rows to a Pair:
 //   K = -M_0 = sum_i EZ_i EZ_i^T / D_i   (eq. d),   G_0 = sum_i EZ_i u_i / D_i   (eq. e,
 // whose E^T c term vanishes with c = 0). K's lower triangle is summed, then mirrored.
+// Returns K's finite probe.
 template <int NC>
-void coupling_terms(const Model& model, Data& d) {
+double coupling_terms(const Model& model, Data& d) {
   constexpr int NP = (NC + 1) / 2;
   Pair K[NC][NP], G[NP];
   for (int j = 0; j < NP; ++j) {
@@ -254,20 +332,24 @@ void coupling_terms(const Model& model, Data& d) {
   }
   d.M0.resize(NC, NC);
   d.G0.resize(NC);
+  Pair probe = splat(0);
   for (int k = 0; k < NC; ++k) {
     d.G0[k] = G[k / 2][k % 2];
     for (int l = k; l < NC; ++l) d.M0(l, k) = d.M0(k, l) = K[k][l / 2][l % 2];
+    for (int j = k / 2; j < NP; ++j) probe += K[k][j] * splat(0);
   }
+  return probe[0] + probe[1];
 }
 
+// Returns K's finite probe.
 template <int NC>
-void constraint_sweep(const Model& model, Data& d) {
+double constraint_sweep(const Model& model, Data& d) {
   constraint_columns<NC>(model, d);
-  coupling_terms<NC>(model, d);
+  return coupling_terms<NC>(model, d);
 }
 
-void constraint_sweep(const Model& model, Data& d, int nc) {
-  with_constraint_count(nc, [&](auto n) { constraint_sweep<decltype(n)::value>(model, d); });
+double constraint_sweep(const Model& model, Data& d, int nc) {
+  return with_constraint_count(nc, [&](auto n) { return constraint_sweep<decltype(n)::value>(model, d); });
 }
 
 // EZ_i^T nu, two columns at a time: nu's pairs are padded with 0 past nc, and EZ_i's
@@ -278,12 +360,24 @@ inline double dot_nc(const std::array<double, kMaxConstraints>& ez, const Pair (
   return s[0] + s[1];
 }
 
+// x * 0 summed over x: 0 when every x is finite, NaN otherwise (finite_probe.hpp).
+inline Pair finite_probe(const Pairs& x) {
+  const Pair zero = splat(0);
+  return x.p[0] * zero + x.p[1] * zero + x.p[2] * zero;
+}
+
 // Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i - EZ_i^T nu) / D_i;
 // a~_i += S qdd_i. (The chain is in order, parent i - 1: a~ stays in registers.)
-void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
+// Returns the finite probe of the results: a non-finite qdd_i makes every component of
+// a~_i non-finite (S qdd_i, with z_i a unit vector: inf or 0 * inf), and a non-finite
+// component of a~_p stays non-finite in a~_i (the shift and S qdd_i only add to it), so
+// the last body's a~ is finite exactly when every qdd and a~ is (and with them the
+// constraint torques, u and W, which qdd adds); D qdd is probed on its own.
+double outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
   Pair nu[3] = {splat(0), splat(0), splat(0)};
   for (int k = 0; k < nc; k += 2) nu[k / 2] = Pair{d.nu[k], k + 1 < nc ? d.nu[k + 1] : 0.0};
   const int np = (nc + 1) / 2;
+  double probe = 0;
   Pairs a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
     const double ct = -dot_nc(d.EZ[i], nu, np);  // KDL's constraint torque -S^T E nu
@@ -296,15 +390,19 @@ void outward_accelerations(const Model& model, Data& d, const Vector6& a0, int n
     d.qdd[i] = qdd;
     d.constraint_torques[i] = ct;
     d.total_torques[i] = d.D[i] * qdd;
+    probe += d.total_torques[i] * 0.0;
   }
+  const Pair last = finite_probe(a);
+  return probe + (last[0] + last[1]);
 }
 
 // Spatial acceleration of every link at its origin, base orientation: the body's
 // (a~ + kappa), moved from the body origin to the link origin. `shift` = [g; 0] turns the
-// sweeps' KDL accelerations into physical ones.
-void link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
+// sweeps' KDL accelerations into physical ones. Returns their finite probe.
+double link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
   const Pairs s = load_pairs(shift), base = load_pairs(a0);
   store_pairs(d.link_accelerations[0], base + s);
+  Pair probe = finite_probe(base + s);
   for (int l = 0; l < model.num_links(); ++l) {
     const Link& link = model.links[l];
     const int b = link.body;
@@ -313,33 +411,40 @@ void link_accelerations(const Model& model, Data& d, const Vector6& a0, const Ve
       out = load_pairs(d.a[b]) + load_pairs(d.kappa[b]);
       if (!is_zero(link.offset.p)) motion_to_child(out, Shift(d.X0[b].R * link.offset.p));
     }
-    store_pairs(d.link_accelerations[l + 1], out + s);
+    out = out + s;
+    store_pairs(d.link_accelerations[l + 1], out);
+    probe += finite_probe(out);
   }
+  return probe[0] + probe[1];
 }
 
-// The constraint wrench alpha nu at the tip link's origin.
-Vector6 constraint_wrench(const Case& c, const ConstraintVector& nu, int nc) {
+// The constraint wrench alpha nu at the tip link's origin. Returns its finite probe.
+double constraint_wrench(Data& d, const Case& c, int nc) {
   Pairs w = kZero;
-  for (int k = 0; k < nc; ++k) w = w + load_pairs(c.alpha.col(k).data()) * splat(nu[k]);
-  Vector6 out;
-  store_pairs(out, w);
-  return out;
+  for (int k = 0; k < nc; ++k) w = w + load_pairs(c.alpha.col(k).data()) * splat(d.nu[k]);
+  store_pairs(d.constraint_wrench, w);
+  const Pair probe = finite_probe(w);
+  return probe[0] + probe[1];
 }
 
 // joint_torques = ff - J^T (alpha nu): with the tip wrench w = [f; n] = alpha nu at the tip
 // link's origin p_t, tau_i -= z_i . (n + (p_t - p_i) x f) (revolute) or z_i . f
-// (prismatic); each body on its own, from the poses.
-void joint_torques(const Model& model, Data& d, const Case& c, int nc) {
+// (prismatic); each body on its own, from the poses. Returns their finite probe (with no
+// constraints they are the case's ff_torques, finite).
+double joint_torques(const Model& model, Data& d, const Case& c, int nc) {
   if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
   else d.joint_torques.setZero();
-  if (!nc) return;
+  if (!nc) return 0;
+  double probe = 0;
   const Link& tip = model.tip();
   const Vector3 f = d.constraint_wrench.head<3>(), n = d.constraint_wrench.tail<3>();
   const Vector3 p_tip = d.X0[tip.body].p + d.X0[tip.body].R * tip.offset.p;
   for (int i = 0; i <= tip.body; ++i) {
     const Vector3 z = joint_axis(d, i);
     d.joint_torques[i] -= is_rotational(model.bodies[i]) ? z.dot(n + (p_tip - d.X0[i].p).cross(f)) : z.dot(f);
+    probe += d.joint_torques[i] * 0.0;
   }
+  return probe;
 }
 
 }  // namespace
@@ -360,7 +465,9 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   inward_sweep(model, d, o.effects & kRotorInertia);
   if (nc) {
     constraint_forces_at_tip(model, d, c, nc);
-    constraint_sweep(model, d, nc);
+    // K must be finite before it is factored (an infinite pivot would pass for a zero).
+    const double K_probe = constraint_sweep(model, d, nc);
+    if (K_probe != 0) name_the_first_overflow(model, d, nc);
   }
 
   Vector6 a0 = Vector6::Zero();  // base acceleration: [-g; 0]
@@ -376,14 +483,16 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
       const Link& tip = model.tip();
       kappa_tip = motion_shift(d.kappa[tip.body], d.X0[tip.body].R * tip.offset.p);
     }
+    // Every term in the scaled columns: E, G_0 and alpha s (beta s).
     d.rhs.resize(nc);
     for (int k = 0; k < nc; ++k) {
-      double r = d.G0[k] - c.beta[k];
-      if (moving) r += c.alpha.col(k).dot(kappa_tip);
+      const double s = d.alpha_scale[k];
+      double r = d.G0[k] - c.beta[k] * s;
+      if (moving) r += (c.alpha.col(k) * s).dot(kappa_tip);
       if (gravity) {
         const Vector3 e = d.E.col(k).head<3>();
         r -= e.dot(c.gravity);
-        if (physical) r += c.alpha.col(k).head<3>().dot(c.gravity);
+        if (physical) r += (c.alpha.col(k).head<3>() * s).dot(c.gravity);
       }
       d.rhs[k] = r;
     }
@@ -393,13 +502,17 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
     d.M0.resize(0, 0);
     d.dropped.resize(0, 0);
   }
-  outward_accelerations(model, d, a0, nc);
+  // Each step returns the finite probe of what it wrote (0, or NaN if a number is not
+  // finite): checked once, at the end, and named only if it fails.
+  double probe = outward_accelerations(model, d, a0, nc);  // with the scaled columns' nu'
+  unscale_constraint_forces(d, nc);
 
   Vector6 shift = Vector6::Zero();
   if (o.convention == Convention::Physical && gravity) shift.head<3>() = c.gravity;
-  link_accelerations(model, d, a0, shift);
-  d.constraint_wrench = constraint_wrench(c, d.nu, nc);
-  joint_torques(model, d, c, nc);
+  probe += link_accelerations(model, d, a0, shift);
+  probe += constraint_wrench(d, c, nc);
+  probe += joint_torques(model, d, c, nc);
+  if (probe != 0) name_the_first_overflow(model, d, nc);
 }
 
 }  // namespace achd

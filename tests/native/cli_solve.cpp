@@ -4,34 +4,20 @@
 // "achd: error: ..." on stderr that names the problem, and nothing on stdout.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.hpp"
 #include "random_chain.hpp"
 #include "robot_index.hpp"
-
-extern char** environ;
 
 namespace achd::test {
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
 class CliSolve : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    std::string pattern = ::testing::TempDir() + "achd_cli_XXXXXX";
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
+  static void SetUpTestSuite() { dir_ = make_temp_dir("achd_cli"); }
 
   static std::string write(const std::string& name, const std::string& text) {
     const std::string path = dir_ + "/" + name;
@@ -39,30 +25,7 @@ class CliSolve : public ::testing::Test {
     return path;
   }
 
-  // Runs ACHD_CLI with `args`, stdout and stderr captured in files.
-  static CliRun run(const std::vector<std::string>& args) {
-    const std::string out = dir_ + "/stdout.txt", err = dir_ + "/stderr.txt";
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> all = {ACHD_CLI};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid;
-    CliRun r;
-    const int spawned = posix_spawn(&pid, ACHD_CLI, &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (spawned != 0) return r;
-    int status = 0;
-    waitpid(pid, &status, 0);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_text(out);
-    r.err = read_text(err);
-    return r;
-  }
+  static CliRun run(const std::vector<std::string>& args) { return run_cli(dir_, args); }
 
   // A solve of planar2 with `case_text` (or a URDF/link override) that must fail: exit
   // code 2, nothing on stdout, one line "achd: error: ..." containing every `needles`.
@@ -198,6 +161,42 @@ TEST_F(CliSolve, MissingFilesAreNamed) {
   std::vector<std::string> args = planar2(write("good.json", kGoodCase));
   args[1] = dir_ + "/no_such_robot.urdf";
   expect_error(args, {"no_such_robot.urdf"});
+}
+
+// Finite inputs whose solve overflows: before, exit 0 with -nan and inf in the printed
+// "JSON"; now exit 2 with one line naming the joint. A case that does not overflow, at
+// magnitudes just below, prints strict JSON (no NaN or Infinity literals).
+TEST_F(CliSolve, OverflowingSolvesAreErrorsAndResultsAreStrictJson) {
+  expect_error(planar2(write("qd.json", R"({"q": [0.4, 0.9], "qd": [1e155, 1e155], "gravity": [0, 0, -9.81]})")),
+               {"overflows", "joint '"});
+  expect_error(planar2(write("ff.json", R"({"q": [0.4, 0.9], "ff_torques": [1e308, -1e308], "gravity": [0, 0, -9.81]})")),
+               {"overflows", "joint '", "ff_torques"});
+  for (const char* text : {R"({"q": [0.4, 0.9], "qd": [1e100, 1e100], "gravity": [0, 0, -9.81]})",
+                           R"({"q": [0.4, 0.9], "ff_torques": [1e300, -1e300], "gravity": [0, 0, -9.81]})",
+                           R"({"q": [0.4, 0.9], "gravity": [0, 0, -9.81], "alpha": [[1e-200, 0, 0, 0, 0, 0]], "beta": [0]})"}) {
+    const CliRun r = run(planar2(write("big.json", text)));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    nlohmann::json j;
+    ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << r.out;  // strict: no NaN, Infinity
+    for (const char* field : {"qdd", "joint_torques", "nu", "constraint_wrench"})
+      for (const auto& x : j[field]) EXPECT_TRUE(x.is_number() && std::isfinite(x.get<double>())) << field;
+  }
+}
+
+// A column of 1e-200 is the same constraint as a unit column (before: rank 0, the
+// constraint silently dropped): the same qdd to round-off, nu scaled by 1e200.
+TEST_F(CliSolve, AConstraintColumnsScaleChangesOnlyItsForce) {
+  const CliRun unit = run(planar2(write("unit.json",
+      R"({"q": [0.4, 0.9], "gravity": [0, 0, -9.81], "alpha": [[1, 0, 0, 0, 0, 0]], "beta": [0.5]})")));
+  const CliRun tiny = run(planar2(write("tiny.json",
+      R"({"q": [0.4, 0.9], "gravity": [0, 0, -9.81], "alpha": [[1e-200, 0, 0, 0, 0, 0]], "beta": [0.5e-200]})")));
+  ASSERT_EQ(unit.exit_code, 0) << unit.err;
+  ASSERT_EQ(tiny.exit_code, 0) << tiny.err;
+  const nlohmann::json a = nlohmann::json::parse(unit.out), b = nlohmann::json::parse(tiny.out);
+  EXPECT_EQ(b["rank"], 1);
+  EXPECT_LE(rel_error(json_vector(b["qdd"]), json_vector(a["qdd"])), 1e-13);
+  EXPECT_NEAR(b["nu"][0].get<double>() * 1e-200, a["nu"][0].get<double>(), 1e-13 * std::abs(a["nu"][0].get<double>()));
 }
 
 }  // namespace

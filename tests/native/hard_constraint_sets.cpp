@@ -107,9 +107,13 @@ TEST(HardConstraintSets, ParallelColumnsGiveTheSingleColumnMotionOrAFiniteCompro
   EXPECT_EQ(c.data.rank, 1);
   EXPECT_TRUE(c.data.qdd.allFinite() && c.data.nu.allFinite());
   EXPECT_LE(c.rnea_error, 1e2 * kEps);
-  // Least squares in constraint space: the residual is orthogonal to the kept
-  // direction (1, -2)/sqrt5, i.e. r_1 - 2 r_2 = 0.
-  EXPECT_LE(std::abs(c.residual[0] - 2 * c.residual[1]), kResidualBound);
+  // Least squares over the columns at unit length (the solve scales each column by a
+  // power of two to a length in [2^-1/2, 2^1/2): here 1 and 1/2), so that a column's
+  // scale does not weigh it: the scaled residuals (r_1, r_2 / 2) are orthogonal to the
+  // kept direction (1, -1)/sqrt2, i.e. 2 r_1 - r_2 = 0; the tip's z acceleration is
+  // -0.5, halfway between the -1 and 0 the two columns ask for.
+  EXPECT_LE(std::abs(2 * c.residual[0] - c.residual[1]), kResidualBound);
+  EXPECT_NEAR(c.residual[0], 0.5, kResidualBound);  // alpha_1^T a = -0.5 = beta_1 + 0.5
 }
 
 // A zero column constrains nothing: rank drops by one, the direction is reported, its

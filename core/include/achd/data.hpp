@@ -46,11 +46,12 @@ struct Data {
   std::vector<Vector6> W;        // U / D about the parent's origin (X^T U / D)
   std::vector<double> D, Dinv, u;  // S^T IA S (+ rotor), 1 / D, tau - S^T pA
   std::vector<std::array<double, kMaxConstraints>> EZ;  // E^T S at each body
-  ConstraintForceMatrix E;               // unit constraint forces, rolled from the tip
-                                         // to the base (after the sweep: E_0)
-  CouplingMatrix M0;                     // K = -M_0, the coupling at the base (sigma_min()
-                                         // reads it)
+  ConstraintForceMatrix E;               // unit constraint forces alpha_k s_k, rolled
+                                         // from the tip to the base (after the sweep: E_0)
+  CouplingMatrix M0;                     // K = -M_0, the coupling of the columns alpha_k s_k
+                                         // at the base (sigma_min() reads it)
   ConstraintVector G0;                   // acceleration energy of the bias terms
+  ConstraintVector alpha_scale;          // s_k: the sweeps use the columns alpha_k s_k
   ConstraintVector rhs;                  // E_0^T a_0 + G_0 - beta
   Eigen::VectorXd tau;                   // joint torques fed to the sweeps
 };

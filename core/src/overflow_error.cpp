@@ -1,0 +1,87 @@
+// Finite results or a named error. A solve of finite inputs can still overflow: velocities
+// near 1e155 square to infinity in the velocity products, torques near 1e308 overflow
+// their sums, a nearly singular constraint can ask for an infinite force. The solve probes
+// what it returns as it writes it (hybrid_dynamics.cpp); only when that fails does this
+// walk the intermediate quantities in the order the sweeps computed them and name the
+// first that is not finite, so the message points at the cause, not at a symptom.
+#include "overflow_error.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "achd/error.hpp"
+#include "finite_probe.hpp"
+
+namespace achd {
+namespace {
+
+bool finite(const double* x, Eigen::Index n) { return finite_probe(x, n) == 0; }
+template <class V>
+bool finite(const V& v) {
+  return finite(v.data(), v.size());
+}
+
+std::string joint(const Model& model, int i) { return "joint '" + model.bodies[i].joint_name + "'"; }
+
+[[noreturn]] void overflow(const std::string& what) { throw Error("the solve overflows: " + what); }
+
+}  // namespace
+
+void name_the_first_overflow(const Model& model, const Data& d, int nc) {
+  const int n = model.num_joints();
+  // Step 1, outward: velocities, velocity-product accelerations, joint torques.
+  for (int i = 0; i < n; ++i) {
+    if (!finite(d.v[i]))
+      overflow(joint(model, i) + ": the body velocity is not finite (qd too large)");
+    if (!finite(d.kappa[i]))
+      overflow(joint(model, i) + ": the velocity products (Coriolis, centrifugal) are not finite "
+                                 "(qd too large for this robot)");
+    if (!std::isfinite(d.tau[i]))
+      overflow(joint(model, i) + ": the applied joint torque (ff_torques less damping and friction) "
+                                 "is not finite");
+  }
+  // Step 2, inward from the tip: articulated inertias and bias forces.
+  for (int i = n - 1; i >= 0; --i) {
+    if (!finite(d.IA[i]))
+      overflow(joint(model, i) + ": the articulated inertia is not finite (link masses, inertias "
+                                 "or distances too large)");
+    if (!finite(d.pA[i]) || !std::isfinite(d.u[i]))
+      overflow(joint(model, i) + ": the articulated bias force is not finite (ff_torques, f_ext, "
+                                 "gravity or velocity products too large for this robot)");
+  }
+  // Steps 2-3 for the constraints: the coupling K, its right-hand side, the forces nu.
+  const auto column = [](int k) {
+    return "constraint column " + std::to_string(k) + " (alpha[" + std::to_string(k) + "])";
+  };
+  for (int k = 0; k < nc; ++k)
+    if (!finite(d.M0.col(k).data(), nc))
+      overflow(column(k) + ": the coupling K = E^T D^-1 E is not finite (the robot is too light along it)");
+  for (int k = 0; k < nc; ++k)
+    if (!std::isfinite(d.rhs[k]))
+      overflow(column(k) + ": the constraint's right-hand side is not finite (beta[" + std::to_string(k) +
+               "], gravity or velocity products too large)");
+  for (int k = 0; k < nc; ++k)
+    if (!std::isfinite(d.nu[k]))
+      overflow(column(k) + ": the constraint force nu[" + std::to_string(k) +
+               "] is not finite (the constraint needs a force beyond the range of a double)");
+  // Step 4, outward: accelerations, then what is derived from them.
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(d.qdd[i]) || !finite(d.a[i]))
+      overflow(joint(model, i) + ": the acceleration qdd[" + std::to_string(i) + "] is not finite");
+  for (int l = 0; l <= model.num_links(); ++l)
+    if (!finite(d.link_accelerations[l]))
+      overflow("link '" + (l ? model.links[l - 1].name : model.root_name) +
+               "': its acceleration (link_accelerations[" + std::to_string(l) + "]) is not finite");
+  if (!finite(d.constraint_wrench)) overflow("the constraint wrench alpha nu is not finite");
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(d.joint_torques[i]))
+      overflow(joint(model, i) + ": joint_torques[" + std::to_string(i) + "] = ff - J^T alpha nu is not finite");
+    if (!std::isfinite(d.constraint_torques[i]))
+      overflow(joint(model, i) + ": constraint_torques[" + std::to_string(i) + "] is not finite");
+    if (!std::isfinite(d.total_torques[i]))
+      overflow(joint(model, i) + ": total_torques[" + std::to_string(i) + "] = D qdd is not finite");
+  }
+  overflow("a result is not finite");  // unreachable: every result was checked above
+}
+
+}  // namespace achd
