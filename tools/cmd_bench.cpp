@@ -63,12 +63,19 @@ int cmd_bench(int argc, char** argv) {
   std::string out = buf;
 #ifdef ACHD_HAVE_KDL
   if (kdl) {
+    // KDL's qdd is NaN where its own solve breaks down (a singular constraint set under its
+    // absolute tolerance, for one): the difference is then null, and said why.
     const Eigen::VectorXd q_kdl = kdl->qdd();
-    const double diff = (data.qdd - q_kdl).cwiseAbs().maxCoeff() / std::max(1.0, q_kdl.cwiseAbs().maxCoeff());
-    std::snprintf(buf, sizeof buf,
-                  ", \"kdl_ns\": %.1f, \"kdl_iterations\": %ld, \"ratio\": %.4f, \"qdd_rel_diff\": %.3g",
-                  median(samples[1]), iterations[1], median_ratio(samples[0], samples[1]), diff);
+    std::snprintf(buf, sizeof buf, ", \"kdl_ns\": %.1f, \"kdl_iterations\": %ld, \"ratio\": %.4f",
+                  median(samples[1]), iterations[1], median_ratio(samples[0], samples[1]));
     out += buf;
+    if (q_kdl.allFinite()) {
+      const double diff = (data.qdd - q_kdl).cwiseAbs().maxCoeff() / std::max(1.0, q_kdl.cwiseAbs().maxCoeff());
+      std::snprintf(buf, sizeof buf, ", \"qdd_rel_diff\": %.3g", diff);
+      out += buf;
+    } else {
+      out += ", \"qdd_rel_diff\": null, \"kdl_qdd_finite\": false";
+    }
   }
 #endif
   std::cout << out << "}\n";

@@ -1,9 +1,70 @@
 #include "kdl_problem.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include <console_bridge/console.h>
 #include <kdl/chainhdsolver_vereshchagin.hpp>
 #include <kdl_parser/kdl_parser.hpp>
 
 namespace achd::cli {
+namespace {
+
+// kdl_parser warns through ROS's rosconsole (in colour, on stderr) and urdfdom logs
+// through console_bridge; the command line's stderr is one `achd: error:` line or
+// nothing. While kdl_parser runs, console_bridge's messages are captured (its first error
+// goes into the message) and file descriptor 2 points at /dev/null.
+class CaptureHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error.empty()) first_error = text;
+  }
+  std::string first_error;
+};
+
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(dup(2)) {
+    std::fflush(stderr);
+    std::cerr.flush();
+    const int null = open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      dup2(null, 2);
+      close(null);
+    }
+  }
+  ~QuietStderr() {
+    std::fflush(stderr);
+    std::cerr.flush();
+    if (saved_ >= 0) {
+      dup2(saved_, 2);
+      close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_;
+};
+
+bool parse_quietly(const std::string& urdf, bool is_xml, KDL::Tree& tree, std::string& why) {
+  CaptureHandler handler;
+  console_bridge::useOutputHandler(&handler);
+  bool parsed;
+  {
+    const QuietStderr quiet;
+    parsed = is_xml ? kdl_parser::treeFromString(urdf, tree) : kdl_parser::treeFromFile(urdf, tree);
+  }
+  console_bridge::restorePreviousOutputHandler();
+  why = handler.first_error;
+  return parsed;
+}
+
+}  // namespace
 
 struct KdlProblem::Impl {
   KDL::Chain chain;
@@ -18,9 +79,18 @@ KdlProblem::KdlProblem(const std::string& urdf, bool is_xml, const std::string& 
     : impl_(std::make_unique<Impl>()) {
   Impl& k = *impl_;
   KDL::Tree tree;
-  const bool parsed = is_xml ? kdl_parser::treeFromString(urdf, tree) : kdl_parser::treeFromFile(urdf, tree);
-  if (!parsed) throw Error("kdl_parser cannot read the URDF");
+  std::string why;
+  if (!parse_quietly(urdf, is_xml, tree, why))
+    throw Error("kdl_parser cannot read the URDF" + (why.empty() ? std::string() : ": " + why));
   if (!tree.getChain(root, tip, k.chain)) throw Error("KDL: no chain " + root + " -> " + tip);
+  // KDL's solver indexes its joint arrays by segment: a fixed joint (a segment without a
+  // joint) makes it read past them (an Eigen assertion, or garbage without assertions).
+  for (const KDL::Segment& segment : k.chain.segments)
+    if (segment.getJoint().getType() == KDL::Joint::None)
+      throw Error("KDL's ChainHdSolver_Vereshchagin cannot solve a chain with fixed joints (it needs "
+                  "one movable joint per segment), and the chain " + root + " -> " + tip +
+                  " has the fixed joint '" + segment.getJoint().getName() +
+                  "'; compare with KDL on a chain without fixed joints");
   const unsigned nj = k.chain.getNrOfJoints();
   const int nc = c.num_constraints();
   if (static_cast<int>(nj) != c.q.size()) throw Error("KDL: joint count differs from achd's");
