@@ -68,7 +68,8 @@ export interface Result {
   link_accelerations: number[][];
   /** rank of the nc x nc coupling matrix K. */
   rank: number;
-  /** smallest singular value of K (0 without constraints). */
+  /** smallest singular value of K = A M^-1 A^T for the alpha columns as given (0 without
+   * constraints); solve() throws if that K is beyond the range of a double. */
   sigma_min: number;
   /** constraint-space directions truncated or damped (columns of nc numbers). */
   dropped: number[][];
@@ -129,10 +130,12 @@ export interface Solver {
   /** 6 * (numLinks + 1): root link first. */
   readonly link_accelerations: Float64Array;
   readonly rank: number;
-  /** smallest singular value of K of the last solve, computed when read (not by solve()). */
+  /** smallest singular value of K of the last solve, computed when read (not by solve());
+   * throws if that K is beyond the range of a double (columns of length ~1e154). */
   readonly sigma_min: number;
   setOptions(options?: SolveOptions): void;
-  /** hybrid dynamics in place on the views: no allocation, no copy. Throws on NaN input. */
+  /** hybrid dynamics in place on the views: no allocation, no copy. Throws on NaN input
+   * and when the solve overflows (the message names the joint or constraint column). */
   solve(): void;
   /** the outputs of the last solve as a Result (a copy). */
   result(): Result;

@@ -21,6 +21,13 @@ function achdLastError() {
   return new Error(UTF8ToString(_achd_last_error()));
 }
 
+// The solver's sigma_min; a thrown Error when its K is beyond the range of a double.
+function achdSigmaMin(ptr) {
+  const s = _achd_solver_sigma_min(ptr);
+  if (Number.isNaN(s)) throw achdLastError();
+  return s;
+}
+
 function achdIsArrayLike(v) {
   return Array.isArray(v) || (ArrayBuffer.isView(v) && !(v instanceof DataView));
 }
@@ -215,7 +222,7 @@ class Solver extends AchdHandle {
   get link_accelerations() { return this._view('link_accelerations'); }
   get constraint_wrench() { return this._view('constraint_wrench'); }
   get rank() { return _achd_solver_rank(this._live()); }
-  get sigma_min() { return _achd_solver_sigma_min(this._live()); }
+  get sigma_min() { return achdSigmaMin(this._live()); }
   get numConstraints() { this._live(); return this._nc; }
   set numConstraints(nc) {
     if (!Number.isInteger(nc)) throw new Error(`numConstraints must be an integer, got ${nc}`);
@@ -251,7 +258,7 @@ class Solver extends AchdHandle {
       constraint_wrench: achdCopy(_achd_solver_buffer(ptr, 13), 6),
       link_accelerations: achdChunks(achdCopy(_achd_solver_buffer(ptr, 12), 6 * (this.numLinks + 1)), 6),
       rank: _achd_solver_rank(ptr),
-      sigma_min: _achd_solver_sigma_min(ptr),
+      sigma_min: achdSigmaMin(ptr),
       dropped: rows ? achdChunks(achdCopy(_achd_solver_buffer(ptr, 14), rows * cols), rows) : [],
     };
   }

@@ -1,6 +1,7 @@
 // The zero-copy solver: a Case and a Data owned here, whose Eigen buffers the JS views
 // point into. solve() runs hybrid_dynamics on them in place: no allocation, no copy.
 #include <cstddef>
+#include <limits>
 
 #include "achd/achd.hpp"
 #include "c_api.hpp"
@@ -110,7 +111,12 @@ ACHD_EXPORT int achd_solver_solve(Solver* s) {
 }
 
 ACHD_EXPORT int achd_solver_rank(const Solver* s) { return s->data.rank; }
-ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) { return achd::sigma_min(s->data); }
+// sigma_min, or NaN with the message in last_error() (K beyond the range of a double).
+ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) {
+  double out = std::numeric_limits<double>::quiet_NaN();
+  achd::wasm::guarded([&] { out = achd::sigma_min(s->data); });
+  return out;
+}
 ACHD_EXPORT int achd_solver_nu_size(const Solver* s) { return static_cast<int>(s->data.nu.size()); }
 ACHD_EXPORT int achd_solver_dropped_rows(const Solver* s) { return static_cast<int>(s->data.dropped.rows()); }
 ACHD_EXPORT int achd_solver_dropped_cols(const Solver* s) { return static_cast<int>(s->data.dropped.cols()); }
