@@ -44,7 +44,7 @@ TEST(StepsForDuration, CountsBeyondIntAreExact) {
 }
 
 TEST(StepsForDuration, AnythingElseIsAnErrorNamingTheCount) {
-  // Not a whole number (before: rounded to 1001 steps, 1.001 s simulated).
+  // Not a whole number (before: rounded to 1000 steps, t = 1.0000000000000007).
   expect_contains(error_of(1.0005, 1e-3), {"duration 1.0005 s", "dt 0.001 s", "1000.5 steps", "not a whole number"});
   // Zero steps for a positive duration (before: 0 steps, t = 0, exit 0).
   expect_contains(error_of(1e-4, 1e-3), {"0.1 steps", "not a whole number"});
