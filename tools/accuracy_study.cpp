@@ -14,8 +14,6 @@
 namespace achd::cli {
 namespace {
 
-long steps_for(double duration, double dt) { return std::lround(duration / dt); }
-
 std::string number_text(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", x);
@@ -42,7 +40,7 @@ StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt
   StudyRun r;
   r.integrator = integrator_name(options.integrator);
   r.dt = dt;
-  r.steps = steps_for(duration, dt);
+  r.steps = steps_for_duration(duration, dt);
   r.error_q = end.finite ? max_abs_difference(end.q, ref.end.q) : INFINITY;
   r.error_qd = end.finite ? max_abs_difference(end.qd, ref.end.qd) : INFINITY;
   r.stable = end.finite && std::isfinite(r.error_qd) && r.error_q <= kUnstableError;
@@ -55,8 +53,9 @@ StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt
   return r;
 }
 
-void time_run(const Scene& scene, const SimulatorOptions& options, const StudyConfig& config, StudyRun& r) {
-  r.ns_per_step = ns_per_step(scene, options, r.dt, r.steps, config.timing_steps, config.timing_repeats);
+void time_run(const Scene& scene, const SimulatorOptions& options, const StudyConfig& config, StudyRun& r,
+              const StepObserver& observe) {
+  r.ns_per_step = ns_per_step(scene, options, r.dt, r.steps, config.timing_steps, config.timing_repeats, observe);
   r.cpu_s_per_sim_s = r.ns_per_step * 1e-9 / r.dt;
 }
 
@@ -77,8 +76,9 @@ double knob_step(const Scene& scene, const std::vector<StudyRun>& ladder) {
 // The knobs other than the integrator and the step, each a variant of the default solve
 // (the scene's integrator at knob_step): error against the reference and change against
 // the default.
+// Keep knob_runs() below in step with the runs added here.
 void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConfig& config,
-               const Reference& ref, std::vector<StudyRun>& runs) {
+               const Reference& ref, std::vector<StudyRun>& runs, const StepObserver& observe) {
   const double dt = knob_step(scene, runs);
   if (!(dt > 0)) return;
   // The default solve of each integrator, computed when a knob first needs it.
@@ -87,15 +87,15 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
     if (!standard.count(o.integrator)) {
       SimulatorOptions d = base;
       d.integrator = o.integrator;
-      standard[o.integrator] = run_to_end(scene, d, dt, config.duration);
+      standard[o.integrator] = run_to_end(scene, d, dt, config.duration, observe);
     }
-    const EndState end = run_to_end(scene, o, dt, config.duration);
+    const EndState end = run_to_end(scene, o, dt, config.duration, observe);
     StudyRun r = measure(end, o, dt, config.duration, ref);
     r.kind = kind;
     r.setting = setting;
     const EndState& d = standard[o.integrator];
     r.change_q = end.finite && d.finite ? max_abs_difference(end.q, d.q) : INFINITY;
-    time_run(scene, o, config, r);
+    time_run(scene, o, config, r, observe);
     runs.push_back(r);
   };
   add("default", "", base);
@@ -142,13 +142,39 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
   }
 }
 
+// The runs run_knobs() adds (`knobs`) and the default runs it compares them with
+// (`standards`).
+struct KnobRuns {
+  int knobs = 0, standards = 0;
+};
+KnobRuns knob_runs(const Scene& scene) {
+  const bool friction = uses_friction(scene), held = holds_directions(scene);
+  // default, velocity products, 3 tolerances, 4 dampings; 3 friction velocities; 2
+  // Baumgarte frequencies and the 2 other integrators at the default one.
+  return {9 + (friction ? 3 : 0) + (held ? 4 : 0), 1 + (held ? 2 : 0)};
+}
+
 }  // namespace
+
+double planned_steps(const Scene& scene, const StudyConfig& config) {
+  const double D = config.duration;
+  const double timed = static_cast<double>(config.timing_repeats + 1);  // + the warm-up round
+  const auto timing = [&](double steps) { return timed * std::max(1.0, std::min(steps, double(config.timing_steps))); };
+  double total = D / config.reference_dt + D / (config.reference_dt / 2);
+  for (double dt : config.dts) total += 3 * (D / dt + timing(D / dt));  // three integrators
+  if (config.knobs) {
+    const KnobRuns k = knob_runs(scene);
+    total += (k.knobs + k.standards) * (D / scene.dt) + k.knobs * timing(D / scene.dt);
+  }
+  return total;
+}
 
 double max_abs_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return (a - b).cwiseAbs().maxCoeff();
 }
 
-EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration) {
+EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
+                    const StepObserver& observe) {
   Scene variant = scene;
   variant.options = options;
   const bool conserves = variant.conserves_energy();
@@ -157,21 +183,25 @@ EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double 
   EndState end;
   const double E0 = sim.energy();
   double max_kinetic = sim.kinetic_energy(), max_energy_error = 0;
-  const long steps = steps_for(duration, dt);
-  if (std::abs(steps * dt - duration) > 1e-9 * duration)
-    throw Error("accuracy: the duration " + number_text(duration) + " s is not a whole number of steps of " +
-                number_text(dt) + " s");
+  std::int64_t steps = 0;
   try {
-    for (long s = 0; s < steps && end.finite; ++s) {
+    steps = steps_for_duration(duration, dt);
+  } catch (const Error& e) {
+    throw Error(std::string("accuracy: ") + e.what());
+  }
+  for (std::int64_t s = 0; s < steps; ++s) {
+    try {
       sim.step(dt);
-      end.finite = sim.q.allFinite() && sim.qd.allFinite();
-      if (conserves && end.finite) {
-        max_kinetic = std::max(max_kinetic, sim.kinetic_energy());
-        max_energy_error = std::max(max_energy_error, std::abs(sim.energy() - E0));
-      }
+    } catch (const Error& e) {
+      end.finite = false;  // the state left the finite numbers or the solver refused it
+      end.failure = e.what();
+      break;
     }
-  } catch (const Error&) {
-    end.finite = false;  // the solver refused a state the integrator produced
+    if (conserves) {
+      max_kinetic = std::max(max_kinetic, sim.kinetic_energy());
+      max_energy_error = std::max(max_energy_error, std::abs(sim.energy() - E0));
+    }
+    if (observe) observe(1);
   }
   end.q = sim.q;
   end.qd = sim.qd;
@@ -180,35 +210,38 @@ EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double 
   return end;
 }
 
-double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, long steps,
-                   long max_steps, int repeats) {
-  const long n = std::max(1L, std::min(steps, max_steps));
+double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, std::int64_t steps,
+                   std::int64_t max_steps, int repeats, const StepObserver& observe) {
+  const std::int64_t n = std::max<std::int64_t>(1, std::min(steps, max_steps));
   Simulator sim(scene.model, options);
   std::vector<double> samples;
   for (int r = 0; r <= repeats; ++r) {  // round 0 warms caches and is discarded
     start_scene(scene, sim);
     const double t0 = now_ns();
     try {
-      sim.run(static_cast<int>(n), dt);
+      sim.run(n, dt);
     } catch (const Error&) {
       // An unstable run may stop early; its cost is still the time per step taken.
     }
     const double ns = now_ns() - t0;
-    const double taken = std::max(1.0, std::round(sim.t / dt));
-    if (r > 0) samples.push_back(ns / taken);
+    if (r > 0) samples.push_back(ns / static_cast<double>(std::max<std::int64_t>(1, sim.steps_taken())));
+    if (observe) observe(sim.steps_taken());
   }
   std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
   return samples[samples.size() / 2];
 }
 
-Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration) {
+Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
+                        const StepObserver& observe) {
   SimulatorOptions o = options;
   o.integrator = Integrator::RK4;
   Reference ref;
   ref.dt = dt;
-  ref.end = run_to_end(scene, o, dt, duration);
-  const EndState half = run_to_end(scene, o, dt / 2, duration);
-  if (!ref.end.finite || !half.finite) throw Error("accuracy: the RK4 reference run is not finite");
+  ref.end = run_to_end(scene, o, dt, duration, observe);
+  const EndState half = run_to_end(scene, o, dt / 2, duration, observe);
+  for (const auto& [end, step] : {std::pair<const EndState&, double>{ref.end, dt}, {half, dt / 2}})
+    if (!end.finite)
+      throw Error("accuracy: the RK4 reference run at dt " + number_text(step) + " s failed: " + end.failure);
   ref.self_error_q = max_abs_difference(ref.end.q, half.q);
   ref.self_error_qd = max_abs_difference(ref.end.qd, half.qd);
   return ref;
@@ -223,9 +256,14 @@ StudyConfig default_config(const Scene& scene, bool quick) {
   return c;
 }
 
-Study run_study(const Scene& scene, const StudyConfig& config) {
+Study run_study(const Scene& scene, const StudyConfig& config, const StepObserver& observe) {
   if (!(config.duration > 0)) throw Error("accuracy: duration must be positive");
   if (config.dts.empty()) throw Error("accuracy: no time steps to study");
+  const double planned = planned_steps(scene, config);
+  if (!(planned <= kMaxStudySteps))
+    throw Error("accuracy: the study of " + number_text(config.duration) + " s would take " + number_text(planned) +
+                " steps, more than the limit of " + number_text(kMaxStudySteps) +
+                ": use --quick (at most 0.5 s) or a scene with a shorter duration");
   const auto wall0 = std::chrono::steady_clock::now();
   Study study;
   study.scene = scene.source;
@@ -239,7 +277,7 @@ Study run_study(const Scene& scene, const StudyConfig& config) {
   if (!(base.stabilisation_frequency > 0)) base.stabilisation_frequency = kBaumgarteStepFraction / largest;
   study.stabilisation_frequency = base.stabilisation_frequency;
 
-  study.reference = reference_run(scene, base, config.reference_dt, config.duration);
+  study.reference = reference_run(scene, base, config.reference_dt, config.duration, observe);
   std::vector<CostError> points;
   std::vector<std::size_t> stable_runs;
   for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
@@ -247,9 +285,9 @@ Study run_study(const Scene& scene, const StudyConfig& config) {
     o.integrator = integrator;
     for (std::size_t i = 0; i < config.dts.size(); ++i) {
       const double dt = config.dts[i];
-      StudyRun r = measure(run_to_end(scene, o, dt, config.duration), o, dt, config.duration, study.reference);
+      StudyRun r = measure(run_to_end(scene, o, dt, config.duration, observe), o, dt, config.duration, study.reference);
       r.kind = "integrator";
-      time_run(scene, o, config, r);
+      time_run(scene, o, config, r, observe);
       // Observed order p from e ~ C dt^p between this step and the previous one.
       const StudyRun* previous = i > 0 ? &study.runs.back() : nullptr;
       if (previous && previous->stable && r.stable)
@@ -263,7 +301,7 @@ Study run_study(const Scene& scene, const StudyConfig& config) {
   }
   const std::vector<bool> front = pareto_front(points);
   for (std::size_t i = 0; i < front.size(); ++i) study.runs[stable_runs[i]].pareto = front[i];
-  if (config.knobs) run_knobs(scene, base, config, study.reference, study.runs);
+  if (config.knobs) run_knobs(scene, base, config, study.reference, study.runs, observe);
   study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return study;
 }

@@ -16,6 +16,8 @@
 // kBaumgarteStepFraction / dt), unless the scene sets a larger one. The knobs show what
 // the simulator's own per-step choices change.
 #include <array>
+#include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -26,8 +28,10 @@ namespace achd::cli {
 
 // What a run of a scene ends with.
 struct EndState {
-  Eigen::VectorXd q, qd;
-  bool finite = true;  // false: the state became NaN/Inf (or the solver refused it)
+  Eigen::VectorXd q, qd;  // at the end, or after the last step that succeeded
+  bool finite = true;  // false: a step failed (its state was not finite or the solver
+                       // refused it); `failure` says which and why (Simulator::step)
+  std::string failure;
   // max |E(t) - E(0)| / max kinetic energy over the run; NaN when the scene does not
   // conserve energy.
   double energy_drift = std::numeric_limits<double>::quiet_NaN();
@@ -35,14 +39,20 @@ struct EndState {
   std::array<double, kNumDirections> held_drift{};
 };
 
+// Told the number of steps just taken, after every step of every run of a study (the
+// CLI's progress and Ctrl-C: it may throw to stop the study).
+using StepObserver = std::function<void(std::int64_t)>;
+
 // Runs `scene` with `options` for `duration` at `dt`; duration must be a whole number of
-// steps (an achd::Error otherwise: the end states would belong to different times).
-EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration);
+// steps (steps_for_duration; an achd::Error otherwise: the end states would belong to
+// different times).
+EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
+                    const StepObserver& observe = {});
 
 // Median over `repeats` runs of min(steps, max_steps) steps from the scene's start of
 // the thread CPU time per step, in ns.
-double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, long steps,
-                   long max_steps, int repeats);
+double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, std::int64_t steps,
+                   std::int64_t max_steps, int repeats, const StepObserver& observe = {});
 
 // max_i |a_i - b_i|.
 double max_abs_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
@@ -53,7 +63,8 @@ struct Reference {
   double self_error_q = 0;   // max|q(dt) - q(dt / 2)|, rad
   double self_error_qd = 0;  // max|qd(dt) - qd(dt / 2)|, rad/s
 };
-Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration);
+Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
+                        const StepObserver& observe = {});
 
 // A run is unstable when its state left the finite numbers or its error exceeds this.
 constexpr double kUnstableError = 1.0;  // rad
@@ -63,7 +74,7 @@ struct StudyRun {
   std::string integrator;  // integrator_name()
   std::string setting;     // the knob's value ("" for the integrator ladder)
   double dt = 0;
-  long steps = 0;
+  std::int64_t steps = 0;
   bool stable = true;      // false: "unstable" or "diverged" below
   std::string status;      // "ok"; "unstable": NaN/Inf (or the solver refused the
                            // state); "diverged": finite but error_q > kUnstableError
@@ -83,7 +94,7 @@ struct StudyConfig {
   std::vector<double> dts;             // the ladder, largest first
   double reference_dt = 0;             // RK4 reference step
   int timing_repeats = 5;
-  long timing_steps = 400;             // steps of each timed run (at most the run's)
+  std::int64_t timing_steps = 400;     // steps of each timed run (at most the run's)
   bool knobs = true;
 };
 
@@ -101,6 +112,15 @@ struct Study {
 // reference at 1/4 of the smallest step. quick: 0.5 s at most, 10 ms down to 0.2 ms.
 StudyConfig default_config(const Scene& scene, bool quick);
 
-Study run_study(const Scene& scene, const StudyConfig& config);
+// The steps a study of `scene` takes: the reference, the ladder, the knobs (at the
+// scene's dt) and the timing runs. A double: it may be far beyond any integer type.
+double planned_steps(const Scene& scene, const StudyConfig& config);
+
+// The most steps run_study() takes on: about 5 minutes on the 7-DoF arm (the README's
+// 2 s studies take 8.5e5 steps); a larger study is refused with an achd::Error naming
+// its step count.
+constexpr double kMaxStudySteps = 1e8;
+
+Study run_study(const Scene& scene, const StudyConfig& config, const StepObserver& observe = {});
 
 }  // namespace achd::cli

@@ -1,5 +1,6 @@
 #include "args.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
@@ -47,13 +48,19 @@ double Args::number(const std::string& name, double fallback) const {
   return x;
 }
 
-long Args::integer(const std::string& name, long fallback) const {
+std::int64_t Args::integer(const std::string& name, std::int64_t fallback, std::int64_t min,
+                           std::int64_t max) const {
   if (!has(name)) return fallback;
   const std::string s = get(name);
+  // Digits with an optional sign, nothing else (strtoll alone would skip blanks).
+  const std::size_t sign = !s.empty() && (s[0] == '+' || s[0] == '-') ? 1 : 0;
+  const bool well_formed = s.size() > sign && s.find_first_not_of("0123456789", sign) == std::string::npos;
+  errno = 0;
   char* end = nullptr;
-  const long x = std::strtol(s.c_str(), &end, 10);
-  if (s.empty() || *end != '\0' || x < 1)
-    throw Error("option " + name + ": '" + s + "' is not a positive integer");
+  const long long x = well_formed ? std::strtoll(s.c_str(), &end, 10) : 0;
+  if (!well_formed || errno == ERANGE || x < min || x > max)
+    throw Error("option " + name + ": '" + s + "' is not an integer in [" + std::to_string(min) + ", " +
+                std::to_string(max) + "]");
   return x;
 }
 

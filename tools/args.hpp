@@ -1,6 +1,7 @@
 #pragma once
 // A small command-line parser: positional arguments and `--name value` / `--flag`
 // options; anything unknown or missing is an achd::Error naming the option.
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -20,7 +21,9 @@ class Args {
   std::string get(const std::string& name) const;  // throws if absent
   std::string get(const std::string& name, const std::string& fallback) const;
   double number(const std::string& name, double fallback) const;  // finite, else throws
-  long integer(const std::string& name, long fallback) const;     // >= 1, else throws
+  // A decimal integer in [min, max] (parsed in 64 bits), else an achd::Error naming the
+  // option and the range.
+  std::int64_t integer(const std::string& name, std::int64_t fallback, std::int64_t min, std::int64_t max) const;
 
  private:
   std::vector<std::string> positional_;

@@ -31,7 +31,8 @@ int cmd_bench(int argc, char** argv) {
   const std::string case_path = args.get("--case");
   const Case c = parse_case(case_path == "-" ? read_file("/dev/stdin") : read_file(case_path), model,
                             case_path);
-  const int repeats = static_cast<int>(args.integer("--repeats", 51));
+  // Ranges: a round of 1e9 calls already takes minutes; 1e5 rounds keep the samples small.
+  const int repeats = static_cast<int>(args.integer("--repeats", 51, 1, 100000));
   const std::string against = args.get("--against", "");
   const std::string clock_name = args.get("--clock", "cpu");
   if (clock_name != "cpu" && clock_name != "wall")
@@ -53,7 +54,7 @@ int cmd_bench(int argc, char** argv) {
 #endif
   std::vector<long> iterations;
   for (const auto& fn : fns)
-    iterations.push_back(args.has("--iterations") ? args.integer("--iterations", 1)
+    iterations.push_back(args.has("--iterations") ? args.integer("--iterations", 1, 1, 1000000000)
                                                   : calibrate_iterations(fn, 2e6, clock));
   const std::vector<std::vector<double>> samples = sample_ns(fns, iterations, repeats, clock);
 

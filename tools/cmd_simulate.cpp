@@ -1,34 +1,56 @@
 // achd simulate SCENE.json [--out traj.csv]: runs a scene, writes the trajectory as CSV
-// (t, q..., qd..., tip x y z qx qy qz qw) and prints a JSON summary on stdout.
+// (t, q..., qd..., tip x y z qx qy qz qw) and prints a JSON summary on stdout. With
+// --out -, the CSV goes to stdout instead of the summary.
+// Runs longer than a second show progress on stderr; Ctrl-C stops the run (exit 130).
+// A failed or interrupted run says on stderr how far it got (t, steps) and leaves no
+// file under the --out name (output_file.hpp).
 #include <chrono>
 #include <cmath>
-#include <fstream>
+#include <cstdio>
 #include <iostream>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "output_file.hpp"
+#include "progress.hpp"
 #include "scene_json.hpp"
 
 namespace achd::cli {
 namespace {
 
-void csv_header(std::ostream& out, const Model& model) {
-  out << "t";
-  for (const Body& b : model.bodies) out << ",q_" << b.joint_name;
-  for (const Body& b : model.bodies) out << ",qd_" << b.joint_name;
-  out << ",x,y,z,qx,qy,qz,qw\n";
+std::string csv_header(const Model& model) {
+  std::string out = "t";
+  for (const Body& b : model.bodies) out += ",q_" + b.joint_name;
+  for (const Body& b : model.bodies) out += ",qd_" + b.joint_name;
+  return out + ",x,y,z,qx,qy,qz,qw\n";
 }
 
-void csv_row(std::ostream& out, const Simulator& sim) {
-  out << sim.t;
-  for (Eigen::Index i = 0; i < sim.q.size(); ++i) out << ',' << sim.q[i];
-  for (Eigen::Index i = 0; i < sim.qd.size(); ++i) out << ',' << sim.qd[i];
+// 17 significant digits: the doubles round-trip exactly.
+void append(std::string& row, double x, char separator) {
+  char buf[32];
+  const int n = std::snprintf(buf, sizeof buf, "%.17g", x);
+  row.append(buf, static_cast<std::size_t>(n));
+  row += separator;
+}
+
+void csv_row(std::string& row, const Simulator& sim) {
+  row.clear();
+  append(row, sim.t, ',');
+  for (Eigen::Index i = 0; i < sim.q.size(); ++i) append(row, sim.q[i], ',');
+  for (Eigen::Index i = 0; i < sim.qd.size(); ++i) append(row, sim.qd[i], ',');
   const Transform tip = sim.tip_pose();
   const Eigen::Quaterniond r(tip.R);
-  out << ',' << tip.p.x() << ',' << tip.p.y() << ',' << tip.p.z() << ',' << r.x() << ',' << r.y()
-      << ',' << r.z() << ',' << r.w() << '\n';
+  for (double x : {tip.p.x(), tip.p.y(), tip.p.z(), r.x(), r.y(), r.z()}) append(row, x, ',');
+  append(row, r.w(), '\n');
+}
+
+std::string seconds(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.15g", x);
+  return buf;
 }
 
 }  // namespace
@@ -37,31 +59,54 @@ int cmd_simulate(int argc, char** argv) {
   const Args args(argc, argv, {"--out"}, {});
   if (args.positional().size() != 1) throw Error("simulate: expected one scene file, see `achd help`");
   const Scene scene = load_scene(args.positional()[0]);
+  const std::int64_t steps = scene.steps();
   Simulator sim(scene.model, scene.options);
   start_scene(scene, sim);
 
-  std::ofstream csv;
+  std::unique_ptr<OutputFile> csv;
+  std::string row;
   if (args.has("--out")) {
-    csv.open(args.get("--out"));
-    if (!csv) throw Error(args.get("--out") + ": cannot write file");
-    csv.precision(17);
-    csv_header(csv, scene.model);
-    csv_row(csv, sim);
+    csv = std::make_unique<OutputFile>(args.get("--out"));
+    csv->write(csv_header(scene.model));
+    csv_row(row, sim);
+    csv->write(row);
   }
+  // For a failed or interrupted run: what became of --out.
+  const auto no_file = [&] { return csv && !csv->direct() ? "; no file written to " + csv->path() : std::string(); };
+  catch_interrupt();
+  Progress progress([&](std::int64_t done) {
+    char percent[32];
+    std::snprintf(percent, sizeof percent, "%.1f", 100.0 * static_cast<double>(done) / static_cast<double>(steps));
+    return "simulate " + scene.source + ": t = " + seconds(sim.t) + " s of " + seconds(scene.duration) + " s (" +
+           std::to_string(done) + " of " + std::to_string(steps) + " steps, " + percent + "%)";
+  });
+
   const bool conserves = scene.conserves_energy();
   const double E0 = sim.energy();
   double max_kinetic = sim.kinetic_energy(), max_energy_error = 0;
-  std::vector<int> hits(scene.model.num_joints(), 0);
+  std::vector<std::int64_t> hits(scene.model.num_joints(), 0);
   double step_ns = 0;
-  const int steps = scene.steps();
-  for (int s = 0; s < steps; ++s) {
-    const auto t0 = std::chrono::steady_clock::now();
-    sim.step(scene.dt);
-    step_ns += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
-    for (int i : sim.limit_hits()) ++hits[i];
-    max_kinetic = std::max(max_kinetic, sim.kinetic_energy());
-    if (conserves) max_energy_error = std::max(max_energy_error, std::abs(sim.energy() - E0));
-    if (csv.is_open()) csv_row(csv, sim);
+  try {
+    for (std::int64_t s = 0; s < steps; ++s) {
+      const auto t0 = std::chrono::steady_clock::now();
+      try {
+        sim.step(scene.dt);
+      } catch (const Error& e) {
+        throw Error(scene.source + ": " + e.what() + "; the run stopped after " + std::to_string(sim.steps_taken()) +
+                    " of " + std::to_string(steps) + " steps" + no_file());
+      }
+      step_ns += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+      for (int i : sim.limit_hits()) ++hits[i];
+      max_kinetic = std::max(max_kinetic, sim.kinetic_energy());
+      if (conserves) max_energy_error = std::max(max_energy_error, std::abs(sim.energy() - E0));
+      if (csv) {
+        csv_row(row, sim);
+        csv->write(row);
+      }
+      progress.step();
+    }
+  } catch (const Interrupted& e) {
+    throw Interrupted(e.what() + no_file());
   }
 
   nlohmann::ordered_json out;
@@ -70,8 +115,8 @@ int cmd_simulate(int argc, char** argv) {
   out["integrator"] = integrator_name(scene.options.integrator);
   out["dt"] = scene.dt;
   out["steps"] = steps;
-  out["t"] = sim.t;
-  out["wall_ns_per_step"] = steps ? step_ns / steps : 0.0;
+  out["t"] = sim.t;  // = steps * dt exactly (Simulator::t)
+  out["wall_ns_per_step"] = steps ? step_ns / static_cast<double>(steps) : 0.0;
   out["friction_velocity"] = sim.friction_velocity(scene.dt);
   if (conserves && max_kinetic > 0) out["energy_drift"] = max_energy_error / max_kinetic;
   else out["energy_drift"] = nullptr;
@@ -85,7 +130,8 @@ int cmd_simulate(int argc, char** argv) {
   for (int i = 0; i < scene.model.num_joints(); ++i)
     if (hits[i]) limit[scene.model.bodies[i].joint_name] = hits[i];
   out["limit_hits"] = limit;  // joint -> number of steps that ended at or past a limit
-  std::cout << out.dump(2) << "\n";
+  if (csv) csv->commit();
+  if (!csv || csv->path() != "-") std::cout << out.dump(2) << "\n";
   return 0;
 }
 

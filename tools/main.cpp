@@ -1,11 +1,16 @@
 // The `achd` command line. stdout carries only results; an error is one line
-// "achd: error: ..." on stderr and exit code 2.
+// "achd: error: ..." on stderr and exit code 2 (also when the result cannot be written
+// to stdout); a run stopped by Ctrl-C is one line "achd: interrupted: ..." and exit
+// code 130.
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <string>
 
 #include "achd/error.hpp"
 #include "commands.hpp"
+#include "progress.hpp"
 
 namespace {
 
@@ -21,7 +26,8 @@ const char* kUsage =
     "                  --against kdl also KDL's solver in the same run\n"
     "  simulate SCENE.json [--out traj.csv]\n"
     "                  run a scene (robots/scenes/*.json), write the trajectory\n"
-    "                  CSV, print a JSON summary (steps, ns per step, drifts)\n"
+    "                  CSV, print a JSON summary (steps, ns per step, drifts);\n"
+    "                  --out - : the CSV on stdout instead; Ctrl-C stops (exit 130)\n"
     "  accuracy SCENE.json [--out DIR] [--quick]\n"
     "                  error against an RK4 reference and cost per step of each\n"
     "                  integrator at dt = 10 ms .. 0.05 ms and of the solver knobs;\n"
@@ -40,17 +46,35 @@ const Command kCommands[] = {
     {"accuracy", achd::cli::cmd_accuracy},
 };
 
-}  // namespace
+// Everything a command wrote to stdout has gone out, else an error (a full disk, a
+// closed terminal).
+void check_stdout() {
+  errno = 0;
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout))
+    throw achd::Error(std::string("cannot write the result to stdout") + (errno ? ": " + std::string(std::strerror(errno)) : ""));
+}
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help")) {
     std::cout << kUsage;
     return argc < 2 ? 2 : 0;
   }
+  for (const Command& c : kCommands)
+    if (argv[1] == std::string(c.name)) return c.run(argc - 2, argv + 2);
+  throw achd::Error(std::string("unknown command '") + argv[1] + "' (see `achd help`)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
   try {
-    for (const Command& c : kCommands)
-      if (argv[1] == std::string(c.name)) return c.run(argc - 2, argv + 2);
-    throw achd::Error(std::string("unknown command '") + argv[1] + "' (see `achd help`)");
+    const int code = run(argc, argv);
+    check_stdout();
+    return code;
+  } catch (const achd::cli::Interrupted& e) {
+    std::cerr << "achd: interrupted: " << e.what() << "\n";
+    return 130;
   } catch (const std::exception& e) {
     std::cerr << "achd: error: " << e.what() << "\n";
     return 2;

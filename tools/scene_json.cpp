@@ -119,7 +119,7 @@ const json& required(const json& j, const char* field) {
 
 }  // namespace
 
-int Scene::steps() const { return static_cast<int>(std::lround(duration / dt)); }
+std::int64_t Scene::steps() const { return steps_for_duration(duration, dt); }
 
 bool Scene::conserves_energy() const {
   const std::uint32_t e = options.effects;
@@ -188,6 +188,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     s.dt = positive(required(j, "dt"), "dt");
     s.duration = number(required(j, "duration"), "duration");
     if (s.duration < 0) throw Error("duration must be >= 0");
+    s.steps();  // a whole number of steps that can be run, else an error naming it
     if (j.contains("friction_velocity"))
       s.options.solver.friction_velocity = positive(j["friction_velocity"], "friction_velocity");
     if (j.contains("stabilisation_frequency")) {

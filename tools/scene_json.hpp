@@ -3,6 +3,7 @@
 // simulate, held or accelerated tip directions, the integrator, time step and duration.
 // Schema in the README; every error names the scene file and the field.
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,8 @@ struct Scene {
   std::array<double, kNumDirections> setpoints{};
   double dt = 0, duration = 0;
 
-  int steps() const;  // round(duration / dt)
+  // duration / dt, a whole number checked when the scene is parsed (steps_for_duration).
+  std::int64_t steps() const;
   // True when nothing in the scene adds or removes energy: velocity products on, no
   // damping, friction, torques, wrenches or accelerated directions, limits not clamped.
   bool conserves_energy() const;

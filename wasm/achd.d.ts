@@ -160,6 +160,18 @@ export interface SimulatorOptions {
   stabilisationDamping?: number;
 }
 
+/** Options of Simulator.step. */
+export interface StepOptions {
+  /**
+   * Called after every `progressInterval` steps and after the last one, with the steps run
+   * so far by this call and its n. Returning false stops the run there; step() then
+   * returns stepsDone. Any other return value (or none) continues.
+   */
+  onProgress?: (stepsDone: number, total: number) => boolean | void;
+  /** steps between onProgress calls, an integer >= 1; default 10000 (about 0.1 s of RK4 on the 7-DoF arm). */
+  progressInterval?: number;
+}
+
 /** Time stepping under the hybrid solver. */
 export interface Simulator {
   readonly numJoints: number;
@@ -172,10 +184,22 @@ export interface Simulator {
   readonly ff_torques: Float64Array;
   /** 6 per link after the root (view). */
   readonly f_ext: Float64Array;
-  /** simulated time, s. */
+  /**
+   * simulated time, s: t0 + k * dt after k steps of dt, t0 being the time at reset() or
+   * when dt last changed (computed, not summed: step(n, dt) from reset() ends at exactly n * dt).
+   */
   readonly t: number;
-  /** n steps of dt seconds (defaults 1, 1e-3). */
-  step(n?: number, dt?: number): void;
+  /** steps completed since createSimulator() or reset(). */
+  readonly stepsTaken: number;
+  /**
+   * n steps of dt seconds (defaults 1, 1e-3); n an integer in [0, 2^53 - 1]. Returns the
+   * number of steps run: n, or fewer when options.onProgress stopped the run. A step that
+   * fails (the solver refuses the state, or it leaves the finite numbers) throws an Error
+   * naming the step, the time, the held and accelerated directions and the cause
+   * ("step 2184 from t = 2.183 s to 2.184 s (rk4 stage 4 of 4; held: z, rx; accelerated:
+   * y = 0.5 m/s^2) failed: ..."); q, qd and t then stay those of the last good step.
+   */
+  step(n?: number, dt?: number, options?: StepOptions): number;
   /** new state; t = 0, every direction free. qd defaults to zero. */
   reset(q: Vec, qd?: Vec): void;
   /** 'hold' keeps the tip where it is along the base axis; a number prescribes the classical tip acceleration; 'free' releases. */
@@ -185,7 +209,7 @@ export interface Simulator {
   energy(): { kinetic: number; potential: number; total: number };
   /** names of the joints at or past a limit after the last step (a copy; [] under limits 'ignore'). */
   limitHits(): string[];
-  /** of the solve at the start of the last step (copies). */
+  /** of the solve at the start of the last completed step (copies). */
   nu(): number[];
   jointTorques(): number[];
   qdd(): number[];

@@ -3,6 +3,7 @@
 #include "achd/simulator.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
@@ -29,7 +30,46 @@ void check_state(const Eigen::VectorXd& v, int n, const char* field) {
     if (!std::isfinite(v[i])) throw Error(std::string(field) + "[" + std::to_string(i) + "] is not finite");
 }
 
+// A double for messages: up to 15 significant digits, so 2183 * 0.001 reads 2.183.
+std::string number(double x) {
+  if (std::isnan(x)) return "NaN";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.15g", x);
+  return buf;
+}
+
+// The first joint whose q or qd is not finite, as "joint 'elbow': qd = inf"; "" if none.
+std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  for (Eigen::Index i = 0; i < q.size() && i < qd.size(); ++i)
+    for (const auto& [name, v] : {std::pair<const char*, double>{"q", q[i]}, {"qd", qd[i]}})
+      if (!std::isfinite(v))
+        return "joint '" + model.bodies[i].joint_name + "': " + name + " = " + number(v);
+  return "";
+}
+
 }  // namespace
+
+std::int64_t steps_for_duration(double duration, double dt) {
+  if (!(dt > 0) || !std::isfinite(dt)) throw Error("dt must be positive and finite, got " + number(dt));
+  if (!(duration >= 0) || !std::isfinite(duration))
+    throw Error("duration must be finite and >= 0, got " + number(duration));
+  const std::string what = "duration " + number(duration) + " s at dt " + number(dt) + " s";
+  const double exact = duration / dt;  // inf when dt is far below duration
+  if (!(exact <= static_cast<double>(kMaxSteps)))
+    throw Error(what + " is " + number(exact) + " steps, more than 2^53 = " + std::to_string(kMaxSteps) +
+                " (the largest step count a double holds exactly)");
+  const std::int64_t n = std::llround(exact);
+  if (std::abs(static_cast<double>(n) * dt - duration) > 1e-9 * duration)
+    throw Error(what + " is " + number(exact) + " steps, not a whole number (within 1e-9 relative): " +
+                "make the duration a multiple of dt");
+  // t = k dt (Simulator::t) advances at every step when dt is at least the spacing of
+  // doubles at the end time; always so below 2^52 steps.
+  const double end = static_cast<double>(n) * dt;
+  if (n > 0 && dt < std::nextafter(end, INFINITY) - end)
+    throw Error(what + " is " + std::to_string(n) + " steps, but dt is below the spacing of doubles at t = " +
+                number(end) + " s (" + number(std::nextafter(end, INFINITY) - end) + " s): t + dt == t");
+  return n;
+}
 
 const char* direction_name(int index) {
   check_direction(index);
@@ -52,7 +92,11 @@ const char* integrator_name(Integrator integrator) {
 }
 
 Simulator::Simulator(const Model& model, const SimulatorOptions& options)
-    : model_(model), options_(options), data_(model_), stage_data_(model_), case_(Case::zeros(model_)) {
+    : model_(model),
+      options_(options),
+      data_{{Data(model_), Data(model_)}},
+      stage_data_(model_),
+      case_(Case::zeros(model_)) {
   const int n = model_.num_joints();
   q = qd = ff_torques = Eigen::VectorXd::Zero(n);
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
@@ -82,6 +126,7 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   if (qd0.size()) qd = qd0;
   else qd.setZero(n);
   t = 0;
+  steps_taken_ = 0;
   held_ = HeldDirections{};
   direction_columns(held_, case_.alpha);
   max_residual_.fill(0);
@@ -144,12 +189,26 @@ std::array<double, kNumDirections> Simulator::max_residuals() const {
 void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_at,
                          const std::array<double, kNumDirections>& angle, double w_n, Data& out,
                          std::array<double, kNumDirections>& angle_rate) {
+  if (!q_at.allFinite() || !qd_at.allFinite())
+    throw Error("the stage's state is not finite (" + non_finite_joint(model_, q_at, qd_at) + ")");
   body_motion(model_, q_at, qd_at, X0_, r_, v_);
   const TipState tip = tip_state(model_, X0_, v_);
   stage_held_ = held_;
   stage_held_.angle = angle;
   direction_targets(stage_held_, tip, w_n, options_.stabilisation_damping,
                     options_.effects & kVelocityProducts, case_.beta);
+  if (!case_.beta.allFinite()) {
+    // beta is the acceleration the solver enforces along each held or accelerated
+    // direction, in index order (direction_columns).
+    int column = 0;
+    for (int k = 0; k < kNumDirections; ++k) {
+      if (!held_.active(k)) continue;
+      if (!std::isfinite(case_.beta[column++]))
+        throw Error(std::string("the acceleration to enforce along direction ") + kDirectionNames[k] +
+                    " is not finite (beta = " + number(case_.beta[column - 1]) + "; tip speed " +
+                    number(tip.v.norm()) + " m/s, " + number(tip.w.norm()) + " rad/s)");
+    }
+  }
   for (int k = 0; k < kNumDirections; ++k)
     angle_rate[k] = held_.mode[k] == DirectionMode::Hold && !is_linear_direction(k)
                         ? direction_axis(k).dot(tip.w) : 0.0;
@@ -160,6 +219,10 @@ void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_
 
 void Simulator::step(double dt) {
   if (!(dt > 0) || !std::isfinite(dt)) throw Error("step: dt must be positive and finite");
+  if (!std::isfinite(t)) throw Error("step: t is not finite");
+  // The state the caller set (the fields q and qd: bad input, not a failed step).
+  check_state(q, model_.num_joints(), "q");
+  check_state(qd, model_.num_joints(), "qd");
   solver_ = options_.solver;
   solver_.effects = options_.effects;
   solver_.convention = Convention::Physical;
@@ -167,6 +230,12 @@ void Simulator::step(double dt) {
   case_.gravity = options_.gravity;
   case_.ff_torques = ff_torques;
   case_.f_ext = f_ext;
+  // t restarts its count from the caller's t or at a new dt (see t in the header).
+  if (t != t_written_ || dt != t_dt_) {
+    t_origin_ = t;
+    t_dt_ = dt;
+    t_steps_ = 0;
+  }
   // Record the residuals of the state this step starts from.
   body_motion(model_, q, qd, X0_, r_, v_);
   const TipState tip = tip_state(model_, X0_, v_);
@@ -175,13 +244,60 @@ void Simulator::step(double dt) {
 
   const double w_n = options_.stabilisation_frequency > 0 ? options_.stabilisation_frequency
                                                           : kBaumgarteStepFraction / dt;
-  switch (options_.integrator) {
-    case Integrator::ExplicitEuler: step_explicit_euler(dt, w_n); break;
-    case Integrator::SemiImplicitEuler: step_semi_implicit_euler(dt, w_n); break;
-    case Integrator::RK4: step_rk4(dt, w_n); break;
+  // The state a failed step returns to.
+  q0_ = q;
+  qd0_ = qd;
+  angle0_ = held_.angle;
+  Data& first = data_[1 - current_];
+  const auto undo = [&] {
+    q = q0_;
+    qd = qd0_;
+    held_.angle = angle0_;
+  };
+  try {
+    switch (options_.integrator) {
+      case Integrator::ExplicitEuler: step_explicit_euler(dt, w_n, first); break;
+      case Integrator::SemiImplicitEuler: step_semi_implicit_euler(dt, w_n, first); break;
+      case Integrator::RK4: step_rk4(dt, w_n, first); break;
+    }
+  } catch (const Error& e) {
+    undo();
+    throw step_failure(dt, e.what());
   }
-  t += dt;
+  bool finite = q.allFinite() && qd.allFinite();
+  for (int k = 0; k < kNumDirections; ++k) finite = finite && std::isfinite(held_.angle[k]);
+  if (!finite) {
+    std::string cause = non_finite_joint(model_, q, qd);
+    for (int k = 0; k < kNumDirections && cause.empty(); ++k)
+      if (!std::isfinite(held_.angle[k]))
+        cause = std::string("held angle ") + kDirectionNames[k] + " = " + number(held_.angle[k]);
+    undo();
+    stage_ = -1;
+    throw step_failure(dt, "the new state is not finite (" + cause + ")");
+  }
+  current_ = 1 - current_;
+  ++t_steps_;
+  ++steps_taken_;
+  t = t_origin_ + static_cast<double>(t_steps_) * dt;
+  t_written_ = t;
   apply_limits();
+}
+
+Error Simulator::step_failure(double dt, const std::string& cause) const {
+  std::string held, accelerated;
+  for (int k = 0; k < kNumDirections; ++k) {
+    if (held_.mode[k] == DirectionMode::Hold) held += (held.empty() ? "" : ", ") + std::string(kDirectionNames[k]);
+    if (held_.mode[k] == DirectionMode::Accelerate)
+      accelerated += (accelerated.empty() ? "" : ", ") + std::string(kDirectionNames[k]) + " = " +
+                     number(held_.setpoint[k]) + (is_linear_direction(k) ? " m/s^2" : " rad/s^2");
+  }
+  std::string where = integrator_name(options_.integrator);
+  if (options_.integrator == Integrator::RK4 && stage_ >= 0) where += " stage " + std::to_string(stage_ + 1) + " of 4";
+  if (!held.empty()) where += "; held: " + held;
+  if (!accelerated.empty()) where += "; accelerated: " + accelerated;
+  const double t_next = t_origin_ + static_cast<double>(t_steps_ + 1) * dt;
+  return Error("step " + std::to_string(steps_taken_ + 1) + " from t = " + number(t) + " s to " + number(t_next) +
+               " s (" + where + ") failed: " + cause + "; the state stays at t = " + number(t) + " s");
 }
 
 // v_f >= F_i dt / (kFrictionRateLimit I_i), from F_i / v_f dt / I_i <= kFrictionRateLimit.
@@ -197,23 +313,26 @@ double Simulator::friction_velocity(double dt) const {
   return v_f;
 }
 
-void Simulator::run(int steps, double dt) {
-  for (int s = 0; s < steps; ++s) step(dt);
+void Simulator::run(std::int64_t steps, double dt) {
+  if (steps < 0) throw Error("run: steps must be >= 0, got " + std::to_string(steps));
+  for (std::int64_t s = 0; s < steps; ++s) step(dt);
 }
 
 // x_{k+1} = x_k + dt f(x_k)
-void Simulator::step_explicit_euler(double dt, double w_n) {
-  evaluate(q, qd, held_.angle, w_n, data_, k_angle_[0]);
+void Simulator::step_explicit_euler(double dt, double w_n, Data& first) {
+  stage_ = 0;
+  evaluate(q, qd, held_.angle, w_n, first, k_angle_[0]);
   q += dt * qd;
-  qd += dt * data_.qdd;
+  qd += dt * first.qdd;
   for (int k = 0; k < kNumDirections; ++k) held_.angle[k] += dt * k_angle_[0][k];
 }
 
 // qd_{k+1} = qd_k + dt qdd(q_k, qd_k);  q_{k+1} = q_k + dt qd_{k+1}; the held angles
 // (positions too) advance with the new velocity: dt e . w(q_k, qd_{k+1}).
-void Simulator::step_semi_implicit_euler(double dt, double w_n) {
-  evaluate(q, qd, held_.angle, w_n, data_, k_angle_[0]);
-  qd += dt * data_.qdd;
+void Simulator::step_semi_implicit_euler(double dt, double w_n, Data& first) {
+  stage_ = 0;
+  evaluate(q, qd, held_.angle, w_n, first, k_angle_[0]);
+  qd += dt * first.qdd;
   body_motion(model_, q, qd, X0_, r_, v_);
   const Vector3 w = tip_state(model_, X0_, v_).w;
   for (int k = 0; k < kNumDirections; ++k)
@@ -224,13 +343,12 @@ void Simulator::step_semi_implicit_euler(double dt, double w_n) {
 
 // Classical Runge-Kutta: k1 = f(x), k2 = f(x + dt/2 k1), k3 = f(x + dt/2 k2),
 // k4 = f(x + dt k3);  x_{k+1} = x + dt/6 (k1 + 2 k2 + 2 k3 + k4).
-void Simulator::step_rk4(double dt, double w_n) {
-  q0_ = q;
-  qd0_ = qd;
-  angle0_ = held_.angle;
+// x = (q0_, qd0_, angle0_), set by step().
+void Simulator::step_rk4(double dt, double w_n, Data& first) {
   static constexpr double kStageStep[4] = {0, 0.5, 0.5, 1.0};
   for (int s = 0; s < 4; ++s) {
-    Data& out = s == 0 ? data_ : stage_data_;
+    stage_ = s;
+    Data& out = s == 0 ? first : stage_data_;
     if (s == 0) {
       evaluate(q0_, qd0_, angle0_, w_n, out, k_angle_[0]);
     } else {

@@ -14,6 +14,10 @@ const ACHD_ALL_EFFECTS = 127;
 const ACHD_MAX_CONSTRAINTS = 6;
 const ACHD_DIRECTIONS = ['x', 'y', 'z', 'rx', 'ry', 'rz'];
 const ACHD_INTEGRATORS = { euler: 0, 'semi-implicit': 1, rk4: 2 };
+// Simulator.step: steps per call into wasm (an int there), and between onProgress calls
+// by default (about 0.1 s of the 7-DoF arm with RK4).
+const ACHD_MAX_RUN_CHUNK = 2 ** 30;
+const ACHD_PROGRESS_INTERVAL = 10000;
 // achd::DirectionMode.
 const ACHD_MODE_FREE = 0, ACHD_MODE_HOLD = 1, ACHD_MODE_ACCELERATE = 2;
 
@@ -283,13 +287,36 @@ class Simulator extends AchdHandle {
   get ff_torques() { return this._view('ff_torques'); }
   get f_ext() { return this._view('f_ext'); }
   get t() { return this._view('t')[0]; }
-  step(n = 1, dt = 1e-3) {
+  // n steps of dt (n up to 2^53 - 1), given to wasm in chunks (its run() takes an int);
+  // with options.onProgress, chunks of options.progressInterval steps, after each of
+  // which onProgress(stepsDone, n) is called: returning false stops the run. Returns the
+  // number of steps run. A failed step throws (the state stays at the last good step).
+  step(n = 1, dt = 1e-3, options = undefined) {
     const ptr = this._live();
-    if (!Number.isInteger(n) || n < 0) throw new Error(`step: n must be an integer >= 0, got ${n}`);
+    if (!Number.isSafeInteger(n) || n < 0)
+      throw new Error(`step: n must be an integer >= 0 and <= 2^53 - 1, got ${n}`);
     if (typeof dt !== 'number' || !Number.isFinite(dt) || dt <= 0)
       throw new Error(`step: dt must be a finite number > 0, got ${dt}`);
-    if (_achd_sim_run(ptr, n, dt)) throw achdLastError();
+    if (options === undefined || options === null) options = {};
+    achdCheckObject(options, 'step options', ['onProgress', 'progressInterval']);
+    const onProgress = options.onProgress;
+    if (onProgress !== undefined && typeof onProgress !== 'function')
+      throw new Error('step options.onProgress must be a function (stepsDone, total) => boolean');
+    const interval = options.progressInterval === undefined ? ACHD_PROGRESS_INTERVAL : options.progressInterval;
+    if (!Number.isSafeInteger(interval) || interval < 1)
+      throw new Error(`step options.progressInterval must be an integer >= 1, got ${interval}`);
+    const chunk = Math.min(onProgress ? interval : ACHD_MAX_RUN_CHUNK, ACHD_MAX_RUN_CHUNK);
+    let done = 0;
+    while (done < n) {
+      const k = Math.min(chunk, n - done);
+      if (_achd_sim_run(ptr, k, dt)) throw achdLastError();
+      done += k;
+      if (onProgress && onProgress(done, n) === false) break;
+    }
+    return done;
   }
+  // Steps completed since createSimulator() or reset().
+  get stepsTaken() { return _achd_sim_steps_taken(this._live()); }
   reset(q, qd) {
     const ptr = this._live(), n = this.numJoints;
     achdWithScratch(2 * n, (p) => {

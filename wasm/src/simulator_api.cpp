@@ -46,8 +46,14 @@ ACHD_EXPORT double* achd_sim_buffer(achd::Simulator* sim, int which) {
   }
 }
 
+// At most 2^31 - 1 steps per call: the wrapper (Simulator.step) splits larger counts.
 ACHD_EXPORT int achd_sim_run(achd::Simulator* sim, int steps, double dt) {
   return achd::wasm::guarded([&] { sim->run(steps, dt); });
+}
+
+// Steps completed since construction or reset(), as a double (exact below 2^53).
+ACHD_EXPORT double achd_sim_steps_taken(const achd::Simulator* sim) {
+  return static_cast<double>(sim->steps_taken());
 }
 
 ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const double* qd) {

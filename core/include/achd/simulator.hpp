@@ -15,6 +15,7 @@
 
 #include "achd/case.hpp"
 #include "achd/data.hpp"
+#include "achd/error.hpp"
 #include "achd/model.hpp"
 #include "achd/options.hpp"
 
@@ -29,6 +30,15 @@ constexpr int kNumDirections = 6;
 const char* direction_name(int index);
 int index_of_direction(const std::string& name);
 const char* integrator_name(Integrator integrator);
+
+// The number of steps of dt in `duration` (seconds, >= 0): duration / dt rounded, when
+// that is within 1e-9 (relative) of a whole number. An achd::Error naming the step
+// count, dt and duration when it is not whole, exceeds 2^53 (kMaxSteps: beyond it a
+// step count is no longer exact in a double), or when dt is below the spacing of
+// doubles at the end time (t + dt == t: t = k dt would stop advancing; only possible
+// above 2^52 steps).
+constexpr std::int64_t kMaxSteps = std::int64_t(1) << 53;
+std::int64_t steps_for_duration(double duration, double dt);
 
 // The held set: one mode per direction, with what each mode needs.
 struct HeldDirections {
@@ -73,6 +83,9 @@ class Simulator {
 
   // State, root to tip. Setting them directly is allowed; reset() also restarts t,
   // releases every direction and clears the drift and limit records.
+  // t is t0 + k dt after the k-th step of dt since t was last set (by reset(), by the
+  // caller, or by a change of dt): computed, not summed, so that k steps of dt from 0
+  // end at exactly the double k * dt.
   Eigen::VectorXd q, qd;
   double t = 0;
   Eigen::VectorXd ff_torques;   // joint torques applied every step (default 0)
@@ -81,8 +94,17 @@ class Simulator {
   void reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0);
   void set_direction(int index, DirectionMode mode, double setpoint = 0);
   DirectionMode direction_mode(int index) const;
+  // One step of dt. A step whose solve fails (an achd::Error from the solver) or whose
+  // state is not finite is undone: q, qd, t, the held angles and data() stay those of
+  // the last good step, and an achd::Error names the step, the time, the integrator
+  // stage, the held and accelerated directions and the cause. A q or qd the caller set
+  // that is not finite is an achd::Error naming it ("q[3] is not finite"). The success
+  // path does not allocate.
   void step(double dt);
-  void run(int steps, double dt);
+  // `steps` (>= 0) steps of dt; stops at the first failed step (see step()).
+  void run(std::int64_t steps, double dt);
+  // Steps completed since construction or reset().
+  std::int64_t steps_taken() const { return steps_taken_; }
 
   // Held-direction residuals in m or rad (0 for directions that are not held).
   std::array<double, kNumDirections> residuals() const;
@@ -96,8 +118,8 @@ class Simulator {
   double kinetic_energy() const;
   double potential_energy() const;  // gravity only; 0 when gravity is off
   double energy() const { return kinetic_energy() + potential_energy(); }
-  // The solve at the start of the last step (nu, joint torques, ...).
-  const Data& data() const { return data_; }
+  // The solve at the start of the last completed step (nu, joint torques, ...).
+  const Data& data() const { return data_[current_]; }
   // The friction smoothing velocity a step of dt uses: max(options().solver.friction_velocity,
   // the stability floor above).
   double friction_velocity(double dt) const;
@@ -112,15 +134,26 @@ class Simulator {
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                 const std::array<double, kNumDirections>& angle, double w_n, Data& out,
                 std::array<double, kNumDirections>& angle_rate);
-  void step_explicit_euler(double dt, double w_n);
-  void step_semi_implicit_euler(double dt, double w_n);
-  void step_rk4(double dt, double w_n);
+  // Each writes its first solve (at the step's start) into `first`.
+  void step_explicit_euler(double dt, double w_n, Data& first);
+  void step_semi_implicit_euler(double dt, double w_n, Data& first);
+  void step_rk4(double dt, double w_n, Data& first);
   void apply_limits();
+  // The error of a failed step, `cause` put in context (step, t, directions).
+  Error step_failure(double dt, const std::string& cause) const;
 
   Model model_;
   SimulatorOptions options_;
   Options solver_;
-  Data data_, stage_data_;
+  // data_[current_] is the first solve of the last completed step; a step solves into
+  // the other one and makes it current only when the step succeeds.
+  std::array<Data, 2> data_;
+  int current_ = 0;
+  Data stage_data_;
+  // t = t_origin_ + t_steps_ * t_dt_ (see t above); t_written_ is the last t step() wrote.
+  double t_origin_ = 0, t_dt_ = 0, t_written_ = 0;
+  std::int64_t t_steps_ = 0, steps_taken_ = 0;
+  int stage_ = 0;  // the integrator stage being evaluated (RK4: 0..3), for messages
   Case case_;
   HeldDirections held_, stage_held_;
   std::array<double, kNumDirections> max_residual_{};
