@@ -1,5 +1,6 @@
-// bench_ratios: issue 8's ratio table, every number measured side by side in one run
-// (achd and KDL repeats interleaved, medians). Prints a markdown table, then one JSON line.
+// bench_ratios: the ratio table of the README and docs/performance.md, every number
+// measured side by side in one run (achd and KDL repeats interleaved, medians). Prints a
+// markdown table, then one JSON line.
 #include <cstdio>
 #include <fstream>
 #include <memory>

@@ -1,5 +1,6 @@
 #pragma once
-// DESIGN.md's case and result JSON, shared by the CLI, the tests and the fuzz target.
+// The case and result JSON (docs/design.md section 5), shared by the CLI, the tests and
+// the fuzz target.
 #include <string>
 
 #include <nlohmann/json.hpp>

@@ -38,7 +38,7 @@ export interface SolveOptions {
   frictionVelocity?: number;
 }
 
-/** DESIGN.md's case: q and gravity required; the rest default to zero / none. */
+/** The case (docs/design.md section 5): q and gravity required, the rest default to zero/none. */
 export interface Case {
   q: Vec;
   qd?: Vec;
@@ -52,7 +52,7 @@ export interface Case {
   ff_torques?: Vec;
 }
 
-/** DESIGN.md's result; plain arrays (copies). */
+/** The result (docs/design.md section 5); plain arrays (copies). */
 export interface Result {
   qdd: number[];
   /** KDL's -S^T E nu (not the torques that produce the motion). */

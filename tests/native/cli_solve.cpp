@@ -1,6 +1,6 @@
 // The real `achd solve` binary (ACHD_CLI, from CMake) run as a child process: on every
-// robot of robots/index.json it prints the result JSON of DESIGN.md and nothing else,
-// equal to the library's solve; on bad input it exits 2 with one line
+// robot of robots/index.json it prints the result JSON (docs/design.md section 5) and
+// nothing else, equal to the library's solve; on bad input it exits 2 with one line
 // "achd: error: ..." on stderr that names the problem, and nothing on stdout.
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// Physics identities of the hybrid solver on random chains (random_chain.hpp), with
-// DESIGN.md's relative error: the solver agrees with the independent RNEA, its
-// constraint outputs satisfy the constraints, and its accelerations agree with a
-// separate point-velocity kinematics sweep (reference_kinematics.hpp).
+// Physics identities of the hybrid solver on random chains (random_chain.hpp), with the
+// relative error of docs/design.md section 4.6: the solver agrees with the independent
+// RNEA, its constraint outputs satisfy the constraints, and its accelerations agree with
+// a separate point-velocity kinematics sweep (reference_kinematics.hpp).
 #include <gtest/gtest.h>
 
 #include <cstdio>

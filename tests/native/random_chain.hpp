@@ -45,7 +45,7 @@ std::optional<Case> case_at(std::mt19937& rng, const Model& model, const Eigen::
 int tip_jacobian_rank(const Model& model, const Eigen::VectorXd& q);
 int tip_jacobian_rank(std::mt19937& rng, const Model& model);
 
-// DESIGN.md's relative error: max|a - b| / max(1, max|b|).
+// The relative error (docs/design.md section 4.6): max|a - b| / max(1, max|b|).
 double rel_error(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
 
 // Calls f(chain, case) for `num_chains` random chains drawn from `seed` (the first has

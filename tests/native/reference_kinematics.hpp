@@ -16,8 +16,8 @@ struct FrameMotion {
   Vector3 v = Vector3::Zero(), w = Vector3::Zero();
   Vector3 vdot = Vector3::Zero(), wdot = Vector3::Zero();
 
-  // The spatial acceleration of DESIGN.md (derivative of the body twist, base
-  // orientation): [vdot - w x v; wdot].
+  // The spatial acceleration of docs/design.md section 4.1 (derivative of the body
+  // twist, base orientation): [vdot - w x v; wdot].
   Vector6 spatial_acceleration() const;
 };
 

@@ -1,4 +1,4 @@
-// The simulator and the effect flags (issue 4): energy, additive effects against dense
+// The simulator and the effect flags: energy, additive effects against dense
 // dynamics, automatic skips, held-direction drift, integrator orders, joint limits, no
 // allocation per step, and scene files (CLI exit code 2 naming the field).
 #include <gtest/gtest.h>

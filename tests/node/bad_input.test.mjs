@@ -1,4 +1,4 @@
-// Issue 7's bad-input list through JS: every kind throws an Error whose message names
+// The bad-input list through JS: every kind throws an Error whose message names
 // the problem (the same list as tests/native/bad_input_urdfs.hpp for the C++ API and
 // the CLI), massless links load, and NaN/Infinity in every case field name the field.
 import assert from 'node:assert/strict';

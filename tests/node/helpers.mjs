@@ -1,5 +1,6 @@
 // Shared by the Node tests and bench/wasm_vs_native.mjs: the built module, the native
-// CLI (DESIGN.md's Release build), DESIGN.md's relative error and robots/index.json.
+// CLI (the Release build), the relative error (docs/design.md section 4.6) and
+// robots/index.json.
 import { execFile, execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';

@@ -248,7 +248,8 @@ class Solver extends AchdHandle {
   solve() {
     if (_achd_solver_solve(this._ptr === 0 ? this._live() : this._ptr)) throw achdLastError();
   }
-  // The outputs of the last solve as plain arrays (DESIGN.md's result object; a copy).
+  // The outputs of the last solve as plain arrays (the result object of docs/design.md
+  // section 5; a copy).
   result() {
     const ptr = this._live();
     const nj = this.numJoints, nc = _achd_solver_nu_size(ptr);
@@ -420,7 +421,8 @@ class Robot extends AchdHandle {
     g[0] = 0; g[1] = 0; g[2] = -9.81;
     return solver;
   }
-  // DESIGN.md's case object in, its result object out (plain arrays: copies).
+  // The case object in, the result object out (docs/design.md section 5; plain arrays:
+  // copies).
   solve(c, options) {
     this._live();
     achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques']);

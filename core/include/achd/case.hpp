@@ -1,6 +1,6 @@
 #pragma once
-// The inputs of one hybrid-dynamics solve (DESIGN.md's case format), owned by the
-// caller and reused between solves.
+// The inputs of one hybrid-dynamics solve (the case format, docs/design.md section 5),
+// owned by the caller and reused between solves.
 #include <vector>
 
 #include <Eigen/Core>
