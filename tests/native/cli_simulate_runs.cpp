@@ -1,4 +1,4 @@
-// The real `achd` binary (ACHD_CLI) on runs that used to go wrong with exit 0 (issue 13):
+// The real `achd` binary (ACHD_CLI) on runs that used to go wrong with exit 0:
 // step counts beyond int, durations that are not whole numbers of steps, output that
 // cannot be written (--out /dev/full, stdout on /dev/full), a run that fails mid-way
 // (its message and the file it must not leave), Ctrl-C (a real SIGINT: exit 130, what

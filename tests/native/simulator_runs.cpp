@@ -1,4 +1,4 @@
-// Runs of the simulator that were silently wrong (issue 13): step counts in 64 bits with
+// Runs of the simulator that were silently wrong: step counts in 64 bits with
 // the whole-number rule of steps_for_duration, t = k dt exactly, and a failed step that
 // leaves the last good state (finite) and an achd::Error naming the step, the time, the
 // held and accelerated directions and the cause.

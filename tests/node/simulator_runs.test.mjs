@@ -1,4 +1,4 @@
-// Simulator.step on runs that used to go wrong (issue 13): step counts beyond the wasm
+// Simulator.step on runs that used to go wrong: step counts beyond the wasm
 // export's int (2**32 + 3 ran 3 steps, 2**31 none), the progress callback that reports
 // and stops a long run, counts that are not safe integers, and a failed step that keeps
 // the last good (finite) state and names the step, the time and the directions.
