@@ -43,8 +43,10 @@ function assertSameResult(wasm, native, what, tolerance) {
   const es = relativeError([wasm.sigma_min], [native.sigma_min]);
   assert.ok(es <= tolerance, `${what}: sigma_min relative error ${es}`);
   assert.equal(wasm.dropped.length, native.dropped.length, `${what}: dropped directions`);
+  const ed = relativeError(wasm.dropped.flat(), native.dropped.flat());
+  assert.ok(ed <= tolerance, `${what}: dropped relative error ${ed}`);
   assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
-  return Math.max(worst, e, es);
+  return Math.max(worst, e, es, ed);
 }
 
 // Each job: a URDF file, root, tip, case, options -> compare in wasm and native.

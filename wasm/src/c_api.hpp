@@ -15,8 +15,8 @@
 
 namespace achd::wasm {
 
-// A loaded robot: solvers and simulators share its model, so deleting the robot first
-// leaves them valid.
+// A loaded robot: solvers share its model and simulators copy it, so deleting the robot
+// first leaves them valid.
 struct Robot {
   std::shared_ptr<const Model> model;
   std::string info;  // JSON description read once by the wrapper (names, limits, ...)

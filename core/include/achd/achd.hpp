@@ -8,5 +8,6 @@
 #include "achd/kinematics.hpp"
 #include "achd/model.hpp"
 #include "achd/options.hpp"
+#include "achd/simulator.hpp"
 #include "achd/spatial.hpp"
 #include "achd/urdf.hpp"

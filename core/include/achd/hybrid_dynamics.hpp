@@ -13,10 +13,10 @@ namespace achd {
 // achd::Error naming the field); does not allocate. Every result is finite: a solve
 // whose numbers overflow (velocities near 1e155, torques near 1e308, links so light that
 // the articulated inertia cannot be inverted) throws achd::Error naming the joint, link
-// or constraint column where it happened. The constraint columns are solved at unit
-// length (each scaled by a power of two, exactly), so a column's scale changes only its
-// nu: the rank decision and, for conflicting columns, the least-squares compromise
-// weigh every column alike.
+// or constraint column where it happened. Each constraint column is solved scaled by the
+// power of two (exact) that brings its length into [2^-1/2, 2^1/2), so a column's scale
+// changes only its nu: the rank decision and, for conflicting columns, the least-squares
+// compromise weigh every column alike.
 void hybrid_dynamics(const Model& model, Data& data, const Case& c, const Options& options = {});
 
 // The smallest singular value of the last solve's coupling matrix K = A M^-1 A^T of the

@@ -6,7 +6,7 @@
 //   Hold, linear e:  keeps e . p_tip at its value when the direction was set.
 //   Hold, angular e: keeps the integral of e . w_tip since it was set at zero.
 //   Accelerate:      the classical tip acceleration along e equals the setpoint.
-// A held direction becomes a row of alpha with a Baumgarte-stabilised beta, including
+// A held direction becomes a column of alpha with a Baumgarte-stabilised beta, including
 // the velocity-product term that separates spatial from classical acceleration.
 #include <array>
 #include <cstdint>
