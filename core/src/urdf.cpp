@@ -2,6 +2,7 @@
 // chain root -> tip, merging links behind fixed joints into the body before them.
 #include "achd/urdf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -16,6 +17,7 @@
 
 #include "achd/error.hpp"
 #include "sin_cos.hpp"
+#include "xml_depth.hpp"
 
 namespace achd {
 namespace {
@@ -262,8 +264,16 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
 }
 
 // Every message starts with the source (file path or "URDF").
-Model load(const std::string& xml, const std::string& root, const std::string& tip,
+Model load(const std::string& text, const std::string& root, const std::string& tip,
            const std::string& source) {
+  const std::size_t too_deep = xml_too_deep_at(text, kMaxUrdfNesting);
+  if (too_deep != std::string::npos)
+    throw Error(source + ": cannot parse URDF: elements nested more than " + std::to_string(kMaxUrdfNesting) +
+                " deep (line " + std::to_string(1 + std::count(text.begin(), text.begin() + too_deep, '\n')) +
+                "), which achd refuses: its XML parser recurses once per level");
+  // TinyXML steps over a UTF-8 sequence's length from its lead byte without looking for
+  // the end of the text: three more NULs keep a lead byte at the end from reading past it.
+  const std::string xml = text + std::string(3, '\0');
   std::string why;
   const auto parsed = parse(xml, why);
   // urdfdom links point to their children and parent joints by shared_ptr: a cycle in

@@ -62,5 +62,50 @@ TEST(BadInputUrdf, BoundaryCasesThatAreValid) {
                                    "a", "c"));
 }
 
+const std::string kOneJoint = link("a") + link("b") + joint("j", "revolute", "a", "b");
+
+TEST(BadInputUrdf, NestingUpToTheLimitLoads) {
+  EXPECT_NO_THROW(load_urdf_string(robot(kOneJoint + nested(kMaxUrdfNesting - 1)), "a", "b"));
+  EXPECT_EQ(error_of(robot(kOneJoint + nested(kMaxUrdfNesting)), "a", "b"),
+            "URDF: cannot parse URDF: elements nested more than 100 deep (line 1), which achd refuses: "
+            "its XML parser recurses once per level");
+}
+
+// The depth scan reads the text as TinyXML does. Each of these nests 200 elements for
+// TinyXML although a scan by XML's own rules would see one level: a quoted "/>", a
+// processing instruction or "<!" node that TinyXML ends at the first '>', an end tag
+// swallowed by a UTF-8 lead byte (UTF-8 once the declaration says so) or by a numeric
+// entity that runs to the next ';'.
+TEST(BadInputUrdf, NestingIsCountedAsTinyXmlReadsIt) {
+  auto repeat = [](const std::string& s, int n) {
+    std::string out;
+    for (int i = 0; i < n; ++i) out += s;
+    return out;
+  };
+  const std::string utf8 = "<?xml version=\"1.0\"?>";
+  const std::vector<std::pair<std::string, std::string>> deep = {
+      {"quoted />", repeat("<x a=\"/>\">", 200) + repeat("</x>", 200)},
+      {"processing instruction", "<?pi >" + nested(200) + "?>"},
+      {"<! node with brackets", "<!x [" + nested(200) + "]>"},
+      {"UTF-8 lead byte before an end tag", repeat("<x>\xc3</x>", 200)},
+      {"entity across an end tag", repeat("<x>&#x</x>x41;", 200)},
+  };
+  for (const auto& [what, junk] : deep) {
+    const std::string xml = (what.rfind("UTF-8", 0) == 0 ? utf8 : "") + robot(kOneJoint + junk);
+    EXPECT_NE(error_of(xml, "a", "b").find("nested more than 100 deep"), std::string::npos) << what;
+  }
+  // Without a declaration TinyXML's encoding is unknown: the lead byte is one character.
+  EXPECT_NO_THROW(load_urdf_string(robot(kOneJoint + repeat("<x>\xc3</x>", 200)), "a", "b"));
+  // Text TinyXML does not read as elements is not counted.
+  const std::vector<std::pair<std::string, std::string>> shallow = {
+      {"comment", "<!--" + nested(200) + "-->"},
+      {"CDATA", "<y><![CDATA[" + nested(200) + "]]></y>"},
+      {"attribute value", "<y a=\"" + nested(200) + "\"/>"},
+      {"entity in an attribute value", "<y a=\"&#x" + nested(200) + "x41;\"/>"},
+  };
+  for (const auto& [what, junk] : shallow)
+    EXPECT_NO_THROW(load_urdf_string(robot(kOneJoint + junk), "a", "b")) << what;
+}
+
 }  // namespace
 }  // namespace achd::test

@@ -29,6 +29,12 @@ inline std::string joint(const std::string& name, const std::string& type, const
          "\"/><child link=\"" + child + "\"/><origin xyz=\"0.1 0 0\"/>" + extra + "</joint>";
 }
 inline std::string robot(const std::string& body) { return "<robot name=\"r\">" + body + "</robot>"; }
+// `depth` elements nested inside one another ("<x><x>...</x></x>").
+inline std::string nested(int depth) {
+  std::string open, close;
+  for (int i = 0; i < depth; ++i) open += "<x>", close += "</x>";
+  return open + close;
+}
 
 inline std::vector<BadUrdf> bad_urdfs() {
   const std::string ab = link("a") + link("b");
@@ -89,6 +95,11 @@ inline std::vector<BadUrdf> bad_urdfs() {
                                      "<axis xyz=\"0 0 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>")),
        "a", "b", {"joint 'j'", "axis is zero"}},
       {"no movable joint", robot(ab + joint("j", "fixed", "a", "b", "")), "a", "b", {"no movable joint"}},
+      // <robot> is level 1: 100 more levels inside it make 101
+      {"elements nested too deep", robot(ab + joint("j", "revolute", "a", "b") + nested(100)), "a", "b",
+       {"cannot parse URDF: elements nested more than 100 deep (line 1)"}},
+      {"elements nested 50000 deep", robot(ab + joint("j", "revolute", "a", "b") + nested(50000)), "a", "b",
+       {"cannot parse URDF: elements nested more than 100 deep"}},
   };
 }
 

@@ -1,6 +1,7 @@
 // Issue 7's bad-input list through JS: every kind throws an Error whose message names
 // the problem (the same list as tests/native/bad_input_urdfs.hpp for the C++ API and
 // the CLI), massless links load, and NaN/Infinity in every case field name the field.
+// Issue 13: no failed load leaks or breaks the module.
 import assert from 'node:assert/strict';
 import { before, test } from 'node:test';
 
@@ -22,6 +23,7 @@ const joint = (name, type, parent, child, extra = limit) =>
   `<origin xyz="0.1 0 0"/>${extra}</joint>`;
 const robot = (body) => `<robot name="r">${body}</robot>`;
 const ab = link('a') + link('b');
+const nested = (depth) => '<x>'.repeat(depth) + '</x>'.repeat(depth);
 
 const badUrdfs = [
   ['malformed XML', '<robot name="r"><link name="a">', 'a', 'b', /cannot parse URDF/],
@@ -60,6 +62,10 @@ const badUrdfs = [
   ['zero axis', robot(ab + joint('j', 'revolute', 'a', 'b',
     '<axis xyz="0 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>')), 'a', 'b', /joint 'j': axis is zero/],
   ['no movable joint', robot(ab + joint('j', 'fixed', 'a', 'b', '')), 'a', 'b', /no movable joint/],
+  ['elements nested too deep', robot(ab + joint('j', 'revolute', 'a', 'b') + nested(100)), 'a', 'b',
+    /^URDF: cannot parse URDF: elements nested more than 100 deep \(line 1\)/],
+  ['elements nested 50000 deep', robot(ab + joint('j', 'revolute', 'a', 'b') + nested(50000)), 'a', 'b',
+    /nested more than 100 deep/],
 ];
 
 for (const [what, xml, root, tip, message] of badUrdfs) {
@@ -68,6 +74,37 @@ for (const [what, xml, root, tip, message] of badUrdfs) {
       (e) => e instanceof Error && message.test(e.message), `expected ${message}`);
   });
 }
+
+// The text of a 50000-deep URDF is refused before TinyXML sees it: before, each attempt
+// overflowed the JS stack inside the parser (RangeError) and leaked the half-built
+// document, ~0.5 MB, so that 60 attempts grew the memory from 16 to 48 MB.
+test('failed loads of a deeply nested URDF leave the memory as it was and the module usable', () => {
+  const deep = robot(ab + joint('j', 'revolute', 'a', 'b') + nested(50000));
+  const attempt = () => assert.throws(() => achd.loadURDF(deep, { root: 'a', tip: 'b' }),
+    (e) => e instanceof Error && !(e instanceof RangeError) && /nested more than 100 deep/.test(e.message));
+  attempt();
+  const bytes = achd.memoryBytes();
+  for (let k = 0; k < 60; ++k) attempt();
+  assert.equal(achd.memoryBytes(), bytes);
+  const r = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
+  assert.ok(Array.from(r.solve({ q: entry.q0, gravity: [0, 0, -9.81] }).qdd).every(Number.isFinite));
+  r.delete();
+});
+
+// Every other failed load frees what it built: each bad URDF carries a 512 KB comment
+// (kept in TinyXML's document), so that anything left behind by 4 rounds of the list
+// (~40 MB) would have to grow the memory.
+test('no failed load leaks', () => {
+  const padding = `<!--${'x'.repeat(1 << 19)}-->`;
+  const round = () => {
+    for (const [, xml, root, tip] of badUrdfs)
+      assert.throws(() => achd.loadURDF(padding + xml, { root, tip }), Error);
+  };
+  round();
+  const bytes = achd.memoryBytes();
+  for (let k = 0; k < 4; ++k) round();
+  assert.equal(achd.memoryBytes(), bytes);
+});
 
 test('massless links in the middle of a chain are valid', () => {
   const m = achd.loadURDF(robot(link('a') + link('b', '') + link('c') + joint('j1', 'revolute', 'a', 'b') +
