@@ -162,6 +162,20 @@ Matrix3 frame_with_z_along(const Vector3& a) {
   return R;
 }
 
+// The unit vector along a joint axis. The axis is first scaled by the power of two that
+// brings its largest component into [1, 2): exact, so the result is bit for bit
+// a / |a| wherever |a|^2 neither overflows nor underflows, and an axis of 1e200 is the
+// same axis as one of 1 (|a|^2 = inf made it 0, and the frame then fell back to z).
+// Axes shorter than 1e-12 are refused as zero.
+Vector3 unit_axis(const Vector3& a, const std::string& where) {
+  const double largest = a.cwiseAbs().maxCoeff();
+  if (largest == 0) throw Error(where + ": axis is zero");
+  const int e = std::ilogb(largest);
+  const Vector3 scaled(std::ldexp(a.x(), -e), std::ldexp(a.y(), -e), std::ldexp(a.z(), -e));
+  if (std::ldexp(scaled.norm(), e) < 1e-12) throw Error(where + ": axis is zero");
+  return scaled.normalized();
+}
+
 // The body of movable joint j, its frame the joint frame with z along the axis: X_tree
 // is the URDF joint origin (from the previous body's frame) turned by R_axis =
 // frame_with_z_along(axis), which is returned as well.
@@ -185,9 +199,7 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3
   }
   const urdf::Vector3& a = j.axis;
   if (!finite3(a.x, a.y, a.z)) throw Error(where + ": axis is not finite");
-  const Vector3 axis(a.x, a.y, a.z);
-  if (axis.norm() < 1e-12) throw Error(where + ": axis is zero");
-  R_axis = frame_with_z_along(axis.normalized());
+  R_axis = frame_with_z_along(unit_axis(Vector3(a.x, a.y, a.z), where));
   b.X_tree.R = X_tree.R * R_axis;
   if (j.limits && b.type != JointType::Continuous) {
     const urdf::JointLimits& l = *j.limits;

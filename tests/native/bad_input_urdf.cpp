@@ -1,5 +1,6 @@
 // Bad URDFs through the C++ API: load_urdf_string and load_urdf_file throw achd::Error
-// naming the source, the link or joint and the problem; massless links are valid.
+// naming the source, the link or joint and the problem; massless links and axes of any
+// length are valid.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -105,6 +106,28 @@ TEST(BadInputUrdf, NestingIsCountedAsTinyXmlReadsIt) {
   };
   for (const auto& [what, junk] : shallow)
     EXPECT_NO_THROW(load_urdf_string(robot(kOneJoint + junk), "a", "b")) << what;
+}
+
+Model one_joint_with_axis(const std::string& axis) {
+  return load_urdf_string(robot(link("a") + link("b", unit_inertial("2", "0.8", "0.1", "0.6")) +
+                                joint("j", "continuous", "a", "b", "<axis xyz=\"" + axis + "\"/>")),
+                          "a", "b");
+}
+
+// An axis whose |a|^2 overflows became the z axis; it is the same axis as a unit one,
+// bit for bit when it has one component, and axes shorter than 1e-12 are still zero.
+TEST(BadInputUrdf, AxisLengthDoesNotMatter) {
+  for (const auto& [huge, unit] : std::vector<std::pair<std::string, std::string>>{
+           {"1e200 0 0", "1 0 0"}, {"0 -1e300 0", "0 -1 0"}, {"0 0 1.7e308", "0 0 1"}, {"1e-11 0 0", "1 0 0"}}) {
+    const Model a = one_joint_with_axis(huge), b = one_joint_with_axis(unit);
+    EXPECT_EQ(a.bodies[0].X_tree.R, b.bodies[0].X_tree.R) << huge;
+    EXPECT_EQ(a.bodies[0].inertia, b.bodies[0].inertia) << huge;
+    EXPECT_EQ(a.links[0].offset.R, b.links[0].offset.R) << huge;
+  }
+  const Model a = one_joint_with_axis("3e200 4e200 0"), b = one_joint_with_axis("3 4 0");
+  EXPECT_TRUE(a.bodies[0].X_tree.R.isApprox(b.bodies[0].X_tree.R, 1e-15));
+  EXPECT_NE(error_of(robot(link("a") + link("b") + joint("j", "continuous", "a", "b", "<axis xyz=\"1e-13 0 0\"/>")),
+                     "a", "b").find("joint 'j': axis is zero"), std::string::npos);
 }
 
 }  // namespace

@@ -106,6 +106,15 @@ test('no failed load leaks', () => {
   assert.equal(achd.memoryBytes(), bytes);
 });
 
+test('an axis of length 1e200 is the same axis as one of length 1', () => {
+  const withAxis = (axis) => achd.loadURDF(robot(ab + joint('j', 'continuous', 'a', 'b', `<axis xyz="${axis}"/>`)),
+    { root: 'a', tip: 'b' });
+  const huge = withAxis('1e200 0 0'), unit = withAxis('1 0 0');
+  assert.deepEqual(huge.forwardKinematics([0.7]), unit.forwardKinematics([0.7]));
+  huge.delete();
+  unit.delete();
+});
+
 test('massless links in the middle of a chain are valid', () => {
   const m = achd.loadURDF(robot(link('a') + link('b', '') + link('c') + joint('j1', 'revolute', 'a', 'b') +
     '<joint name="j2" type="continuous"><parent link="b"/><child link="c"/><origin xyz="0.2 0 0"/>' +
