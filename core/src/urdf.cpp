@@ -146,7 +146,10 @@ Matrix6 link_inertia(const urdf::Link& link, const urdf::Vector3* rpy) {
                 std::to_string(m[0]) + ", " + std::to_string(m[1]) + ", " + std::to_string(m[2]) +
                 ")");
   const Transform com = to_transform(in.origin, rpy, where + " <inertial>");
-  return spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
+  const Matrix6 I = spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
+  if (!I.allFinite())
+    throw Error(where + ": <inertial> overflows: its inertia about the link frame is not finite");
+  return I;
 }
 
 // A rotation whose z column is the unit vector a: the smallest turn taking e_z to a,
@@ -252,14 +255,24 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
   int body = -1;
   for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
     const urdf::Joint& j = **it;
+    const std::string where = "joint '" + j.name + "'";
     const Transform X = offset * to_transform(j.parent_to_joint_origin_transform,
-                                              find_angles(angles.joint, j.name),
-                                              "joint '" + j.name + "'");
+                                              find_angles(angles.joint, j.name), where);
+    // Behind fixed joints, origins add up: their sum can overflow although each is finite.
+    if (!X.p.allFinite())
+      throw Error(where + ": origin overflows: its position from " +
+                  (body >= 0 ? "joint '" + model.bodies[body].joint_name + "'" : "the root link '" + root + "'") +
+                  " is not finite");
     const auto child = urdf_model.getLink(j.child_link_name);
     const Matrix6 inertia = link_inertia(*child, find_angles(angles.inertial, child->name));
     if (j.type == urdf::Joint::FIXED) {
       offset = X;  // the child rides on the current body
-      if (body >= 0) model.bodies[body].inertia += inertia_to_parent(offset, inertia);
+      if (body >= 0 && !inertia.isZero(0)) {  // a massless link adds nothing, wherever it is
+        model.bodies[body].inertia += inertia_to_parent(offset, inertia);
+        if (!model.bodies[body].inertia.allFinite())
+          throw Error(where + ": origin overflows: link '" + child->name + "' moved by it to joint '" +
+                      model.bodies[body].joint_name + "' has an inertia that is not finite");
+      }
     } else {
       Matrix3 R_axis;
       model.bodies.push_back(make_body(j, X, static_cast<int>(model.bodies.size()), R_axis));

@@ -24,6 +24,9 @@ const joint = (name, type, parent, child, extra = limit) =>
 const robot = (body) => `<robot name="r">${body}</robot>`;
 const ab = link('a') + link('b');
 const nested = (depth) => '<x>'.repeat(depth) + '</x>'.repeat(depth);
+const continuous = (name, parent, child, origin) =>
+  `<joint name="${name}" type="continuous"><parent link="${parent}"/><child link="${child}"/>` +
+  `<origin ${origin}/><axis xyz="0 0 1"/></joint>`;
 
 const badUrdfs = [
   ['malformed XML', '<robot name="r"><link name="a">', 'a', 'b', /cannot parse URDF/],
@@ -66,6 +69,28 @@ const badUrdfs = [
     /^URDF: cannot parse URDF: elements nested more than 100 deep \(line 1\)/],
   ['elements nested 50000 deep', robot(ab + joint('j', 'revolute', 'a', 'b') + nested(50000)), 'a', 'b',
     /nested more than 100 deep/],
+  ['a later coaxial joint, moved along and turned about the axis', robot(link('a') + link('b', '') + link('c') +
+    joint('j1', 'revolute', 'a', 'b') + continuous('j2', 'b', 'c', 'xyz="0 0 0.3" rpy="0 0 0.7"')), 'a', 'c',
+  /joint 'j1' moves nothing/],
+  ['three parallel joints on one line with massless links between', robot(link('a') + link('b', '') + link('c', '') +
+    link('d') + joint('j1', 'revolute', 'a', 'b') + joint('j2', 'revolute', 'b', 'c') + joint('j3', 'revolute', 'c', 'd')),
+  'a', 'd', /joint 'j1' moves nothing/],
+  ['joints 1e200 m apart', robot(ab + link('c') + joint('j1', 'revolute', 'a', 'b') +
+    continuous('j2', 'b', 'c', 'xyz="1e200 0 0"')), 'a', 'c', /joint 'j2': origin overflows.*moved to joint 'j1'/],
+  ['positions that add up past the largest double', robot(link('a') + link('b') + link('c') +
+    continuous('j1', 'a', 'b', 'xyz="1e308 0 0"') + continuous('j2', 'b', 'c', 'xyz="1e308 0 0"')), 'a', 'c',
+  /joint 'j2': origin overflows: its position from the root/],
+  ['a link fixed 1e200 m away', robot(ab + link('c') + joint('j', 'revolute', 'a', 'b') +
+    '<joint name="f" type="fixed"><parent link="b"/><child link="c"/><origin xyz="1e200 0 0"/></joint>'), 'a', 'c',
+  /joint 'f': origin overflows: link 'c' moved by it to joint 'j'/],
+  ['fixed origins that add up past the largest double', robot(ab + link('c', '') + link('d', '') +
+    joint('j', 'revolute', 'a', 'b') +
+    '<joint name="f1" type="fixed"><parent link="b"/><child link="c"/><origin xyz="1e308 0 0"/></joint>' +
+    '<joint name="f2" type="fixed"><parent link="c"/><child link="d"/><origin xyz="1e308 0 0"/></joint>'), 'a', 'd',
+  /joint 'f2': origin overflows: its position from joint 'j' is not finite/],
+  ['an inertial origin 1e200 m away', robot(link('a') + link('b', '<inertial><origin xyz="0 1e200 0"/><mass value="1"/>' +
+    '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>') + joint('j', 'revolute', 'a', 'b')), 'a', 'b',
+  /link 'b': <inertial> overflows/],
 ];
 
 for (const [what, xml, root, tip, message] of badUrdfs) {
