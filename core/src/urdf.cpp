@@ -125,8 +125,9 @@ Matrix6 link_inertia(const urdf::Link& link, const urdf::Vector3* rpy) {
   if (!link.inertial) return Matrix6::Zero();  // massless link: valid
   const urdf::Inertial& in = *link.inertial;
   const std::string where = "link '" + link.name + "'";
-  // The messages name the field and its value as urdfdom's own do (native urdfdom
-  // rejects "nan" itself; the wasm build's parser accepts it and these checks catch it).
+  // The messages name the field and its value as urdfdom's own do (urdfdom refuses
+  // "nan" and "inf" itself, natively and in wasm, see wasm/urdfdom_shim; these checks
+  // keep non-finite numbers out whatever its parser lets through).
   if (!std::isfinite(in.mass))
     throw Error(where + ": mass [" + std::to_string(in.mass) + "] is not finite");
   if (in.mass < 0) throw Error(where + ": negative mass " + std::to_string(in.mass));

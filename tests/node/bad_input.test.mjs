@@ -1,11 +1,13 @@
 // Issue 7's bad-input list through JS: every kind throws an Error whose message names
 // the problem (the same list as tests/native/bad_input_urdfs.hpp for the C++ API and
 // the CLI), massless links load, and NaN/Infinity in every case field name the field.
-// Issue 13: no failed load leaks or breaks the module.
+// Issue 13: no failed load leaks or breaks the module; the wasm loader reads the same
+// numbers as the native one.
 import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
 import { before, test } from 'node:test';
 
-import { loadAchd, robots } from './helpers.mjs';
+import { loadAchd, nativeCli, robots, scratchDir } from './helpers.mjs';
 
 let achd, kuka, entry;
 before(async () => {
@@ -17,6 +19,9 @@ before(async () => {
 const inertial = (mass = '1', ixx = '1', ixy = '0', izz = '1') =>
   `<inertial><mass value="${mass}"/><inertia ixx="${ixx}" ixy="${ixy}" ixz="0" iyy="1" iyz="0" izz="${izz}"/></inertial>`;
 const link = (name, body = inertial()) => `<link name="${name}">${body}</link>`;
+// Mass x and principal moments x.
+const diagonalInertial = (x) =>
+  `<inertial><mass value="${x}"/><inertia ixx="${x}" ixy="0" ixz="0" iyy="${x}" iyz="0" izz="${x}"/></inertial>`;
 const limit = '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>';
 const joint = (name, type, parent, child, extra = limit) =>
   `<joint name="${name}" type="${type}"><parent link="${parent}"/><child link="${child}"/>` +
@@ -129,6 +134,51 @@ test('no failed load leaks', () => {
   const bytes = achd.memoryBytes();
   for (let k = 0; k < 4; ++k) round();
   assert.equal(achd.memoryBytes(), bytes);
+});
+
+// The wasm build parsed numbers with libc++, which refuses an underflow (4e-320, a
+// denormal; 1e-400) and accepts nan, inf and hex floats, unlike the native urdfdom.
+test('the wasm loader reads the same numbers as the native one', () => {
+  const cli = nativeCli();
+  const scratch = scratchDir();
+  try {
+    const c = scratch.write('case.json', '{"q": [0.3], "gravity": [0, 0, -9.81]}');
+    for (const x of ['4e-320', '1e-400', '-1e-400', '2.2250738585072014e-308', ' 1', '+1', '1.', '.5', '1e',
+      'nan', 'inf', '-inf', '0x1p3', '1,5', '1e400']) {
+      const xml = robot(link('a') + link('b', diagonalInertial(x)) + joint('j', 'revolute', 'a', 'b'));
+      let native;
+      try {
+        execFileSync(cli, ['solve', scratch.write('r.urdf', xml), '--root', 'a', '--tip', 'b', '--case', c],
+          { stdio: 'pipe' });
+        native = 'loads';
+      } catch (e) {
+        native = /cannot parse URDF/.test(e.stderr.toString()) ? 'parse error' : 'loads';
+      }
+      let wasm;
+      try {
+        achd.loadURDF(xml, { root: 'a', tip: 'b' }).delete();
+        wasm = 'loads';
+      } catch (e) {
+        wasm = /cannot parse URDF/.test(e.message) ? 'parse error' : 'loads';
+      }
+      assert.equal(wasm, native, `mass and inertia ${x}`);
+    }
+  } finally {
+    scratch.remove();
+  }
+});
+
+test('a denormal mass loads, and solving it gives finite numbers or an Error naming a joint', () => {
+  const r = achd.loadURDF(robot(link('a') + link('b', diagonalInertial('4e-320')) + joint('j', 'revolute', 'a', 'b')),
+    { root: 'a', tip: 'b' });
+  try {
+    const out = r.solve({ q: [0.3], gravity: [0, 0, -9.81] });
+    assert.ok(Array.from(out.qdd).every(Number.isFinite));
+  } catch (e) {
+    assert.ok(e instanceof Error && /joint 'j'/.test(e.message), e.message);
+  } finally {
+    r.delete();
+  }
 });
 
 test('an axis of length 1e200 is the same axis as one of length 1', () => {
