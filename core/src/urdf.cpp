@@ -228,7 +228,8 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3
 }
 
 Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
-            const std::string& root, const std::string& tip, const std::string& source) {
+            const std::string& root, const std::string& tip, const UrdfOptions& options,
+            const std::string& source) {
   const auto root_link = urdf_model.getLink(root);
   if (!root_link) throw Error(source + ": unknown root link '" + root + "'");
   const auto tip_link = urdf_model.getLink(tip);
@@ -257,6 +258,10 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
   for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
     const urdf::Joint& j = **it;
     const std::string where = "joint '" + j.name + "'";
+    if (j.mimic && j.type != urdf::Joint::FIXED && options.mimic == MimicJoints::Error)
+      throw Error(where + ": <mimic> of joint '" + j.mimic->joint_name +
+                  "': achd has no coupled joints; load with the mimic option 'independent' "
+                  "(CLI --mimic independent) to make it a joint of its own, as KDL does");
     const Transform X = offset * to_transform(j.parent_to_joint_origin_transform,
                                               find_angles(angles.joint, j.name), where);
     // Behind fixed joints, origins add up: their sum can overflow although each is finite.
@@ -291,7 +296,7 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
 
 // Every message starts with the source (file path or "URDF").
 Model load(const std::string& text, const std::string& root, const std::string& tip,
-           const std::string& source) {
+           const UrdfOptions& options, const std::string& source) {
   const std::size_t too_deep = xml_too_deep_at(text, kMaxUrdfNesting);
   if (too_deep != std::string::npos)
     throw Error(source + ": cannot parse URDF: elements nested more than " + std::to_string(kMaxUrdfNesting) +
@@ -321,7 +326,7 @@ Model load(const std::string& text, const std::string& root, const std::string& 
   if (!parsed || !why.empty())
     throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
   try {
-    return build(*parsed, read_origin_angles(xml), root, tip, source);
+    return build(*parsed, read_origin_angles(xml), root, tip, options, source);
   } catch (const Error& e) {
     const std::string msg = e.what();
     throw Error(msg.rfind(source + ":", 0) == 0 ? msg : source + ": " + msg);
@@ -330,16 +335,28 @@ Model load(const std::string& text, const std::string& root, const std::string& 
 
 }  // namespace
 
-Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip) {
-  return load(xml, root, tip, "URDF");
+const char* mimic_joints_name(MimicJoints mimic) {
+  return mimic == MimicJoints::Independent ? "independent" : "error";
 }
 
-Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip) {
+MimicJoints mimic_joints_from_name(const std::string& name, const std::string& field) {
+  for (MimicJoints m : {MimicJoints::Error, MimicJoints::Independent})
+    if (name == mimic_joints_name(m)) return m;
+  throw Error(field + ": expected 'error' or 'independent', got '" + name + "'");
+}
+
+Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip,
+                       const UrdfOptions& options) {
+  return load(xml, root, tip, options, "URDF");
+}
+
+Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip,
+                     const UrdfOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open file");
   std::ostringstream text;
   text << in.rdbuf();
-  return load(text.str(), root, tip, path);
+  return load(text.str(), root, tip, options, path);
 }
 
 }  // namespace achd

@@ -1,6 +1,6 @@
 // Bad URDFs through the C++ API: load_urdf_string and load_urdf_file throw achd::Error
-// naming the source, the link or joint and the problem; massless links, long chains and
-// axes of any length are valid.
+// naming the source, the link or joint and the problem; massless links, long chains,
+// axes of any length and (on request) mimic joints are valid.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -153,6 +153,36 @@ TEST(BadInputUrdf, LongChainLoadsAndSolvesFinitely) {
   Data d(m);
   hybrid_dynamics(m, d, c);
   EXPECT_TRUE(d.qdd.allFinite());
+}
+
+// A <mimic> joint on the chain is refused unless asked for as an independent joint; one
+// off the chain does not matter.
+TEST(BadInputUrdf, MimicJointsAreIndependentOnlyOnRequest) {
+  const std::string limit = "<axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>";
+  const std::string body = link("a") + link("b") + link("c") + link("d") + joint("j1", "revolute", "a", "b") +
+                           joint("j3", "revolute", "a", "d", limit + "<mimic joint=\"j1\"/>");
+  const std::string with = robot(body + joint("j2", "revolute", "b", "c", limit + "<mimic joint=\"j1\" multiplier=\"2\"/>"));
+  const std::string without = robot(body + joint("j2", "revolute", "b", "c", limit));
+  EXPECT_EQ(error_of(with, "a", "c"),
+            "URDF: joint 'j2': <mimic> of joint 'j1': achd has no coupled joints; load with the mimic option "
+            "'independent' (CLI --mimic independent) to make it a joint of its own, as KDL does");
+  UrdfOptions independent;
+  independent.mimic = MimicJoints::Independent;
+  const Model m = load_urdf_string(with, "a", "c", independent), plain = load_urdf_string(without, "a", "c");
+  ASSERT_EQ(m.num_joints(), 2);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(m.bodies[i].X_tree.R, plain.bodies[i].X_tree.R);
+    EXPECT_EQ(m.bodies[i].X_tree.p, plain.bodies[i].X_tree.p);
+    EXPECT_EQ(m.bodies[i].inertia, plain.bodies[i].inertia);
+  }
+  EXPECT_NO_THROW(load_urdf_string(with, "a", "b"));  // j3 and j2 are off the chain a -> b
+  EXPECT_EQ(mimic_joints_from_name("independent", "mimic"), MimicJoints::Independent);
+  try {
+    mimic_joints_from_name("couple", "mimic");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "mimic: expected 'error' or 'independent', got 'couple'");
+  }
 }
 
 }  // namespace

@@ -138,6 +138,11 @@ inline std::vector<BadUrdf> bad_urdfs() {
                                    "ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>") +
              joint("j", "revolute", "a", "b")),
        "a", "b", {"link 'b': <inertial> overflows"}},
+      {"mimic joint", robot(ab + link("c") + joint("j1", "revolute", "a", "b") +
+                            joint("j2", "revolute", "b", "c",
+                                  "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>"
+                                  "<mimic joint=\"j1\" multiplier=\"-1\"/>")),
+       "a", "c", {"joint 'j2': <mimic> of joint 'j1'", "mimic option 'independent'"}},
   };
 }
 

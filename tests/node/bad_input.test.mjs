@@ -2,7 +2,7 @@
 // the problem (the same list as tests/native/bad_input_urdfs.hpp for the C++ API and
 // the CLI), massless links load, and NaN/Infinity in every case field name the field.
 // Issue 13: no failed load leaks or breaks the module; the wasm loader reads the same
-// numbers as the native one.
+// numbers as the native one; mimic joints load only when asked for.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { before, test } from 'node:test';
@@ -96,6 +96,9 @@ const badUrdfs = [
   ['an inertial origin 1e200 m away', robot(link('a') + link('b', '<inertial><origin xyz="0 1e200 0"/><mass value="1"/>' +
     '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>') + joint('j', 'revolute', 'a', 'b')), 'a', 'b',
   /link 'b': <inertial> overflows/],
+  ['mimic joint', robot(ab + link('c') + joint('j1', 'revolute', 'a', 'b') +
+    joint('j2', 'revolute', 'b', 'c', `${limit}<mimic joint="j1" multiplier="-1"/>`)), 'a', 'c',
+  /joint 'j2': <mimic> of joint 'j1'.*mimic option 'independent'/],
 ];
 
 for (const [what, xml, root, tip, message] of badUrdfs) {
@@ -179,6 +182,21 @@ test('a denormal mass loads, and solving it gives finite numbers or an Error nam
   } finally {
     r.delete();
   }
+});
+
+test('mimic joints load as independent joints only with mimic: \'independent\'', () => {
+  const body = ab + link('c') + joint('j1', 'revolute', 'a', 'b');
+  const xml = robot(body + joint('j2', 'revolute', 'b', 'c', `${limit}<mimic joint="j1"/>`));
+  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c' }), /joint 'j2': <mimic> of joint 'j1'/);
+  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'error' }), /<mimic>/);
+  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'couple' }),
+    /loadURDF: options.mimic: expected 'error' or 'independent', got 'couple'/);
+  const m = achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'independent' });
+  const plain = achd.loadURDF(robot(body + joint('j2', 'revolute', 'b', 'c')), { root: 'a', tip: 'c' });
+  const c = { q: [0.2, -0.4], gravity: [0, 0, -9.81] };
+  assert.deepEqual(Array.from(m.solve(c).qdd), Array.from(plain.solve(c).qdd));
+  m.delete();
+  plain.delete();
 });
 
 test('an axis of length 1e200 is the same axis as one of length 1', () => {
