@@ -143,7 +143,8 @@ TEST(BadInputUrdf, LongChainLoadsAndSolvesFinitely) {
   }
   const auto start = std::chrono::steady_clock::now();
   const Model m = load_urdf_string(chain_urdf(links), "link0", "link10000");
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10);
+  // ~0.7 s in Release, ~6 s under ASan: linear; a quadratic check would take minutes.
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30);
   ASSERT_EQ(m.num_joints(), 10000);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
