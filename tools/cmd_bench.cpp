@@ -1,5 +1,6 @@
 // achd bench ROBOT.urdf --root LINK --tip LINK --case CASE.json [--iterations N]
-//            [--repeats R] [--clock cpu|wall] [--against kdl] [solver options]
+//            [--repeats R] [--clock cpu|wall] [--against kdl] [--mimic error|independent]
+//            [solver options]
 // Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R rounds of N
 // calls (default: about 2 ms per round, 51 rounds) after a warm-up round; with --against
 // kdl also KDL's ChainHdSolver_Vereshchagin on the same chain and case, timed in the same
@@ -13,6 +14,7 @@
 #include "case_json.hpp"
 #include "commands.hpp"
 #include "timing.hpp"
+#include "urdf_options.hpp"
 #ifdef ACHD_HAVE_KDL
 #include "kdl_problem.hpp"
 #endif
@@ -22,12 +24,13 @@ namespace achd::cli {
 int cmd_bench(int argc, char** argv) {
   std::set<std::string> valued = {"--root", "--tip", "--case", "--iterations", "--repeats", "--against", "--clock"};
   valued.insert(kSolverValued.begin(), kSolverValued.end());
+  valued.insert(kUrdfValued.begin(), kUrdfValued.end());
   const Args args(argc, argv, valued, kSolverFlags);
   if (args.positional().size() != 1) throw Error("bench: expected one URDF file, see `achd help`");
   const Options options = solver_options(args);
   const std::string urdf = args.positional()[0];
   const std::string root = args.get("--root"), tip = args.get("--tip");
-  const Model model = load_urdf_file(urdf, root, tip);
+  const Model model = load_urdf_file(urdf, root, tip, urdf_options(args));
   const std::string case_path = args.get("--case");
   const Case c = parse_case(case_path == "-" ? read_file("/dev/stdin") : read_file(case_path), model,
                             case_path);

@@ -1,20 +1,23 @@
-// achd solve ROBOT.urdf --root LINK --tip LINK --case CASE.json [solver options]
+// achd solve ROBOT.urdf --root LINK --tip LINK --case CASE.json [--mimic error|independent]
+//            [solver options]
 #include <iostream>
 
 #include "args.hpp"
 #include "case_json.hpp"
 #include "commands.hpp"
+#include "urdf_options.hpp"
 
 namespace achd::cli {
 
 int cmd_solve(int argc, char** argv) {
   std::set<std::string> valued = {"--root", "--tip", "--case"};
   valued.insert(kSolverValued.begin(), kSolverValued.end());
+  valued.insert(kUrdfValued.begin(), kUrdfValued.end());
   const Args args(argc, argv, valued, kSolverFlags);
   if (args.positional().size() != 1) throw Error("solve: expected one URDF file, see `achd help`");
   const Options options = solver_options(args);
   const std::string urdf = args.positional()[0];
-  const Model model = load_urdf_file(urdf, args.get("--root"), args.get("--tip"));
+  const Model model = load_urdf_file(urdf, args.get("--root"), args.get("--tip"), urdf_options(args));
   const std::string case_path = args.get("--case");
   const std::string text = case_path == "-" ? read_file("/dev/stdin") : read_file(case_path);
   const Case c = parse_case(text, model, case_path);

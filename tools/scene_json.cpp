@@ -161,12 +161,14 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions",
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
-                       "rotor_inertia"});
+                       "rotor_inertia", "mimic"});
     if (j.contains("description")) text(j["description"], "description");
     s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
     s.root = text(required(j, "root"), "root");
     s.tip = text(required(j, "tip"), "tip");
-    s.model = load_urdf_file(s.urdf, s.root, s.tip);
+    UrdfOptions urdf_options;
+    if (j.contains("mimic")) urdf_options.mimic = mimic_joints_from_name(text(j["mimic"], "mimic"), "mimic");
+    s.model = load_urdf_file(s.urdf, s.root, s.tip, urdf_options);
     const int n = s.model.num_joints();
     s.q0 = vector(required(j, "q0"), "q0", n);
     s.qd0 = j.contains("qd0") ? vector(j["qd0"], "qd0", n) : Eigen::VectorXd::Zero(n);

@@ -246,8 +246,16 @@ export interface Robot {
   delete(): void;
 }
 
+export interface LoadOptions {
+  root: string;
+  tip: string;
+  /** a joint of the chain with a <mimic> element: an Error naming it ('error', the
+   * default) or a joint of its own, as KDL loads it ('independent'). */
+  mimic?: 'error' | 'independent';
+}
+
 export interface Achd {
-  loadURDF(text: string, options: { root: string; tip: string }): Robot;
+  loadURDF(text: string, options: LoadOptions): Robot;
   /** bytes of wasm memory (grows, never shrinks). */
   memoryBytes(): number;
   /** the effect bits, for SolveOptions.effects as a number. */

@@ -57,4 +57,8 @@ target_include_directories(achd_urdfdom SYSTEM PUBLIC
   ${_tinyxml})
 # TinyXML with std::string (as Debian builds it); third-party code, no achd warnings.
 target_compile_definitions(achd_urdfdom PUBLIC TIXML_USE_STL)
+# Numbers read as native urdfdom reads them (see the file), in urdfdom and in achd's
+# loader, which reads the rpy attributes with urdf_model's Vector3::init.
+target_compile_options(achd_urdfdom PUBLIC
+  "SHELL:-include ${CMAKE_CURRENT_LIST_DIR}/urdfdom_shim/urdf_model_utils.hpp")
 target_compile_options(achd_urdfdom PRIVATE -w)

@@ -1,13 +1,13 @@
 #include "achd/model.hpp"
 
 #include <cmath>
-#include <limits>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
-#include "joint.hpp"
+#include "free_motions.hpp"
 
 namespace achd {
 
@@ -46,43 +46,30 @@ namespace {
 
 bool finite(const Matrix6& m) { return m.allFinite(); }
 
-// The trace of the rotational (revolute) or linear (prismatic) 3x3 block of a spatial
-// inertia about its frame origin: the size of what a joint of that type could move.
-double block_trace(const Body& b, const Matrix6& I) {
-  return b.type == JointType::Prismatic ? I.topLeftCorner<3, 3>().trace()
-                                        : I.bottomRightCorner<3, 3>().trace();
-}
-
-// A joint moves nothing when D_i = S^T IA_i S vanishes: when nothing after it has inertia
-// along its motion (M_ii = S^T Ic_i S = 0) or later joints free that motion again. An
-// exact zero comes out of the sweeps as the round-off of the terms they accumulate, at
-// most ~ n eps times their size (the composite inertia Ic_i for M_ii, M_ii for D_i);
-// 100 n eps leaves a margin of 100. A genuine D can be far below M_ii: a light link
-// ahead of a chain 1e12 times heavier gives D / M_ii ~ 1e-10, a valid (badly
-// conditioned) robot. Inward sweep, from the tip (RBDA 6.2 and 7.3):
-//   Ic_i = I_i + X^T Ic_{i+1} X,   IA_i = I_i + X^T (IA_{i+1} - U U^T / D_{i+1}) X,
-//   U = IA_i S,  D_i = S^T U,  M_ii = S^T Ic_i S.
-void check_joints_move_something(const Model& model, const Eigen::VectorXd& q) {
+// Origins whose shifts overflow: every body's position from the root and every composite
+// inertia (what a joint carries, moved to the joint before it) must be finite at q. Each
+// origin and inertia is finite on its own (checked before); their sums and the shift's
+// m |p|^2 can still overflow (two joints 1e200 m apart). Names the joint whose origin
+// made the number overflow.
+void check_no_overflow(const Model& model, const Eigen::VectorXd& q) {
   const int n = model.num_joints();
-  const double round_off = 100 * n * std::numeric_limits<double>::epsilon();
-  Matrix6 Ic = Matrix6::Zero(), Ia = Matrix6::Zero();  // of body i+1, in its own frame
+  std::vector<Transform> X(n);
+  Transform pose;  // of body i in the root frame
+  for (int i = 0; i < n; ++i) {
+    X[i] = joint_transform(model.bodies[i], q[i]);
+    pose = pose * X[i];
+    if (!pose.p.allFinite())
+      throw Error("joint '" + model.bodies[i].joint_name +
+                  "': origin overflows: its position from the root is not finite");
+  }
+  Matrix6 Ic = Matrix6::Zero();  // composite inertia of bodies i.. in body i's frame
   for (int i = n - 1; i >= 0; --i) {
-    const Body& b = model.bodies[i];
-    Matrix6 IA = b.inertia;
-    Matrix6 IC = b.inertia;
-    if (i < n - 1) {
-      const Transform X = joint_transform(model.bodies[i + 1], q[i + 1]);
-      IA += inertia_to_parent(X, Ia);
-      IC += inertia_to_parent(X, Ic);
-    }
-    const Vector6 S = subspace_times(b, 1.0);
-    const Vector6 U = IA * S;
-    const double D = S.dot(U), M_ii = S.dot(IC * S);
-    if (!(M_ii > round_off * block_trace(b, IC)) || !(D > round_off * M_ii))
-      throw Error("joint '" + b.joint_name + "' moves nothing: the links after it have no mass "
-                  "or inertia along its motion (D = S^T IA S = 0)");
-    Ia = IA - U * U.transpose() / D;
-    Ic = IC;
+    Matrix6 next = model.bodies[i].inertia;
+    if (i < n - 1) add_inertia_to_parent(X[i + 1], Ic, next);
+    if (!finite(next))
+      throw Error("joint '" + model.bodies[i + 1].joint_name + "': origin overflows: the inertia of the "
+                  "links after it, moved to joint '" + model.bodies[i].joint_name + "', is not finite");
+    Ic = next;
   }
 }
 
@@ -114,14 +101,19 @@ void validate(const Model& model) {
   if (model.links.empty() || model.links.back().name != model.tip_name)
     throw Error("the model's last link must be the tip '" + model.tip_name + "'");
   // Two configurations: the zero pose and a generic one (within limits).
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.num_joints());
-  check_joints_move_something(model, q);
+  Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.num_joints()), generic(model.num_joints());
   for (int i = 0; i < model.num_joints(); ++i) {
     const JointLimits& l = model.bodies[i].limits;
     const double lo = std::max(l.lower, -3.0), hi = std::min(l.upper, 3.0);
-    q[i] = lo + (0.3 + 0.37 * ((i * 7) % 5) / 4.0) * (hi - lo);
+    generic[i] = lo + (0.3 + 0.37 * ((i * 7) % 5) / 4.0) * (hi - lo);
   }
-  check_joints_move_something(model, q);
+  for (const Eigen::VectorXd* q : {&zero, &generic}) {
+    check_no_overflow(model, *q);
+    const int i = joint_moving_nothing(model, *q);
+    if (i >= 0)
+      throw Error("joint '" + model.bodies[i].joint_name + "' moves nothing: the links after it have no "
+                  "mass or inertia along its motion, or later joints take that motion up (D = S^T IA S = 0)");
+  }
 }
 
 }  // namespace achd

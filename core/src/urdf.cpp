@@ -2,6 +2,7 @@
 // chain root -> tip, merging links behind fixed joints into the body before them.
 #include "achd/urdf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -16,6 +17,7 @@
 
 #include "achd/error.hpp"
 #include "sin_cos.hpp"
+#include "xml_depth.hpp"
 
 namespace achd {
 namespace {
@@ -123,8 +125,9 @@ Matrix6 link_inertia(const urdf::Link& link, const urdf::Vector3* rpy) {
   if (!link.inertial) return Matrix6::Zero();  // massless link: valid
   const urdf::Inertial& in = *link.inertial;
   const std::string where = "link '" + link.name + "'";
-  // The messages name the field and its value as urdfdom's own do (native urdfdom
-  // rejects "nan" itself; the wasm build's parser accepts it and these checks catch it).
+  // The messages name the field and its value as urdfdom's own do (urdfdom refuses
+  // "nan" and "inf" itself, natively and in wasm, see wasm/urdfdom_shim; these checks
+  // keep non-finite numbers out whatever its parser lets through).
   if (!std::isfinite(in.mass))
     throw Error(where + ": mass [" + std::to_string(in.mass) + "] is not finite");
   if (in.mass < 0) throw Error(where + ": negative mass " + std::to_string(in.mass));
@@ -144,7 +147,10 @@ Matrix6 link_inertia(const urdf::Link& link, const urdf::Vector3* rpy) {
                 std::to_string(m[0]) + ", " + std::to_string(m[1]) + ", " + std::to_string(m[2]) +
                 ")");
   const Transform com = to_transform(in.origin, rpy, where + " <inertial>");
-  return spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
+  const Matrix6 I = spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
+  if (!I.allFinite())
+    throw Error(where + ": <inertial> overflows: its inertia about the link frame is not finite");
+  return I;
 }
 
 // A rotation whose z column is the unit vector a: the smallest turn taking e_z to a,
@@ -158,6 +164,20 @@ Matrix3 frame_with_z_along(const Vector3& a) {
   Matrix3 R = Matrix3::Identity() + vx + vx * vx / (1 + b.z());
   if (a.z() < 0) R.rightCols<2>() = -R.rightCols<2>();  // R diag(1, -1, -1)
   return R;
+}
+
+// The unit vector along a joint axis. The axis is first scaled by the power of two that
+// brings its largest component into [1, 2): exact, so the result is bit for bit
+// a / |a| wherever |a|^2 neither overflows nor underflows, and an axis of 1e200 is the
+// same axis as one of 1 (|a|^2 = inf made it 0, and the frame then fell back to z).
+// Axes shorter than 1e-12 are refused as zero.
+Vector3 unit_axis(const Vector3& a, const std::string& where) {
+  const double largest = a.cwiseAbs().maxCoeff();
+  if (largest == 0) throw Error(where + ": axis is zero");
+  const int e = std::ilogb(largest);
+  const Vector3 scaled(std::ldexp(a.x(), -e), std::ldexp(a.y(), -e), std::ldexp(a.z(), -e));
+  if (std::ldexp(scaled.norm(), e) < 1e-12) throw Error(where + ": axis is zero");
+  return scaled.normalized();
 }
 
 // The body of movable joint j, its frame the joint frame with z along the axis: X_tree
@@ -183,9 +203,7 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3
   }
   const urdf::Vector3& a = j.axis;
   if (!finite3(a.x, a.y, a.z)) throw Error(where + ": axis is not finite");
-  const Vector3 axis(a.x, a.y, a.z);
-  if (axis.norm() < 1e-12) throw Error(where + ": axis is zero");
-  R_axis = frame_with_z_along(axis.normalized());
+  R_axis = frame_with_z_along(unit_axis(Vector3(a.x, a.y, a.z), where));
   b.X_tree.R = X_tree.R * R_axis;
   if (j.limits && b.type != JointType::Continuous) {
     const urdf::JointLimits& l = *j.limits;
@@ -210,7 +228,8 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3
 }
 
 Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
-            const std::string& root, const std::string& tip, const std::string& source) {
+            const std::string& root, const std::string& tip, const UrdfOptions& options,
+            const std::string& source) {
   const auto root_link = urdf_model.getLink(root);
   if (!root_link) throw Error(source + ": unknown root link '" + root + "'");
   const auto tip_link = urdf_model.getLink(tip);
@@ -238,14 +257,28 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
   int body = -1;
   for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
     const urdf::Joint& j = **it;
+    const std::string where = "joint '" + j.name + "'";
+    if (j.mimic && j.type != urdf::Joint::FIXED && options.mimic == MimicJoints::Error)
+      throw Error(where + ": <mimic> of joint '" + j.mimic->joint_name +
+                  "': achd has no coupled joints; load with the mimic option 'independent' "
+                  "(CLI --mimic independent) to make it a joint of its own, as KDL does");
     const Transform X = offset * to_transform(j.parent_to_joint_origin_transform,
-                                              find_angles(angles.joint, j.name),
-                                              "joint '" + j.name + "'");
+                                              find_angles(angles.joint, j.name), where);
+    // Behind fixed joints, origins add up: their sum can overflow although each is finite.
+    if (!X.p.allFinite())
+      throw Error(where + ": origin overflows: its position from " +
+                  (body >= 0 ? "joint '" + model.bodies[body].joint_name + "'" : "the root link '" + root + "'") +
+                  " is not finite");
     const auto child = urdf_model.getLink(j.child_link_name);
     const Matrix6 inertia = link_inertia(*child, find_angles(angles.inertial, child->name));
     if (j.type == urdf::Joint::FIXED) {
       offset = X;  // the child rides on the current body
-      if (body >= 0) model.bodies[body].inertia += inertia_to_parent(offset, inertia);
+      if (body >= 0 && !inertia.isZero(0)) {  // a massless link adds nothing, wherever it is
+        model.bodies[body].inertia += inertia_to_parent(offset, inertia);
+        if (!model.bodies[body].inertia.allFinite())
+          throw Error(where + ": origin overflows: link '" + child->name + "' moved by it to joint '" +
+                      model.bodies[body].joint_name + "' has an inertia that is not finite");
+      }
     } else {
       Matrix3 R_axis;
       model.bodies.push_back(make_body(j, X, static_cast<int>(model.bodies.size()), R_axis));
@@ -262,8 +295,16 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
 }
 
 // Every message starts with the source (file path or "URDF").
-Model load(const std::string& xml, const std::string& root, const std::string& tip,
-           const std::string& source) {
+Model load(const std::string& text, const std::string& root, const std::string& tip,
+           const UrdfOptions& options, const std::string& source) {
+  const std::size_t too_deep = xml_too_deep_at(text, kMaxUrdfNesting);
+  if (too_deep != std::string::npos)
+    throw Error(source + ": cannot parse URDF: elements nested more than " + std::to_string(kMaxUrdfNesting) +
+                " deep (line " + std::to_string(1 + std::count(text.begin(), text.begin() + too_deep, '\n')) +
+                "), which achd refuses: its XML parser recurses once per level");
+  // TinyXML steps over a UTF-8 sequence's length from its lead byte without looking for
+  // the end of the text: three more NULs keep a lead byte at the end from reading past it.
+  const std::string xml = text + std::string(3, '\0');
   std::string why;
   const auto parsed = parse(xml, why);
   // urdfdom links point to their children and parent joints by shared_ptr: a cycle in
@@ -285,7 +326,7 @@ Model load(const std::string& xml, const std::string& root, const std::string& t
   if (!parsed || !why.empty())
     throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
   try {
-    return build(*parsed, read_origin_angles(xml), root, tip, source);
+    return build(*parsed, read_origin_angles(xml), root, tip, options, source);
   } catch (const Error& e) {
     const std::string msg = e.what();
     throw Error(msg.rfind(source + ":", 0) == 0 ? msg : source + ": " + msg);
@@ -294,16 +335,28 @@ Model load(const std::string& xml, const std::string& root, const std::string& t
 
 }  // namespace
 
-Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip) {
-  return load(xml, root, tip, "URDF");
+const char* mimic_joints_name(MimicJoints mimic) {
+  return mimic == MimicJoints::Independent ? "independent" : "error";
 }
 
-Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip) {
+MimicJoints mimic_joints_from_name(const std::string& name, const std::string& field) {
+  for (MimicJoints m : {MimicJoints::Error, MimicJoints::Independent})
+    if (name == mimic_joints_name(m)) return m;
+  throw Error(field + ": expected 'error' or 'independent', got '" + name + "'");
+}
+
+Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip,
+                       const UrdfOptions& options) {
+  return load(xml, root, tip, options, "URDF");
+}
+
+Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip,
+                     const UrdfOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open file");
   std::ostringstream text;
   text << in.rdbuf();
-  return load(text.str(), root, tip, path);
+  return load(text.str(), root, tip, options, path);
 }
 
 }  // namespace achd

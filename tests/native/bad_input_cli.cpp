@@ -37,12 +37,14 @@ std::string write(const std::string& name, const std::string& text) {
   return path;
 }
 
-Run solve(const std::string& args) {
+Run achd(const std::string& command, const std::string& args) {
   const std::string out = temp("stdout"), err = temp("stderr");
-  const std::string cmd = std::string(ACHD_CLI) + " solve " + args + " >" + out + " 2>" + err;
+  const std::string cmd = std::string(ACHD_CLI) + " " + command + " " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
+
+Run solve(const std::string& args) { return achd("solve", args); }
 
 // Exit 2, empty stdout, one stderr line starting "achd: error: " containing each part.
 void expect_refused(const Run& r, const std::vector<std::string>& parts, const std::string& what) {
@@ -112,6 +114,46 @@ TEST(BadInputCli, BadOptionsNameTheOption) {
   for (const auto& [opts, part] : cases)
     expect_refused(solve(kKukaChain + " --case " + ok_case + " " + opts), {part}, opts);
   expect_refused(solve(kKuka + " --root lwr_base_link --case " + ok_case), {"--tip"}, "no --tip");
+}
+
+// A chain a -> b -> c whose second joint mimics the first.
+std::string mimic_urdf() {
+  const std::string limit = "<axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>";
+  return write("mimic.urdf", robot(link("a") + link("b") + link("c") + joint("j1", "revolute", "a", "b", limit) +
+                                   joint("j2", "revolute", "b", "c", limit + "<mimic joint=\"j1\"/>")));
+}
+
+TEST(BadInputCli, MimicJointsLoadOnlyWithMimicIndependent) {
+  const std::string urdf = mimic_urdf() + " --root a --tip c";
+  const std::string c = write("mimic_case.json", "{\"q\": [0.1, 0.2], \"gravity\": [0, 0, -9.81]}");
+  expect_refused(solve(urdf + " --case " + c), {"joint 'j2': <mimic> of joint 'j1'", "--mimic independent"},
+                 "mimic by default");
+  expect_refused(solve(urdf + " --case " + c + " --mimic couple"),
+                 {"option --mimic: expected 'error' or 'independent', got 'couple'"}, "bad --mimic");
+  const auto ok = solve(urdf + " --case " + c + " --mimic independent");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"qdd\""), std::string::npos);
+  const auto explicit_error = solve(urdf + " --case " + c + " --mimic error");
+  EXPECT_EQ(explicit_error.code, 2);
+  const auto bench = achd("bench", urdf + " --case " + c + " --mimic independent --iterations 1 --repeats 1");
+  EXPECT_EQ(bench.code, 0) << bench.err;
+  expect_refused(achd("bench", urdf + " --case " + c + " --iterations 1 --repeats 1"), {"<mimic>"}, "bench mimic");
+}
+
+// A scene's "mimic" field, as --mimic.
+TEST(BadInputCli, SceneMimicFieldLoadsMimicJoints) {
+  const std::string scene = std::string("{\"urdf\": \"") + mimic_urdf() +
+                            "\", \"root\": \"a\", \"tip\": \"c\", \"q0\": [0.1, 0.2], \"dt\": 0.001, "
+                            "\"duration\": 0.01";
+  expect_refused(achd("simulate", write("mimic_default.json", scene + "}")), {"<mimic> of joint 'j1'"},
+                 "scene without mimic");
+  const auto ok = achd("simulate", write("mimic_independent.json", scene + ", \"mimic\": \"independent\"}") +
+                                      " --out " + temp("mimic.csv"));
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  expect_refused(achd("simulate", write("mimic_bad.json", scene + ", \"mimic\": 1}")),
+                 {"mimic_bad.json: mimic must be a string"}, "scene mimic not a string");
+  expect_refused(achd("simulate", write("mimic_bad2.json", scene + ", \"mimic\": \"both\"}")),
+                 {"mimic: expected 'error' or 'independent', got 'both'"}, "scene mimic bad name");
 }
 
 }  // namespace

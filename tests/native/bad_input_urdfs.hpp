@@ -29,6 +29,12 @@ inline std::string joint(const std::string& name, const std::string& type, const
          "\"/><child link=\"" + child + "\"/><origin xyz=\"0.1 0 0\"/>" + extra + "</joint>";
 }
 inline std::string robot(const std::string& body) { return "<robot name=\"r\">" + body + "</robot>"; }
+// `depth` elements nested inside one another ("<x><x>...</x></x>").
+inline std::string nested(int depth) {
+  std::string open, close;
+  for (int i = 0; i < depth; ++i) open += "<x>", close += "</x>";
+  return open + close;
+}
 
 inline std::vector<BadUrdf> bad_urdfs() {
   const std::string ab = link("a") + link("b");
@@ -89,6 +95,54 @@ inline std::vector<BadUrdf> bad_urdfs() {
                                      "<axis xyz=\"0 0 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>")),
        "a", "b", {"joint 'j'", "axis is zero"}},
       {"no movable joint", robot(ab + joint("j", "fixed", "a", "b", "")), "a", "b", {"no movable joint"}},
+      // <robot> is level 1: 100 more levels inside it make 101
+      {"elements nested too deep", robot(ab + joint("j", "revolute", "a", "b") + nested(100)), "a", "b",
+       {"cannot parse URDF: elements nested more than 100 deep (line 1)"}},
+      {"elements nested 50000 deep", robot(ab + joint("j", "revolute", "a", "b") + nested(50000)), "a", "b",
+       {"cannot parse URDF: elements nested more than 100 deep"}},
+      // a later joint on the same line, further along it and turned about it, with a
+      // massless link between
+      {"a later coaxial joint, moved along and turned about the axis",
+       robot(link("a") + link("b", "") + link("c") + joint("j1", "revolute", "a", "b") +
+             "<joint name=\"j2\" type=\"continuous\"><parent link=\"b\"/><child link=\"c\"/>"
+             "<origin xyz=\"0 0 0.3\" rpy=\"0 0 0.7\"/><axis xyz=\"0 0 1\"/></joint>"),
+       "a", "c", {"joint 'j1' moves nothing"}},
+      // parallel axes at x = 0.1, 0.2, 0.3 with massless links between: j2 and j3 keep d
+      // still while j1 turns (the zero configuration is a degenerate four-bar)
+      {"three parallel joints on one line with massless links between",
+       robot(link("a") + link("b", "") + link("c", "") + link("d") + joint("j1", "revolute", "a", "b") +
+             joint("j2", "revolute", "b", "c") + joint("j3", "revolute", "c", "d")),
+       "a", "d", {"joint 'j1' moves nothing"}},
+      {"joints 1e200 m apart", robot(ab + link("c") + joint("j1", "revolute", "a", "b") +
+                                    "<joint name=\"j2\" type=\"continuous\"><parent link=\"b\"/><child link=\"c\"/>"
+                                    "<origin xyz=\"1e200 0 0\"/><axis xyz=\"0 0 1\"/></joint>"),
+       "a", "c", {"joint 'j2': origin overflows", "inertia", "moved to joint 'j1'"}},
+      {"positions that add up past the largest double",
+       robot(link("a") + link("b") + link("c") +
+             "<joint name=\"j1\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>"
+             "<origin xyz=\"1e308 0 0\"/><axis xyz=\"0 0 1\"/></joint>"
+             "<joint name=\"j2\" type=\"continuous\"><parent link=\"b\"/><child link=\"c\"/>"
+             "<origin xyz=\"1e308 0 0\"/><axis xyz=\"0 0 1\"/></joint>"),
+       "a", "c", {"joint 'j2': origin overflows", "position from the root"}},
+      {"a link fixed 1e200 m away", robot(ab + link("c") + joint("j", "revolute", "a", "b") +
+                                         "<joint name=\"f\" type=\"fixed\"><parent link=\"b\"/><child link=\"c\"/>"
+                                         "<origin xyz=\"1e200 0 0\"/></joint>"),
+       "a", "c", {"joint 'f': origin overflows", "link 'c'", "joint 'j'"}},
+      {"fixed origins that add up past the largest double",
+       robot(ab + link("c", "") + link("d", "") + joint("j", "revolute", "a", "b") +
+             "<joint name=\"f1\" type=\"fixed\"><parent link=\"b\"/><child link=\"c\"/><origin xyz=\"1e308 0 0\"/></joint>"
+             "<joint name=\"f2\" type=\"fixed\"><parent link=\"c\"/><child link=\"d\"/><origin xyz=\"1e308 0 0\"/></joint>"),
+       "a", "d", {"joint 'f2': origin overflows: its position from joint 'j' is not finite"}},
+      {"an inertial origin 1e200 m away",
+       robot(link("a") + link("b", "<inertial><origin xyz=\"0 1e200 0\"/><mass value=\"1\"/><inertia ixx=\"1\" "
+                                   "ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>") +
+             joint("j", "revolute", "a", "b")),
+       "a", "b", {"link 'b': <inertial> overflows"}},
+      {"mimic joint", robot(ab + link("c") + joint("j1", "revolute", "a", "b") +
+                            joint("j2", "revolute", "b", "c",
+                                  "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>"
+                                  "<mimic joint=\"j1\" multiplier=\"-1\"/>")),
+       "a", "c", {"joint 'j2': <mimic> of joint 'j1'", "mimic option 'independent'"}},
   };
 }
 

@@ -555,13 +555,16 @@ class Robot extends AchdHandle {
 }
 
 // Loads the chain root -> tip from URDF text; throws an Error naming the problem.
+// options.mimic: 'error' (default: a <mimic> joint on the chain is an error) or
+// 'independent' (loaded as a joint of its own, as KDL does); achd::MimicJoints' order.
 Module['loadURDF'] = function loadURDF(text, options) {
   if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
-  achdCheckObject(options, 'loadURDF options', ['root', 'tip']);
+  achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic']);
   for (const key of ['root', 'tip'])
     if (typeof options[key] !== 'string') throw new Error(`loadURDF: options.${key} must be a link name`);
+  const mimic = achdChoice(options.mimic, ['error', 'independent'], 0, 'loadURDF: options.mimic');
   const ptr = achdWithString(text, (x) => achdWithString(options.root, (r) =>
-    achdWithString(options.tip, (t) => _achd_robot_load(x, r, t))));
+    achdWithString(options.tip, (t) => _achd_robot_load(x, r, t, mimic))));
   if (!ptr) throw achdLastError();
   return new Robot(ptr);
 };

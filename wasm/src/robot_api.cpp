@@ -56,11 +56,14 @@ Eigen::Map<const Eigen::VectorXd> vec(const double* p, int n) { return {p, n}; }
 
 using achd::wasm::Robot;
 
-// Returns the robot, or null with the reason in achd_last_error().
-ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip) {
+// Returns the robot, or null with the reason in achd_last_error(). mimic: an
+// achd::MimicJoints value (0 error, 1 independent).
+ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip, int mimic) {
   Robot* robot = nullptr;
   achd::wasm::guarded([&] {
-    auto model = std::make_shared<const achd::Model>(achd::load_urdf_string(xml, root, tip));
+    achd::UrdfOptions options;
+    options.mimic = static_cast<achd::MimicJoints>(mimic);
+    auto model = std::make_shared<const achd::Model>(achd::load_urdf_string(xml, root, tip, options));
     robot = new Robot{model, achd::wasm::describe(*model)};
   });
   return robot;

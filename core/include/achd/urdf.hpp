@@ -6,10 +6,33 @@
 
 namespace achd {
 
+// What to do with a joint of the chain that has a <mimic> element (its position a
+// multiple of another joint's, like the second finger of a parallel gripper): achd has
+// no coupled joints, so by default such a URDF is refused, naming the joint; Independent
+// loads it as a joint of its own, as KDL does.
+enum class MimicJoints { Error, Independent };
+
+struct UrdfOptions {
+  MimicJoints mimic = MimicJoints::Error;
+};
+
+// The name of a MimicJoints value in the CLI, JS and scene files ("error",
+// "independent"), and back; the latter throws achd::Error naming `field` on another name.
+const char* mimic_joints_name(MimicJoints mimic);
+MimicJoints mimic_joints_from_name(const std::string& name, const std::string& field);
+
+// Elements nested deeper than this are refused before the XML parser (which recurses
+// once per level) sees them; robot descriptions nest 5 to 8 deep.
+constexpr int kMaxUrdfNesting = 100;
+
 // Builds the model of the chain root -> tip. Throws achd::Error naming the file, link
-// or joint on malformed XML, unknown links, a tip not below the root, unsupported joint
-// types (floating, planar), non-physical inertias or joints that move nothing.
-Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip);
-Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip);
+// or joint on malformed XML, elements nested deeper than kMaxUrdfNesting, unknown links,
+// a tip not below the root, unsupported joint types (floating, planar), mimic joints
+// (unless options.mimic is Independent), non-physical inertias, geometry whose numbers
+// overflow, or joints that move nothing.
+Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip,
+                     const UrdfOptions& options = {});
+Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip,
+                       const UrdfOptions& options = {});
 
 }  // namespace achd
