@@ -4,9 +4,11 @@
 // achd.constants (achd_constants(): options.hpp, simulator.hpp, achd/names.hpp,
 // wasm/src/boundary.hpp), so a value hard-coded in api.js that disagrees fails here.
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { before, test } from 'node:test';
 
-import { loadAchd, robots } from './helpers.mjs';
+import { loadAchd, repo, robots } from './helpers.mjs';
 
 let achd, kuka, entry;
 before(async () => {
@@ -147,4 +149,35 @@ test('every view and result covers the C++ buffer of its name', () => {
     assert.deepEqual(values, doubles(achd._achd_sim_result(sim._ptr, c.simulator_results.indexOf(name)), values.length), name);
   }
   sim.delete();
+});
+
+// The hand-written wasm/achd.d.ts against the module: its name unions and the fields of
+// its Constants interfaces are C++'s (tsc checks the rest, tests/node/types.test.mjs).
+test('achd.d.ts declares the C++ names and the fields of achd.constants', () => {
+  const dts = readFileSync(join(repo, 'wasm/achd.d.ts'), 'utf8');
+  const union = (name) => {
+    const m = dts.match(new RegExp(`export type ${name} = ([^;]+);`));
+    assert.ok(m, `type ${name} in achd.d.ts`);
+    return [...m[1].matchAll(/'([^']+)'/g)].map((x) => x[1]).sort();
+  };
+  const fields = (name) => {
+    const m = dts.match(new RegExp(`export interface ${name} \\{\\n([\\s\\S]*?)\\n\\}`));
+    assert.ok(m, `interface ${name} in achd.d.ts`);
+    return [...m[1].matchAll(/^ {2}readonly (\w+)/gm)].map((x) => x[1]).sort();
+  };
+  const c = achd.constants;
+  const sorted = (list) => [...list].sort();
+  assert.deepEqual(union('EffectName'), sorted(Object.keys(c.effects)));
+  assert.deepEqual(union('Integrator'), sorted(c.integrators));
+  assert.deepEqual(union('LimitPolicy'), sorted(c.limit_policies));
+  assert.deepEqual(union('Convention'), sorted(c.conventions));
+  assert.deepEqual(union('SingularityPolicy'), sorted(c.singularity_policies));
+  assert.deepEqual(union('Direction'), sorted(c.directions));
+  assert.deepEqual(fields('Constants'), sorted(Object.keys(c)));
+  assert.deepEqual(fields('CppOptions'), sorted(Object.keys(c.options)));
+  assert.deepEqual(fields('CppSimulatorOptions'), sorted(Object.keys(c.simulator_options)));
+  // The Effects interface: the effect names in camelCase.
+  const effects = dts.match(/export interface Effects \{\n([\s\S]*?)\n\}/)[1];
+  assert.deepEqual([...effects.matchAll(/^ {2}(\w+)\?: boolean;/gm)].map((x) => x[1]).sort(),
+    sorted(Object.keys(achd.Effects)));
 });
