@@ -22,7 +22,8 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 command -v node >/dev/null || { echo "install-deps: Node.js 20 is required (node not found)" >&2; exit 1; }
-# npm packages pinned by package-lock.json (three for the page, playwright-core for the test).
+# npm packages pinned by package-lock.json (three for the page, playwright-core for the
+# browser test, typescript for the type tests).
 if [ -f package-lock.json ] && ! npm ls --silent >/dev/null 2>&1; then
   npm ci --no-audit --no-fund
 fi

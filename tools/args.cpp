@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "achd/names.hpp"
+
 namespace achd::cli {
 
 const std::set<std::string> kSolverValued = {"--convention", "--policy", "--tolerance", "--damping"};
@@ -64,16 +66,26 @@ std::int64_t Args::integer(const std::string& name, std::int64_t fallback, std::
   return x;
 }
 
+namespace {
+
+// The enum named by `option`'s value among `names` (achd/names.hpp: index = enum value),
+// `fallback` when the option is absent.
+template <typename Enum, std::size_t N>
+Enum named_choice(const Args& args, const std::string& option, const char* const (&names)[N], Enum fallback) {
+  const std::string s = args.get(option, names[static_cast<int>(fallback)]);
+  for (std::size_t k = 0; k < N; ++k)
+    if (s == names[k]) return static_cast<Enum>(k);
+  std::string expected;
+  for (std::size_t k = 0; k < N; ++k) expected += (k ? " or '" : "'") + std::string(names[k]) + "'";
+  throw Error("option " + option + ": expected " + expected + ", got '" + s + "'");
+}
+
+}  // namespace
+
 Options solver_options(const Args& args) {
   Options o;
-  const std::string conv = args.get("--convention", "physical");
-  if (conv == "physical") o.convention = Convention::Physical;
-  else if (conv == "kdl") o.convention = Convention::Kdl;
-  else throw Error("option --convention: expected 'physical' or 'kdl', got '" + conv + "'");
-  const std::string policy = args.get("--policy", "truncate");
-  if (policy == "truncate") o.policy = SingularityPolicy::Truncate;
-  else if (policy == "damped") o.policy = SingularityPolicy::Damped;
-  else throw Error("option --policy: expected 'truncate' or 'damped', got '" + policy + "'");
+  o.convention = named_choice(args, "--convention", kConventionNames, o.convention);
+  o.policy = named_choice(args, "--policy", kSingularityPolicyNames, o.policy);
   o.tolerance = args.number("--tolerance", o.tolerance);
   o.damping = args.number("--damping", o.damping);
   if (o.tolerance < 0) throw Error("option --tolerance must be >= 0");

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "achd/names.hpp"
 #include "case_json.hpp"
 
 namespace achd::cli {
@@ -38,22 +39,12 @@ void only_known(const json& j, const std::string& where, std::initializer_list<c
   }
 }
 
-struct EffectName {
-  const char* name;
-  Effect bit;
-};
-const EffectName kEffects[] = {
-    {"gravity", kGravity},     {"velocity_products", kVelocityProducts},
-    {"external_wrenches", kExternalWrenches}, {"damping", kDamping},
-    {"friction", kFriction},   {"rotor_inertia", kRotorInertia},
-    {"constraints", kConstraints}};
-
 std::uint32_t effects(const json& j) {
   if (!j.is_object()) throw Error("effects must be an object of booleans");
   std::uint32_t bits = kAllEffects;  // a missing key keeps its effect on
   for (const auto& item : j.items()) {
     const EffectName* e = nullptr;
-    for (const EffectName& k : kEffects)
+    for (const EffectName& k : kEffectNames)
       if (item.key() == k.name) e = &k;
     if (!e) throw Error("unknown field 'effects." + item.key() + "'");
     if (!item.value().is_boolean()) throw Error("effects." + item.key() + " must be true or false");
@@ -65,16 +56,15 @@ std::uint32_t effects(const json& j) {
 
 Integrator integrator(const json& v) {
   const std::string s = text(v, "integrator");
-  for (Integrator i : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4})
+  for (Integrator i : kIntegrators)
     if (s == integrator_name(i)) return i;
   throw Error("integrator: expected 'explicit_euler', 'semi_implicit_euler' or 'rk4', got '" + s + "'");
 }
 
 LimitPolicy limits(const json& v) {
   const std::string s = text(v, "limits");
-  if (s == "report") return LimitPolicy::Report;
-  if (s == "clamp") return LimitPolicy::Clamp;
-  if (s == "ignore") return LimitPolicy::Ignore;
+  for (int k = 0; k < 3; ++k)
+    if (s == kLimitPolicyNames[k]) return static_cast<LimitPolicy>(k);
   throw Error("limits: expected 'report', 'clamp' or 'ignore', got '" + s + "'");
 }
 

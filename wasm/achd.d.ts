@@ -5,11 +5,24 @@
 // grows, so read the property again rather than keeping a view across a loadURDF/malloc).
 // Every object owning wasm memory has delete(); afterwards each call throws
 // Error('<Kind> has been deleted'). Bad input throws an Error naming the field and index.
+// Names: option values are the scene files' words (explicit_euler, velocity_products),
+// option keys the same words in camelCase (velocityProducts), result fields snake_case.
 
 export type Vec = ArrayLike<number>;
 export type Vector6 = [number, number, number, number, number, number];
 
-/** Effects of a solve (MuJoCo-style bits): unset keys keep their defaults. */
+/** The effect names of scene files and achd.constants.effects. */
+export type EffectName = 'gravity' | 'velocity_products' | 'external_wrenches' | 'damping' | 'friction'
+  | 'rotor_inertia' | 'constraints';
+export type Convention = 'physical' | 'kdl';
+export type SingularityPolicy = 'truncate' | 'damped';
+export type Integrator = 'explicit_euler' | 'semi_implicit_euler' | 'rk4';
+/** @deprecated the previous release's spellings of 'explicit_euler' and 'semi_implicit_euler';
+ * still accepted (with a console.warn) until the next release. */
+export type DeprecatedIntegrator = 'euler' | 'semi-implicit';
+export type LimitPolicy = 'ignore' | 'report' | 'clamp';
+
+/** Effects of a solve (MuJoCo-style bits), keyed by EffectName in camelCase: unset keys keep their defaults. */
 export interface Effects {
   gravity?: boolean;
   velocityProducts?: boolean;
@@ -24,17 +37,17 @@ export interface Effects {
 
 export interface SolveOptions {
   /** 'physical' (default): real accelerations; 'kdl': KDL's beta and link accelerations. */
-  convention?: 'physical' | 'kdl';
+  convention?: Convention;
   /** singular coupling matrix: 'truncate' (pseudo-inverse, default) or 'damped'. */
-  policy?: 'truncate' | 'damped';
+  policy?: SingularityPolicy;
   /** truncate: singular values below tolerance * sigma_max (or absolute) are dropped. Default 1e-12. */
   tolerance?: number;
   absoluteTolerance?: boolean;
-  /** damped policy: lambda = damping * sigma_max. Default 1e-6. */
+  /** damped policy: lambda = damping * sigma_max; finite and > 0. Default 1e-6. */
   damping?: number;
   /** an Effects object or the raw bit mask (achd.Effects). */
   effects?: Effects | number;
-  /** friction = F tanh(qd / frictionVelocity). Default 0.05. */
+  /** friction = F tanh(qd / frictionVelocity); finite and > 0. Default 0.05. */
   frictionVelocity?: number;
 }
 
@@ -107,7 +120,7 @@ export interface Solver {
   readonly q: Float64Array;
   readonly qd: Float64Array;
   readonly ff_torques: Float64Array;
-  /** 3 numbers, initially [0, 0, -9.81]. */
+  /** 3 numbers, initially achd.constants.case_gravity ([0, 0, -9.81]). */
   readonly gravity: Float64Array;
   /** 6 * maxConstraints, column-major, linear first; the first numConstraints columns are used. */
   readonly alpha: Float64Array;
@@ -145,13 +158,14 @@ export interface Solver {
 export type Direction = 'x' | 'y' | 'z' | 'rx' | 'ry' | 'rz';
 
 export interface SimulatorOptions {
-  integrator?: 'rk4' | 'euler' | 'semi-implicit';
+  /** default 'rk4'. */
+  integrator?: Integrator | DeprecatedIntegrator;
   /** defaults: every effect on (damping and friction included). */
   effects?: Effects | number;
   /** default [0, 0, -9.81]. */
   gravity?: Vec;
   /** joint limits: 'report' (default) records hits, 'clamp' stops the joint there, 'ignore'. */
-  limits?: 'report' | 'clamp' | 'ignore';
+  limits?: LimitPolicy;
   /** Coulomb friction F tanh(qd / v): v in rad/s or m/s, default 0.05, raised per step for stability. */
   frictionVelocity?: number;
   /** Baumgarte frequency of held directions in rad/s; default 0 = 0.1 / dt. */
@@ -211,6 +225,8 @@ export interface Simulator {
   limitHits(): string[];
   /** of the solve at the start of the last completed step (copies). */
   nu(): number[];
+  joint_torques(): number[];
+  /** @deprecated the previous release's name of joint_torques(); warns once, removed in the next release. */
   jointTorques(): number[];
   qdd(): number[];
   /** link: index after the root or link name; wrench in base orientation about the link origin. */
@@ -260,6 +276,56 @@ export interface Achd {
   memoryBytes(): number;
   /** the effect bits, for SolveOptions.effects as a number. */
   readonly Effects: Readonly<Record<keyof Effects, number>>;
+  /** what the JS API takes from C++, read from the module (frozen). */
+  readonly constants: Constants;
+}
+
+/** Option structs as C++ holds them: snake_case fields, enum values by name. */
+export interface CppOptions {
+  readonly convention: Convention;
+  readonly effects: number;
+  readonly policy: SingularityPolicy;
+  readonly tolerance: number;
+  readonly absolute_tolerance: boolean;
+  readonly damping: number;
+  readonly friction_velocity: number;
+}
+export interface CppSimulatorOptions {
+  readonly integrator: Integrator;
+  readonly effects: number;
+  readonly gravity: readonly [number, number, number];
+  readonly limits: LimitPolicy;
+  readonly stabilisation_frequency: number;
+  readonly stabilisation_damping: number;
+  readonly solver: CppOptions;
+}
+
+/** The C++ declarations the JS API uses (achd_constants(): options.hpp, simulator.hpp,
+ * achd/names.hpp, wasm/src/boundary.hpp); name lists are in enum order. */
+export interface Constants {
+  /** achd::Effect bits by name. */
+  readonly effects: Readonly<Record<EffectName, number>>;
+  /** kDefaultEffects: a plain solve and rnea (no damping, no friction). */
+  readonly default_effects: number;
+  /** kAllEffects: the simulator's default. */
+  readonly all_effects: number;
+  readonly max_constraints: number;
+  readonly integrators: readonly Integrator[];
+  readonly directions: readonly Direction[];
+  readonly direction_modes: readonly ('free' | 'hold' | 'accelerate')[];
+  readonly limit_policies: readonly LimitPolicy[];
+  readonly conventions: readonly Convention[];
+  readonly singularity_policies: readonly SingularityPolicy[];
+  /** achd::Case's default gravity: the solver's and rnea's. */
+  readonly case_gravity: readonly [number, number, number];
+  /** achd::Options{}: the solver's defaults. */
+  readonly options: CppOptions;
+  /** achd::SimulatorOptions{}: the simulator's defaults. */
+  readonly simulator_options: CppSimulatorOptions;
+  /** names of the buffers behind the Solver and Simulator views, and the Simulator results, by C ABI index. */
+  readonly solver_buffers: readonly string[];
+  readonly simulator_buffers: readonly string[];
+  readonly simulator_results: readonly string[];
 }
 
 export default function createAchd(moduleOverrides?: object): Promise<Achd>;

@@ -12,8 +12,8 @@ const TIMING_RUNS = 3;
 const TIMING_STEPS = 200;
 const UNSTABLE_ERROR = 1; // rad: larger errors (or NaN) are reported as unstable
 const INTEGRATORS = [
-  { name: 'euler', label: 'explicit Euler', color: '#d62728' },
-  { name: 'semi-implicit', label: 'semi-implicit Euler', color: '#1f77b4' },
+  { name: 'explicit_euler', label: 'explicit Euler', color: '#d62728' },
+  { name: 'semi_implicit_euler', label: 'semi-implicit Euler', color: '#1f77b4' },
   { name: 'rk4', label: 'RK4', color: '#2ca02c' },
 ];
 const NATIVE = '../docs/accuracy/arm7/accuracy.json';

@@ -60,7 +60,7 @@ export class Readouts {
     this.configure(sim);
     const residuals = sim.sim.residuals();
     const nu = sim.sim.nu();
-    const torques = sim.sim.jointTorques();
+    const torques = sim.sim.joint_torques();
     const energy = sim.sim.energy();
     this.last = { sim, residuals, nu, torques, energy };
     this.charts.residuals.push(this.held.map((d) => residuals[d]));

@@ -1,19 +1,28 @@
 // What the user chose on the page (robot, directions, effects, integrator, dt), its
 // defaults, and its round trip through the URL hash so that a view can be shared, e.g.
-// #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity,damping&dirs=z:hold,rx:0.5
+// #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping&dirs=z:hold,rx:0.5
+// Values are the scene files' words (achd.constants); the simulator's option keys are
+// the same words in camelCase.
 
 export const DIRECTIONS = ['x', 'y', 'z', 'rx', 'ry', 'rz'];
 
-// Page effect toggles and the names the hash uses for them; `key` is the simulator's.
+// Page effect toggles: `hash` is the scene files' name, `key` the simulator's.
 export const EFFECTS = [
   { key: 'gravity', hash: 'gravity', label: 'gravity' },
-  { key: 'velocityProducts', hash: 'velocity', label: 'velocity products' },
+  { key: 'velocityProducts', hash: 'velocity_products', label: 'velocity products' },
   { key: 'damping', hash: 'damping', label: 'joint damping' },
   { key: 'friction', hash: 'friction', label: 'joint friction' },
-  { key: 'externalWrenches', hash: 'push', label: 'external push' },
+  { key: 'externalWrenches', hash: 'external_wrenches', label: 'external push' },
 ];
 
-export const INTEGRATORS = ['rk4', 'semi-implicit', 'euler'];
+export const INTEGRATORS = ['rk4', 'semi_implicit_euler', 'explicit_euler'];
+
+// Hash words of the previous release, still read (links already shared), never written.
+const OLD_HASH_WORDS = {
+  integrator: { 'semi-implicit': 'semi_implicit_euler', euler: 'explicit_euler' },
+  effects: { velocity: 'velocity_products', push: 'external_wrenches' },
+};
+const current = (kind, word) => (Object.hasOwn(OLD_HASH_WORDS[kind], word) ? OLD_HASH_WORDS[kind][word] : word);
 export const TIME_STEPS = [0.00025, 0.0005, 0.001, 0.002, 0.005, 0.01];
 
 export function defaultSettings(robot) {
@@ -56,7 +65,7 @@ export function parseHash(hash, defaults) {
   const params = new URLSearchParams(hash.replace(/^#/, ''));
   if (params.has('robot')) s.robot = params.get('robot');
   if (params.has('integrator')) {
-    const v = params.get('integrator');
+    const v = current('integrator', params.get('integrator'));
     if (INTEGRATORS.includes(v)) s.integrator = v;
     else problems.push(`unknown integrator "${v}"`);
   }
@@ -66,7 +75,7 @@ export function parseHash(hash, defaults) {
     else problems.push(`dt must be one of ${TIME_STEPS.join(', ')} s`);
   }
   if (params.has('effects')) {
-    const on = new Set(params.get('effects').split(',').filter(Boolean));
+    const on = new Set(params.get('effects').split(',').filter(Boolean).map((w) => current('effects', w)));
     for (const e of EFFECTS) s.effects[e.key] = on.delete(e.hash);
     for (const name of on) problems.push(`unknown effect "${name}"`);
   }

@@ -9,14 +9,12 @@ import { before, test } from 'node:test';
 import { loadAchd, nativeCli, relativeError, repo, robots, runCli, scratchDir } from './helpers.mjs';
 
 const SCENES = join(repo, 'robots/scenes');
-const INTEGRATORS = { rk4: 'rk4', explicit_euler: 'euler', semi_implicit_euler: 'semi-implicit' };
-const EFFECTS = { gravity: 'gravity', velocity_products: 'velocityProducts', external_wrenches: 'externalWrenches',
-  damping: 'damping', friction: 'friction', rotor_inertia: 'rotorInertia', constraints: 'constraints' };
+// Scene values are JS values; scene keys are JS keys in camelCase.
+const camelCase = (name) => name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase());
 // Scene fields -> createSimulator options (the rest are handled in startScene).
-const OPTIONS = { limits: 'limits', friction_velocity: 'frictionVelocity',
-  stabilisation_frequency: 'stabilisationFrequency', stabilisation_damping: 'stabilisationDamping' };
+const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping'];
 const HANDLED = ['description', 'urdf', 'root', 'tip', 'q0', 'qd0', 'effects', 'directions', 'integrator',
-  'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', ...Object.keys(OPTIONS)];
+  'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', ...OPTIONS];
 
 let achd, kuka, kukaEntry;
 before(async () => {
@@ -31,11 +29,11 @@ const readScene = (file) => JSON.parse(readFileSync(join(SCENES, file), 'utf8'))
 function startScene(scene, robot) {
   for (const key of Object.keys(scene))
     if (!HANDLED.includes(key)) throw new Error(`the test does not map scene field '${key}' to the JS API`);
-  const options = { integrator: INTEGRATORS[scene.integrator ?? 'rk4'] };
+  const options = { integrator: scene.integrator };
   if (scene.effects)
-    options.effects = Object.fromEntries(Object.entries(scene.effects).map(([k, on]) => [EFFECTS[k], on]));
+    options.effects = Object.fromEntries(Object.entries(scene.effects).map(([k, on]) => [camelCase(k), on]));
   if (scene.gravity) options.gravity = scene.gravity;
-  for (const [field, option] of Object.entries(OPTIONS)) if (field in scene) options[option] = scene[field];
+  for (const field of OPTIONS) if (field in scene) options[camelCase(field)] = scene[field];
   const sim = robot.createSimulator(options);
   sim.reset(scene.q0, scene.qd0);
   if (scene.ff_torques) sim.ff_torques.set(scene.ff_torques);

@@ -19,7 +19,7 @@ before(async () => {
 after(() => { planar2.delete(); ur5.delete(); });
 
 function swing() {
-  const sim = planar2.createSimulator({ integrator: 'semi-implicit' });
+  const sim = planar2.createSimulator({ integrator: 'semi_implicit_euler' });
   sim.reset([0.4, 0.9]);
   return sim;
 }

@@ -4,22 +4,52 @@
 // copies; the Float64Array properties of solvers and simulators are views on wasm
 // memory, re-created automatically when memory grows. See wasm/achd.d.ts.
 
-// achd::Effect bits (core/include/achd/options.hpp).
-const ACHD_EFFECT_BITS = {
-  gravity: 1, velocityProducts: 2, externalWrenches: 4, damping: 8,
-  friction: 16, rotorInertia: 32, constraints: 64,
-};
-const ACHD_DEFAULT_EFFECTS = 1 | 2 | 4 | 32 | 64;  // kDefaultEffects: no damping, friction
-const ACHD_ALL_EFFECTS = 127;
-const ACHD_MAX_CONSTRAINTS = 6;
-const ACHD_DIRECTIONS = ['x', 'y', 'z', 'rx', 'ry', 'rz'];
-const ACHD_INTEGRATORS = { euler: 0, 'semi-implicit': 1, rk4: 2 };
+// What the wrapper mirrors from C++ (effect bits, enum names in enum order, defaults,
+// the names of the buffers behind the views) is not copied here: achd_constants()
+// (wasm/src/constants_api.cpp) returns it as JSON, read once on first use (the exports
+// cannot be called before the runtime has started). No destructuring in this file:
+// Emscripten 3.1.6's minifier drops destructured loop variables. Enum values cross the C ABI as their
+// index in these name lists; JS option keys are the snake_case C++ names in camelCase.
+let achdConstantsCache = null, achdEffectBitsCache = null;
+function achdConstants() {
+  if (achdConstantsCache === null) achdConstantsCache = achdDeepFreeze(JSON.parse(UTF8ToString(_achd_constants())));
+  return achdConstantsCache;
+}
+
+// achd.Effects: the effect bits under their JS names ({gravity: 1, velocityProducts: 2, ...}).
+function achdEffectBitsByKey() {
+  if (achdEffectBitsCache === null)
+    achdEffectBitsCache = Object.freeze(Object.fromEntries(
+      Object.entries(achdConstants().effects).map((e) => [achdCamelCase(e[0]), e[1]])));
+  return achdEffectBitsCache;
+}
+
+function achdCamelCase(name) {
+  return name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase());
+}
+
+function achdDeepFreeze(value) {
+  if (value !== null && typeof value === 'object') {
+    for (const v of Object.values(value)) achdDeepFreeze(v);
+    Object.freeze(value);
+  }
+  return value;
+}
+
+// Spellings of the previous release, still accepted until the next one with a
+// console.warn the first time each is used.
+const ACHD_OLD_INTEGRATOR_NAMES = { euler: 'explicit_euler', 'semi-implicit': 'semi_implicit_euler' };
+const achdWarned = new Set();
+function achdDeprecated(what, instead) {
+  if (achdWarned.has(what)) return;
+  achdWarned.add(what);
+  console.warn(`achd: ${what} is deprecated and will be removed in the next release; use ${instead}`);
+}
+
 // Simulator.step: steps per call into wasm (an int there), and between onProgress calls
 // by default (about 0.1 s of the 7-DoF arm with RK4).
 const ACHD_MAX_RUN_CHUNK = 2 ** 30;
 const ACHD_PROGRESS_INTERVAL = 10000;
-// achd::DirectionMode.
-const ACHD_MODE_FREE = 0, ACHD_MODE_HOLD = 1, ACHD_MODE_ACCELERATE = 2;
 
 function achdLastError() {
   return new Error(UTF8ToString(_achd_last_error()));
@@ -70,19 +100,20 @@ function achdCheckObject(value, name, known) {
 // Effects: an object of booleans over `defaults`, or the raw achd::Effect bit mask.
 function achdEffectBits(effects, defaults, name) {
   if (effects === undefined) return defaults;
+  const all = achdConstants().all_effects, bits = achdEffectBitsByKey();
   if (typeof effects === 'number') {
-    if (!Number.isInteger(effects) || effects < 0 || effects > ACHD_ALL_EFFECTS)
-      throw new Error(`${name} must be an integer bit mask in [0, ${ACHD_ALL_EFFECTS}], got ${effects}`);
+    if (!Number.isInteger(effects) || effects < 0 || effects > all)
+      throw new Error(`${name} must be an integer bit mask in [0, ${all}], got ${effects}`);
     return effects;
   }
-  achdCheckObject(effects, name, Object.keys(ACHD_EFFECT_BITS));
-  let bits = defaults;
+  achdCheckObject(effects, name, Object.keys(bits));
+  let mask = defaults;
   for (const key of Object.keys(effects)) {
     const on = effects[key];
     if (typeof on !== 'boolean') throw new Error(`${name}.${key} must be true or false`);
-    bits = on ? bits | ACHD_EFFECT_BITS[key] : bits & ~ACHD_EFFECT_BITS[key];
+    mask = on ? mask | bits[key] : mask & ~bits[key];
   }
-  return bits;
+  return mask;
 }
 
 function achdNonNegative(value, fallback, name) {
@@ -99,28 +130,34 @@ function achdPositive(value, fallback, name) {
   return value;
 }
 
+// The enum value of `value` (its index in the C++ name list `choices`); `fallback`, a
+// name, when undefined.
 function achdChoice(value, choices, fallback, name) {
-  if (value === undefined) return fallback;
-  const i = choices.indexOf(value);
+  const i = choices.indexOf(value === undefined ? fallback : value);
   if (i < 0) throw new Error(`${name}: expected ${choices.map((c) => `'${c}'`).join(' or ')}, got '${value}'`);
   return i;
 }
 
-// Solver options (achd::Options) -> the arguments of achd_solver_set_options.
+const ACHD_SOLVER_OPTION_KEYS = ['convention', 'policy', 'tolerance', 'absoluteTolerance', 'damping',
+  'effects', 'frictionVelocity', 'maxConstraints'];
+
+// Solver options (achd::Options, defaults from C++) -> the arguments of
+// achd_solver_set_options. The bounds are achd::validate(Options)'s, checked here so that
+// the message names the JS option.
 function achdSolverOptions(options) {
   if (options === undefined || options === null) options = {};
-  achdCheckObject(options, 'options', ['convention', 'policy', 'tolerance', 'absoluteTolerance',
-    'damping', 'effects', 'frictionVelocity', 'maxConstraints']);
+  achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
   if (options.absoluteTolerance !== undefined && typeof options.absoluteTolerance !== 'boolean')
     throw new Error('options.absoluteTolerance must be true or false');
+  const k = achdConstants(), d = k.options;
   return [
-    achdChoice(options.convention, ['physical', 'kdl'], 0, 'options.convention'),
-    achdChoice(options.policy, ['truncate', 'damped'], 0, 'options.policy'),
-    achdNonNegative(options.tolerance, 1e-12, 'options.tolerance'),
-    options.absoluteTolerance ? 1 : 0,
-    achdNonNegative(options.damping, 1e-6, 'options.damping'),
-    achdEffectBits(options.effects, ACHD_DEFAULT_EFFECTS, 'options.effects'),
-    achdNonNegative(options.frictionVelocity, 0.05, 'options.frictionVelocity'),
+    achdChoice(options.convention, k.conventions, d.convention, 'options.convention'),
+    achdChoice(options.policy, k.singularity_policies, d.policy, 'options.policy'),
+    achdNonNegative(options.tolerance, d.tolerance, 'options.tolerance'),
+    (options.absoluteTolerance === undefined ? d.absolute_tolerance : options.absoluteTolerance) ? 1 : 0,
+    achdPositive(options.damping, d.damping, 'options.damping'),
+    achdEffectBits(options.effects, d.effects, 'options.effects'),
+    achdPositive(options.frictionVelocity, d.friction_velocity, 'options.frictionVelocity'),
   ];
 }
 
@@ -170,7 +207,8 @@ class AchdHandle {
     if (this._ptr === 0) throw new Error(`${this._kind} has been deleted`);
     return this._ptr;
   }
-  // _layout(): [name, buffer index, length]; _bufferOf(ptr, index): its byte address.
+  // _layout(): [name, length] per view; _bufferNames(): the C++ buffer names (index =
+  // the buffer's number in achd_*_buffer); _bufferOf(ptr, index): its byte address.
   _view(name) {
     if (this._ptr === 0) throw new Error(`${this._kind} has been deleted`);
     if (this._buffer !== HEAPF64.buffer) this._mapViews();
@@ -179,8 +217,9 @@ class AchdHandle {
   _mapViews() {
     this._buffer = HEAPF64.buffer;
     this._views = {};
-    for (const v of this._layout())  // v = [name, buffer index, length]
-      this._views[v[0]] = new Float64Array(this._buffer, this._bufferOf(this._ptr, v[1]), v[2]);
+    const names = this._bufferNames();
+    for (const v of this._layout())  // v = [name, length]
+      this._views[v[0]] = new Float64Array(this._buffer, this._bufferOf(this._ptr, names.indexOf(v[0])), v[1]);
   }
   get deleted() { return this._ptr === 0; }
   delete() {
@@ -203,13 +242,12 @@ class Solver extends AchdHandle {
     this._external = false;
   }
   _bufferOf(ptr, index) { return _achd_solver_buffer(ptr, index); }
+  _bufferNames() { return achdConstants().solver_buffers; }
   _layout() {
     const nj = this.numJoints, nl = this.numLinks, mc = this.maxConstraints;
-    return [['q', 0, nj], ['qd', 1, nj], ['ff_torques', 2, nj], ['gravity', 3, 3],
-      ['alpha', 4, 6 * mc], ['beta', 5, mc], ['f_ext', 6, 6 * nl], ['qdd', 7, nj],
-      ['nu', 8, this._nc], ['joint_torques', 9, nj], ['constraint_torques', 10, nj],
-      ['total_torques', 11, nj], ['link_accelerations', 12, 6 * (nl + 1)],
-      ['constraint_wrench', 13, 6]];
+    return [['q', nj], ['qd', nj], ['ff_torques', nj], ['gravity', 3], ['alpha', 6 * mc], ['beta', mc],
+      ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc], ['joint_torques', nj], ['constraint_torques', nj],
+      ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6]];
   }
   get q() { return this._view('q'); }
   get qd() { return this._view('qd'); }
@@ -254,17 +292,19 @@ class Solver extends AchdHandle {
     const ptr = this._live();
     const nj = this.numJoints, nc = _achd_solver_nu_size(ptr);
     const rows = _achd_solver_dropped_rows(ptr), cols = _achd_solver_dropped_cols(ptr);
+    const names = this._bufferNames();
+    const copy = (name, n) => achdCopy(_achd_solver_buffer(ptr, names.indexOf(name)), n);
     return {
-      qdd: achdCopy(_achd_solver_buffer(ptr, 7), nj),
-      constraint_torques: achdCopy(_achd_solver_buffer(ptr, 10), nj),
-      total_torques: achdCopy(_achd_solver_buffer(ptr, 11), nj),
-      nu: achdCopy(_achd_solver_buffer(ptr, 8), nc),
-      joint_torques: achdCopy(_achd_solver_buffer(ptr, 9), nj),
-      constraint_wrench: achdCopy(_achd_solver_buffer(ptr, 13), 6),
-      link_accelerations: achdChunks(achdCopy(_achd_solver_buffer(ptr, 12), 6 * (this.numLinks + 1)), 6),
+      qdd: copy('qdd', nj),
+      constraint_torques: copy('constraint_torques', nj),
+      total_torques: copy('total_torques', nj),
+      nu: copy('nu', nc),
+      joint_torques: copy('joint_torques', nj),
+      constraint_wrench: copy('constraint_wrench', 6),
+      link_accelerations: achdChunks(copy('link_accelerations', 6 * (this.numLinks + 1)), 6),
       rank: _achd_solver_rank(ptr),
       sigma_min: achdSigmaMin(ptr),
-      dropped: rows ? achdChunks(achdCopy(_achd_solver_buffer(ptr, 14), rows * cols), rows) : [],
+      dropped: rows ? achdChunks(copy('dropped', rows * cols), rows) : [],
     };
   }
 }
@@ -279,9 +319,10 @@ class Simulator extends AchdHandle {
     this._jointNames = robot.jointNames;
   }
   _bufferOf(ptr, index) { return _achd_sim_buffer(ptr, index); }
+  _bufferNames() { return achdConstants().simulator_buffers; }
   _layout() {
-    return [['q', 0, this.numJoints], ['qd', 1, this.numJoints], ['t', 2, 1],
-      ['ff_torques', 3, this.numJoints], ['f_ext', 4, 6 * this.numLinks]];
+    return [['q', this.numJoints], ['qd', this.numJoints], ['t', 1], ['ff_torques', this.numJoints],
+      ['f_ext', 6 * this.numLinks]];
   }
   get q() { return this._view('q'); }
   get qd() { return this._view('qd'); }
@@ -331,12 +372,12 @@ class Simulator extends AchdHandle {
   // name: x y z rx ry rz; mode: 'hold', 'free' or a number (classical acceleration setpoint).
   setDirection(name, mode) {
     const ptr = this._live();
-    const index = ACHD_DIRECTIONS.indexOf(name);
-    if (index < 0) throw new Error(`setDirection: unknown direction '${name}' (x, y, z, rx, ry, rz)`);
+    const directions = achdConstants().directions, modes = achdConstants().direction_modes;
+    const index = directions.indexOf(name);
+    if (index < 0) throw new Error(`setDirection: unknown direction '${name}' (${directions.join(', ')})`);
     let code, setpoint = 0;
-    if (mode === 'free') code = ACHD_MODE_FREE;
-    else if (mode === 'hold') code = ACHD_MODE_HOLD;
-    else if (typeof mode === 'number' && Number.isFinite(mode)) { code = ACHD_MODE_ACCELERATE; setpoint = mode; }
+    if (mode === 'free' || mode === 'hold') code = modes.indexOf(mode);
+    else if (typeof mode === 'number' && Number.isFinite(mode)) { code = modes.indexOf('accelerate'); setpoint = mode; }
     else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${mode}`);
     if (_achd_sim_set_direction(ptr, index, code, setpoint)) throw achdLastError();
   }
@@ -344,11 +385,12 @@ class Simulator extends AchdHandle {
   // or accelerated: neither has a position or angle to keep).
   residuals() {
     const ptr = this._live();
-    return achdWithScratch(6, (p) => {
+    const directions = achdConstants().directions, modes = achdConstants().direction_modes;
+    return achdWithScratch(directions.length, (p) => {
       _achd_sim_residuals(ptr, 8 * p);
       const out = {};
-      ACHD_DIRECTIONS.forEach((name, k) => {
-        out[name] = _achd_sim_direction_mode(ptr, k) === ACHD_MODE_HOLD ? HEAPF64[p + k] : null;
+      directions.forEach((name, k) => {
+        out[name] = _achd_sim_direction_mode(ptr, k) === modes.indexOf('hold') ? HEAPF64[p + k] : null;
       });
       return out;
     });
@@ -366,9 +408,17 @@ class Simulator extends AchdHandle {
       return Array.from(HEAP32.subarray(2 * p, 2 * p + n), (i) => this._jointNames[i]);
     });
   }
-  nu() { const ptr = this._live(); return achdCopy(_achd_sim_result(ptr, 0), _achd_sim_nu_size(ptr)); }
-  jointTorques() { return achdCopy(_achd_sim_result(this._live(), 1), this.numJoints); }
-  qdd() { return achdCopy(_achd_sim_result(this._live(), 2), this.numJoints); }
+  // Outputs of the solve at the start of the last step (copies), named as the solver's.
+  _result(name, n) {
+    return achdCopy(_achd_sim_result(this._live(), achdConstants().simulator_results.indexOf(name)), n);
+  }
+  nu() { return this._result('nu', _achd_sim_nu_size(this._live())); }
+  joint_torques() { return this._result('joint_torques', this.numJoints); }
+  qdd() { return this._result('qdd', this.numJoints); }
+  jointTorques() {
+    achdDeprecated('Simulator.jointTorques()', 'Simulator.joint_torques()');
+    return this.joint_torques();
+  }
   // The wrench on one link (index after the root, or its name), base orientation.
   setExternalWrench(link, wrench) {
     this._live();
@@ -407,19 +457,16 @@ class Robot extends AchdHandle {
   createSolver(options) {
     const ptr = this._live();
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'options', ['convention', 'policy', 'tolerance', 'absoluteTolerance',
-      'damping', 'effects', 'frictionVelocity', 'maxConstraints']);
-    const mc = options.maxConstraints === undefined ? ACHD_MAX_CONSTRAINTS : options.maxConstraints;
+    achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
+    const max = achdConstants().max_constraints;
+    const mc = options.maxConstraints === undefined ? max : options.maxConstraints;
     if (!Number.isInteger(mc))
-      throw new Error(`options.maxConstraints must be an integer in [0, ${ACHD_MAX_CONSTRAINTS}], got ${mc}`);
+      throw new Error(`options.maxConstraints must be an integer in [0, ${max}], got ${mc}`);
     const args = achdSolverOptions(options);
     const s = _achd_solver_create(ptr, mc);
     if (!s) throw achdLastError();
-    const solver = new Solver(this, s, mc);
     _achd_solver_set_options(s, ...args);
-    const g = solver.gravity;
-    g[0] = 0; g[1] = 0; g[2] = -9.81;
-    return solver;
+    return new Solver(this, s, mc);  // gravity: the C++ Case's default
   }
   // The case object in, the result object out (docs/design.md section 5; plain arrays:
   // copies).
@@ -431,35 +478,35 @@ class Robot extends AchdHandle {
     const args = achdSolverOptions(options);
     if (!this._solver) this._solver = this.createSolver();
     const s = this._solver, ptr = s._ptr, nj = this.numJoints, nl = this.numLinks;
-    const at = (index) => _achd_solver_buffer(ptr, index) >> 3;
-    achdWriteVector(c.q, 'q', nj, at(0));
-    achdWriteVector(c.gravity, 'gravity', 3, at(3));
-    if (c.qd === undefined) HEAPF64.fill(0, at(1), at(1) + nj);
-    else achdWriteVector(c.qd, 'qd', nj, at(1));
-    if (c.ff_torques === undefined) HEAPF64.fill(0, at(2), at(2) + nj);
-    else achdWriteVector(c.ff_torques, 'ff_torques', nj, at(2));
+    const names = s._bufferNames(), max = achdConstants().max_constraints;
+    const at = (name) => _achd_solver_buffer(ptr, names.indexOf(name)) >> 3;
+    achdWriteVector(c.q, 'q', nj, at('q'));
+    achdWriteVector(c.gravity, 'gravity', 3, at('gravity'));
+    if (c.qd === undefined) HEAPF64.fill(0, at('qd'), at('qd') + nj);
+    else achdWriteVector(c.qd, 'qd', nj, at('qd'));
+    if (c.ff_torques === undefined) HEAPF64.fill(0, at('ff_torques'), at('ff_torques') + nj);
+    else achdWriteVector(c.ff_torques, 'ff_torques', nj, at('ff_torques'));
     let nc = 0;
     if (c.alpha !== undefined) {
       if (!Array.isArray(c.alpha)) throw new Error('alpha must be an array of 6-element columns');
-      if (c.alpha.length > ACHD_MAX_CONSTRAINTS)
-        throw new Error(`alpha: at most ${ACHD_MAX_CONSTRAINTS} constraints, got ${c.alpha.length}`);
+      if (c.alpha.length > max) throw new Error(`alpha: at most ${max} constraints, got ${c.alpha.length}`);
       nc = c.alpha.length;
-      achdWriteSpatialList(c.alpha, 'alpha', nc, at(4), 'columns');
+      achdWriteSpatialList(c.alpha, 'alpha', nc, at('alpha'), 'columns');
     }
     if (c.beta !== undefined) {
       if (!achdIsArrayLike(c.beta)) throw new Error('beta must be an array of numbers');
       if (c.beta.length !== nc)
         throw new Error(`beta: expected ${nc} values (one per alpha column), got ${c.beta.length}`);
-      achdWriteVector(c.beta, 'beta', nc, at(5));
+      achdWriteVector(c.beta, 'beta', nc, at('beta'));
     } else {
-      HEAPF64.fill(0, at(5), at(5) + nc);
+      HEAPF64.fill(0, at('beta'), at('beta') + nc);
     }
     if (c.f_ext !== undefined) {
       if (!Array.isArray(c.f_ext)) throw new Error('f_ext must be an array of 6-element wrenches');
       if (c.f_ext.length !== nl)
         throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${c.f_ext.length}`);
       s.useExternalWrenches = true;
-      achdWriteSpatialList(c.f_ext, 'f_ext', nl, at(6), 'wrenches');
+      achdWriteSpatialList(c.f_ext, 'f_ext', nl, at('f_ext'), 'wrenches');
     } else {
       s.useExternalWrenches = false;
     }
@@ -509,14 +556,15 @@ class Robot extends AchdHandle {
     const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
     if (options === undefined) options = {};
     achdCheckObject(options, 'options', ['gravity', 'f_ext', 'effects', 'frictionVelocity']);
-    const effects = achdEffectBits(options.effects, ACHD_DEFAULT_EFFECTS, 'options.effects');
-    const fv = achdNonNegative(options.frictionVelocity, 0.05, 'options.frictionVelocity');
+    const k = achdConstants();
+    const effects = achdEffectBits(options.effects, k.options.effects, 'options.effects');
+    const fv = achdPositive(options.frictionVelocity, k.options.friction_velocity, 'options.frictionVelocity');
     return achdWithScratch(4 * nj + 3 + 6 * nl, (p) => {
       const g = p + 4 * nj, f = g + 3;
       this._q(q, p);
       achdWriteVector(qd, 'qd', nj, p + nj);
       achdWriteVector(qdd, 'qdd', nj, p + 2 * nj);
-      achdWriteVector(options.gravity === undefined ? [0, 0, -9.81] : options.gravity, 'gravity', 3, g);
+      achdWriteVector(options.gravity === undefined ? k.case_gravity : options.gravity, 'gravity', 3, g);
       if (options.f_ext !== undefined) {
         if (!Array.isArray(options.f_ext) || options.f_ext.length !== nl)
           throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${
@@ -530,24 +578,27 @@ class Robot extends AchdHandle {
   }
   createSimulator(options) {
     const ptr = this._live();
-    if (typeof Module['_achd_sim_create'] !== 'function')
-      throw new Error('createSimulator: this build of achd has no simulator (core without simulator.cpp)');
     if (options === undefined || options === null) options = {};
     achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
       'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping']);
-    const integrator = options.integrator === undefined ? 'rk4' : options.integrator;
-    if (!(integrator in ACHD_INTEGRATORS))
-      throw new Error(`options.integrator: expected 'rk4', 'euler' or 'semi-implicit', got '${integrator}'`);
-    const effects = achdEffectBits(options.effects, ACHD_ALL_EFFECTS, 'options.effects');
     // Defaults are achd::SimulatorOptions' (core/include/achd/simulator.hpp).
-    const limits = achdChoice(options.limits, ['ignore', 'report', 'clamp'], 1, 'options.limits');
-    const frictionVelocity = achdPositive(options.frictionVelocity, 0.05, 'options.frictionVelocity');
-    const frequency = achdNonNegative(options.stabilisationFrequency, 0, 'options.stabilisationFrequency');
-    const damping = achdPositive(options.stabilisationDamping, 1, 'options.stabilisationDamping');
-    const sim = achdWithScratch(3, (p) => {
-      achdWriteVector(options.gravity === undefined ? [0, 0, -9.81] : options.gravity, 'gravity', 3, p);
-      return _achd_sim_create(ptr, ACHD_INTEGRATORS[integrator], effects, 8 * p, limits,
-        frictionVelocity, frequency, damping);
+    const k = achdConstants(), d = k.simulator_options;
+    let integratorName = options.integrator;
+    if (Object.prototype.hasOwnProperty.call(ACHD_OLD_INTEGRATOR_NAMES, integratorName)) {
+      achdDeprecated(`integrator '${integratorName}'`, `'${ACHD_OLD_INTEGRATOR_NAMES[integratorName]}'`);
+      integratorName = ACHD_OLD_INTEGRATOR_NAMES[integratorName];
+    }
+    const integrator = achdChoice(integratorName, k.integrators, d.integrator, 'options.integrator');
+    const effects = achdEffectBits(options.effects, d.effects, 'options.effects');
+    const limits = achdChoice(options.limits, k.limit_policies, d.limits, 'options.limits');
+    const frictionVelocity = achdPositive(options.frictionVelocity, d.solver.friction_velocity, 'options.frictionVelocity');
+    const frequency = achdNonNegative(options.stabilisationFrequency, d.stabilisation_frequency, 'options.stabilisationFrequency');
+    const damping = achdPositive(options.stabilisationDamping, d.stabilisation_damping, 'options.stabilisationDamping');
+    const create = (gravity) => _achd_sim_create(ptr, integrator, effects, gravity, limits, frictionVelocity,
+      frequency, damping);
+    const sim = options.gravity === undefined ? create(0) : achdWithScratch(3, (p) => {
+      achdWriteVector(options.gravity, 'gravity', 3, p);
+      return create(8 * p);
     });
     if (!sim) throw achdLastError();
     return new Simulator(this, sim);
@@ -570,4 +621,7 @@ Module['loadURDF'] = function loadURDF(text, options) {
 };
 // Bytes of wasm memory (grows, never shrinks): for leak checks.
 Module['memoryBytes'] = function memoryBytes() { return HEAPU8.length; };
-Module['Effects'] = Object.freeze(Object.assign({}, ACHD_EFFECT_BITS));
+// achd.Effects: the effect bits by JS name; achd.constants: everything achd_constants()
+// describes (both frozen, from C++).
+Object.defineProperty(Module, 'Effects', { enumerable: true, get: achdEffectBitsByKey });
+Object.defineProperty(Module, 'constants', { enumerable: true, get: () => achdConstants() });

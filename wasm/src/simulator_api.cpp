@@ -5,13 +5,15 @@
 
 #include "achd/achd.hpp"
 #include "achd/simulator.hpp"
+#include "boundary.hpp"
 #include "c_api.hpp"
 
 using achd::wasm::Robot;
 
-// integrator: 0 explicit Euler, 1 semi-implicit Euler, 2 RK4 (achd::Integrator order);
-// limits: 0 ignore, 1 report, 2 clamp (achd::LimitPolicy order). The rest are the scene
-// file's friction_velocity, stabilisation_frequency (0 = from dt), stabilisation_damping.
+// integrator, limits: enum values (indices into the integrators and limit_policies of
+// achd_constants()); gravity: 3 doubles, or null for SimulatorOptions' default. The rest
+// are the scene file's friction_velocity, stabilisation_frequency (0 = from dt),
+// stabilisation_damping.
 ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, unsigned effects,
                                              const double* gravity, int limits,
                                              double friction_velocity, double stabilisation_frequency,
@@ -21,7 +23,7 @@ ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, uns
     achd::SimulatorOptions o;
     o.integrator = static_cast<achd::Integrator>(integrator);
     o.effects = effects;
-    o.gravity = achd::Vector3(gravity);
+    if (gravity) o.gravity = achd::Vector3(gravity);
     o.limits = static_cast<achd::LimitPolicy>(limits);
     o.solver.friction_velocity = friction_velocity;
     o.stabilisation_frequency = stabilisation_frequency;
@@ -34,14 +36,14 @@ ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, uns
 
 ACHD_EXPORT void achd_sim_delete(achd::Simulator* sim) { delete sim; }
 
-// The buffers behind the JS views: 0 q, 1 qd, 2 t, 3 ff_torques, 4 f_ext (6 per link).
+// The buffers behind the JS views, by achd::wasm::SimulatorBuffer index (f_ext: 6 per link).
 ACHD_EXPORT double* achd_sim_buffer(achd::Simulator* sim, int which) {
   switch (which) {
-    case 0: return sim->q.data();
-    case 1: return sim->qd.data();
-    case 2: return &sim->t;
-    case 3: return sim->ff_torques.data();
-    case 4: return sim->f_ext.front().data();
+    case achd::wasm::kSimQ: return sim->q.data();
+    case achd::wasm::kSimQd: return sim->qd.data();
+    case achd::wasm::kSimT: return &sim->t;
+    case achd::wasm::kSimFfTorques: return sim->ff_torques.data();
+    case achd::wasm::kSimFExt: return sim->f_ext.front().data();
     default: return nullptr;
   }
 }
@@ -63,7 +65,8 @@ ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const doub
   });
 }
 
-// mode: 0 free, 1 hold, 2 accelerate (classical tip acceleration = setpoint).
+// mode: an achd::DirectionMode value (index into direction_modes of achd_constants());
+// Accelerate: classical tip acceleration = setpoint.
 ACHD_EXPORT int achd_sim_set_direction(achd::Simulator* sim, int index, int mode, double setpoint) {
   return achd::wasm::guarded(
       [&] { sim->set_direction(index, static_cast<achd::DirectionMode>(mode), setpoint); });
@@ -82,13 +85,13 @@ ACHD_EXPORT void achd_sim_residuals(const achd::Simulator* sim, double* out) {
 ACHD_EXPORT double achd_sim_kinetic_energy(const achd::Simulator* sim) { return sim->kinetic_energy(); }
 ACHD_EXPORT double achd_sim_potential_energy(const achd::Simulator* sim) { return sim->potential_energy(); }
 
-// The solve at the start of the last step: 0 nu, 1 joint_torques, 2 qdd.
+// The solve at the start of the last step, by achd::wasm::SimulatorResult index.
 ACHD_EXPORT const double* achd_sim_result(const achd::Simulator* sim, int which) {
   const achd::Data& d = sim->data();
   switch (which) {
-    case 0: return d.nu.data();
-    case 1: return d.joint_torques.data();
-    case 2: return d.qdd.data();
+    case achd::wasm::kSimNu: return d.nu.data();
+    case achd::wasm::kSimJointTorques: return d.joint_torques.data();
+    case achd::wasm::kSimQdd: return d.qdd.data();
     default: return nullptr;
   }
 }
@@ -100,4 +103,11 @@ ACHD_EXPORT int achd_sim_limit_hits(const achd::Simulator* sim, int* out) {
   const std::vector<int>& hits = sim->limit_hits();
   if (out) std::copy(hits.begin(), hits.end(), out);
   return static_cast<int>(hits.size());
+}
+
+// The simulator's options, as achd::wasm::describe writes them; valid until the next call.
+ACHD_EXPORT const char* achd_sim_options(const achd::Simulator* sim) {
+  static std::string json;
+  json = achd::wasm::describe(sim->options());
+  return json.c_str();
 }

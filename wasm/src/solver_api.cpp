@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "achd/achd.hpp"
+#include "boundary.hpp"
 #include "c_api.hpp"
 
 namespace achd::wasm {
@@ -52,27 +53,28 @@ ACHD_EXPORT Solver* achd_solver_create(const Robot* r, int max_constraints) {
 
 ACHD_EXPORT void achd_solver_delete(Solver* s) { delete s; }
 
-// The buffers behind the JS views, by index (the wrapper's BUFFERS table lists them).
+// The buffers behind the JS views, by achd::wasm::SolverBuffer index (api.js reads their
+// names, kSolverBufferNames, from achd_constants()).
 ACHD_EXPORT double* achd_solver_buffer(Solver* s, int which) {
   achd::Case& c = s->c;
   achd::Data& d = s->data;
   std::vector<achd::Vector6>& f_ext = c.f_ext.empty() ? s->parked_f_ext : c.f_ext;
   switch (which) {
-    case 0: return c.q.data();
-    case 1: return c.qd.data();
-    case 2: return c.ff_torques.data();
-    case 3: return c.gravity.data();
-    case 4: return c.alpha.data();
-    case 5: return c.beta.data();
-    case 6: return f_ext.front().data();
-    case 7: return d.qdd.data();
-    case 8: return d.nu.data();
-    case 9: return d.joint_torques.data();
-    case 10: return d.constraint_torques.data();
-    case 11: return d.total_torques.data();
-    case 12: return d.link_accelerations.front().data();
-    case 13: return d.constraint_wrench.data();
-    case 14: return d.dropped.data();
+    case achd::wasm::kSolverQ: return c.q.data();
+    case achd::wasm::kSolverQd: return c.qd.data();
+    case achd::wasm::kSolverFfTorques: return c.ff_torques.data();
+    case achd::wasm::kSolverGravity: return c.gravity.data();
+    case achd::wasm::kSolverAlpha: return c.alpha.data();
+    case achd::wasm::kSolverBeta: return c.beta.data();
+    case achd::wasm::kSolverFExt: return f_ext.front().data();
+    case achd::wasm::kSolverQdd: return d.qdd.data();
+    case achd::wasm::kSolverNu: return d.nu.data();
+    case achd::wasm::kSolverJointTorques: return d.joint_torques.data();
+    case achd::wasm::kSolverConstraintTorques: return d.constraint_torques.data();
+    case achd::wasm::kSolverTotalTorques: return d.total_torques.data();
+    case achd::wasm::kSolverLinkAccelerations: return d.link_accelerations.front().data();
+    case achd::wasm::kSolverConstraintWrench: return d.constraint_wrench.data();
+    case achd::wasm::kSolverDropped: return d.dropped.data();
     default: return nullptr;
   }
 }
@@ -92,13 +94,14 @@ ACHD_EXPORT void achd_solver_use_external_wrenches(Solver* s, int on) {
   s->c.f_ext.swap(s->parked_f_ext);
 }
 
-// convention 0 physical / 1 kdl; policy 0 truncate / 1 damped; effects: achd::Effect bits.
+// convention, policy: enum values (indices into kConventionNames, kSingularityPolicyNames);
+// effects: achd::Effect bits.
 ACHD_EXPORT void achd_solver_set_options(Solver* s, int convention, int policy, double tolerance,
                                          int absolute_tolerance, double damping, unsigned effects,
                                          double friction_velocity) {
   achd::Options& o = s->options;
-  o.convention = convention ? achd::Convention::Kdl : achd::Convention::Physical;
-  o.policy = policy ? achd::SingularityPolicy::Damped : achd::SingularityPolicy::Truncate;
+  o.convention = static_cast<achd::Convention>(convention);
+  o.policy = static_cast<achd::SingularityPolicy>(policy);
   o.tolerance = tolerance;
   o.absolute_tolerance = absolute_tolerance != 0;
   o.damping = damping;
@@ -120,3 +123,11 @@ ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) {
 ACHD_EXPORT int achd_solver_nu_size(const Solver* s) { return static_cast<int>(s->data.nu.size()); }
 ACHD_EXPORT int achd_solver_dropped_rows(const Solver* s) { return static_cast<int>(s->data.dropped.rows()); }
 ACHD_EXPORT int achd_solver_dropped_cols(const Solver* s) { return static_cast<int>(s->data.dropped.cols()); }
+
+// The options the solver holds, as achd::wasm::describe writes them (for the tests that
+// compare the wrapper's choices with the C++ defaults); valid until the next call.
+ACHD_EXPORT const char* achd_solver_options(const Solver* s) {
+  static std::string json;
+  json = achd::wasm::describe(s->options);
+  return json.c_str();
+}

@@ -1,0 +1,62 @@
+#pragma once
+// The one spelling of each option value across scene files, the CLI, the JS API, the
+// page and its URL hash: snake_case words, listed in the order of the C++ enums so that a
+// name's index is the enum's value (the static_asserts below keep the two in step).
+// JS option keys are the same words in camelCase (velocity_products -> velocityProducts).
+// Integrator and direction names are integrator_name() and direction_name()
+// (simulator.hpp).
+#include <cstdint>
+
+#include "achd/options.hpp"
+#include "achd/simulator.hpp"
+
+namespace achd {
+
+struct EffectName {
+  const char* name;
+  Effect bit;
+};
+// Every achd::Effect bit, in bit order.
+inline constexpr EffectName kEffectNames[] = {
+    {"gravity", kGravity},
+    {"velocity_products", kVelocityProducts},
+    {"external_wrenches", kExternalWrenches},
+    {"damping", kDamping},
+    {"friction", kFriction},
+    {"rotor_inertia", kRotorInertia},
+    {"constraints", kConstraints},
+};
+constexpr bool effect_names_in_bit_order() {
+  std::uint32_t all = 0;
+  for (std::size_t k = 0; k < sizeof kEffectNames / sizeof kEffectNames[0]; ++k) {
+    if (kEffectNames[k].bit != (1u << k)) return false;
+    all |= kEffectNames[k].bit;
+  }
+  return all == kAllEffects;
+}
+static_assert(effect_names_in_bit_order(), "kEffectNames: one entry per Effect bit, in bit order");
+
+// Convention, SingularityPolicy: index = enum value.
+inline constexpr const char* kConventionNames[] = {"physical", "kdl"};
+static_assert(static_cast<int>(Convention::Physical) == 0 && static_cast<int>(Convention::Kdl) == 1,
+              "kConventionNames follows Convention");
+inline constexpr const char* kSingularityPolicyNames[] = {"truncate", "damped"};
+static_assert(static_cast<int>(SingularityPolicy::Truncate) == 0 &&
+                  static_cast<int>(SingularityPolicy::Damped) == 1,
+              "kSingularityPolicyNames follows SingularityPolicy");
+
+// LimitPolicy, DirectionMode: index = enum value. Scene files and JS give an accelerated
+// direction as its setpoint (a number), not by this name.
+inline constexpr const char* kLimitPolicyNames[] = {"ignore", "report", "clamp"};
+static_assert(static_cast<int>(LimitPolicy::Ignore) == 0 && static_cast<int>(LimitPolicy::Report) == 1 &&
+                  static_cast<int>(LimitPolicy::Clamp) == 2,
+              "kLimitPolicyNames follows LimitPolicy");
+inline constexpr const char* kDirectionModeNames[] = {"free", "hold", "accelerate"};
+static_assert(static_cast<int>(DirectionMode::Free) == 0 && static_cast<int>(DirectionMode::Hold) == 1 &&
+                  static_cast<int>(DirectionMode::Accelerate) == 2,
+              "kDirectionModeNames follows DirectionMode");
+// Every Integrator, in enum order (names: integrator_name()).
+inline constexpr Integrator kIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler,
+                                              Integrator::RK4};
+
+}  // namespace achd

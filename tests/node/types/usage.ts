@@ -1,0 +1,75 @@
+// Type tests of wasm/achd.d.ts: the API used as a user would, checked by tsc --noEmit
+// (tests/node/types.test.mjs). Each `@ts-expect-error` line is a misuse the types must
+// refuse; tsc fails if such a line compiles, so both directions are tested. Never run.
+import createAchd, {
+  type Achd, type Constants, type Integrator, type Result, type Robot, type Simulator, type Solver,
+} from 'achd';
+
+declare const urdf: string;
+
+export async function usage(): Promise<void> {
+  const achd: Achd = await createAchd();
+  const robot: Robot = achd.loadURDF(urdf, { root: 'base', tip: 'tool' });
+  const q = new Float64Array(robot.numJoints);
+
+  // The copying solve: the case in, the result (snake_case fields) out.
+  const r: Result = robot.solve({ q, gravity: [0, 0, -9.81], alpha: [[0, 0, 1, 0, 0, 0]], beta: [0] },
+    { convention: 'kdl', policy: 'damped', damping: 1e-6, effects: { velocityProducts: false } });
+  const torques: number[] = r.joint_torques;
+  const sigma: number = r.sigma_min;
+  // @ts-expect-error gravity is required
+  robot.solve({ q });
+  // @ts-expect-error result fields are snake_case
+  r.jointTorques;
+  // @ts-expect-error effect keys are camelCase
+  robot.solve({ q, gravity: [0, 0, -9.81] }, { effects: { velocity_products: false } });
+  // @ts-expect-error convention is 'physical' or 'kdl'
+  robot.solve({ q, gravity: [0, 0, -9.81] }, { convention: 'KDL' });
+
+  // The zero-copy solver: views in, views out.
+  const solver: Solver = robot.createSolver({ maxConstraints: 2, effects: achd.Effects.gravity });
+  solver.q.set(q);
+  solver.numConstraints = 1;
+  solver.solve();
+  const qdd: Float64Array = solver.qdd;
+  // @ts-expect-error views are read-only properties (write into them instead)
+  solver.qdd = new Float64Array(7);
+  // @ts-expect-error maxConstraints is fixed at creation
+  solver.maxConstraints = 3;
+
+  // The simulator: scene-file integrator names; the old spellings still type-check.
+  const integrators: Integrator[] = ['explicit_euler', 'semi_implicit_euler', 'rk4'];
+  const sim: Simulator = robot.createSimulator({ integrator: integrators[1], limits: 'clamp', gravity: [0, 0, -9.81] });
+  robot.createSimulator({ integrator: 'semi-implicit' });
+  // @ts-expect-error not an integrator
+  robot.createSimulator({ integrator: 'verlet' });
+  // @ts-expect-error not a limit policy
+  robot.createSimulator({ limits: 'stop' });
+  sim.reset(q);
+  sim.setDirection('z', 'hold');
+  sim.setDirection('rx', 0.5);
+  // @ts-expect-error not a direction
+  sim.setDirection('w', 'hold');
+  // @ts-expect-error not a mode
+  sim.setDirection('z', 'stick');
+  const steps: number = sim.step(100, 1e-3, { onProgress: (done, total) => done < total, progressInterval: 10 });
+  const held: number | null = sim.residuals().z;
+  const tau: number[] = sim.joint_torques();
+  const old: number[] = sim.jointTorques();  // deprecated alias, still typed
+
+  // What the API takes from C++.
+  const c: Constants = achd.constants;
+  const tolerance: number = c.options.tolerance;
+  const gravity: readonly [number, number, number] = c.simulator_options.gravity;
+  const integrator: Integrator = c.simulator_options.integrator;
+  const bit: number = c.effects.velocity_products;
+  // @ts-expect-error constants are read-only
+  c.max_constraints = 7;
+  // @ts-expect-error effects are named as in scene files here
+  c.effects.velocityProducts;
+
+  void [torques, sigma, qdd, steps, held, tau, old, tolerance, gravity, integrator, bit];
+  sim.delete();
+  solver.delete();
+  robot.delete();
+}
