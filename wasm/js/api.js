@@ -613,7 +613,7 @@ Module['loadURDF'] = function loadURDF(text, options) {
   achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic']);
   for (const key of ['root', 'tip'])
     if (typeof options[key] !== 'string') throw new Error(`loadURDF: options.${key} must be a link name`);
-  const mimic = achdChoice(options.mimic, ['error', 'independent'], 0, 'loadURDF: options.mimic');
+  const mimic = achdChoice(options.mimic, ['error', 'independent'], 'error', 'loadURDF: options.mimic');
   const ptr = achdWithString(text, (x) => achdWithString(options.root, (r) =>
     achdWithString(options.tip, (t) => _achd_robot_load(x, r, t, mimic))));
   if (!ptr) throw achdLastError();
