@@ -26,11 +26,23 @@ inline Pairs column(const Matrix6& M, int j) { return load_pairs(M.data() + 6 * 
 inline Pairs operator+(const Pairs& a, const Pairs& b) { return {{a.p[0] + b.p[0], a.p[1] + b.p[1], a.p[2] + b.p[2]}}; }
 inline Pairs operator-(const Pairs& a, const Pairs& b) { return {{a.p[0] - b.p[0], a.p[1] - b.p[1], a.p[2] - b.p[2]}}; }
 inline Pairs operator*(const Pairs& a, Pair s) { return {{a.p[0] * s, a.p[1] * s, a.p[2] * s}}; }
+inline Pairs operator*(const Pairs& a, double s) { return a * splat(s); }
 
 // a . b, summed as (pairs 0 + 1) + 2, then the two lanes.
 inline double dot(const Pairs& a, const Pairs& b) {
   const Pair s = (a.p[0] * b.p[0] + a.p[1] * b.p[1]) + a.p[2] * b.p[2];
   return s[0] + s[1];
+}
+
+// |a|^2 = a . a (in dot's order).
+inline double squared_norm(const Pairs& a) { return dot(a, a); }
+
+// x * 0 summed over x's six numbers: 0 when every one is finite, NaN otherwise
+// (finite_probe.hpp).
+inline double finite_probe(const Pairs& x) {
+  const Pair zero = splat(0);
+  const Pair probe = x.p[0] * zero + x.p[1] * zero + x.p[2] * zero;
+  return probe[0] + probe[1];
 }
 
 // The rows 0..2 (linear) and 3..5 (angular) of a 6-vector as 3-vectors.
@@ -65,28 +77,29 @@ inline Rows3 cross(const Rows3& t, const Pair (&u)[3]) {
 }
 
 // A change of reference point by r (from a parent's origin to a child's), axes unchanged,
-// with the pairs of r's components that the cross products need.
+// with r's components in the lane arrangements that the cross products need. Each member
+// is named by its two lanes: xx = (r_x, r_x), zx = (r_z, r_x), zero_y = (0, r_y), ...
 struct Shift {
   explicit Shift(const Vector3& r)
-      : r0(splat(r[0])), r1(splat(r[1])), r2(splat(r[2])), r20{r[2], r[0]}, r01{r[0], r[1]},
-        r12{r[1], r[2]}, z1{0, r[1]}, z2{0, r[2]}, r1z{r[1], 0}, r0z{r[0], 0} {}
-  Pair r0, r1, r2, r20, r01, r12, z1, z2, r1z, r0z;
+      : xx(splat(r[0])), yy(splat(r[1])), zz(splat(r[2])), zx{r[2], r[0]}, xy{r[0], r[1]},
+        yz{r[1], r[2]}, zero_y{0, r[1]}, zero_z{0, r[2]}, y_zero{r[1], 0}, x_zero{r[0], 0} {}
+  Pair xx, yy, zz, zx, xy, yz, zero_y, zero_z, y_zero, x_zero;
 };
 
 // A force f = [f; n] about the child's origin, taken about the parent's: n += r x f.
-//   row 3 (p[1][1]) += r1 f2 - r2 f1;  rows 4, 5 (p[2]) += (r2 f0 - r0 f2, r0 f1 - r1 f0)
+//   row 3 (p[1][1]) += r_y f_z - r_z f_y;  rows 4, 5 (p[2]) += (r_z f_x - r_x f_z, r_x f_y - r_y f_x)
 inline void force_to_parent(Pairs& f, const Shift& s) {
-  const Pair f20 = low_lanes(f.p[1], f.p[0]);  // (f2, f0)
-  f.p[2] += s.r20 * f.p[0] - s.r01 * f20;
-  f.p[1] += s.z1 * swapped(f.p[1]) - s.z2 * f.p[0];
+  const Pair f_zx = low_lanes(f.p[1], f.p[0]);  // (f_z, f_x)
+  f.p[2] += s.zx * f.p[0] - s.xy * f_zx;
+  f.p[1] += s.zero_y * swapped(f.p[1]) - s.zero_z * f.p[0];
 }
 
 // A motion m = [v; w] about the parent's origin, taken about the child's: v += w x r.
-//   rows 0, 1 (p[0]) += (w1 r2 - w2 r1, w2 r0 - w0 r2);  row 2 (p[1][0]) += w0 r1 - w1 r0
+//   rows 0, 1 (p[0]) += (w_y r_z - w_z r_y, w_z r_x - w_x r_z);  row 2 (p[1][0]) += w_x r_y - w_y r_x
 inline void motion_to_child(Pairs& m, const Shift& s) {
-  const Pair w20 = high_lanes(m.p[2], m.p[1]);  // (w2, w0)
-  m.p[0] += s.r20 * m.p[2] - s.r12 * w20;
-  m.p[1] += s.r1z * swapped(m.p[1]) - s.r0z * m.p[2];
+  const Pair w_zx = high_lanes(m.p[2], m.p[1]);  // (w_z, w_x)
+  m.p[0] += s.zx * m.p[2] - s.yz * w_zx;
+  m.p[1] += s.y_zero * swapped(m.p[1]) - s.x_zero * m.p[2];
 }
 
 // A rigid body's inertia I = [m 1, -[h]x; [h]x, C] about its origin by its parts.
@@ -109,6 +122,28 @@ inline void rigid_times(const RigidInertia& I, const Rows3& lin, const Rows3& an
     Ca.r[r] = (splat(c0) * ang.r[0] + splat(c1) * ang.r[1]) + splat(c2) * ang.r[2];
   }
   n = cross(h, lin) + Ca;
+}
+
+// The rigid body's bias force with the velocity products as accelerations (the
+// hybrid_dynamics.cpp header): p = v x* I v + I kappa. I acts on v and kappa at once
+// (rows (v_k, kappa_k)), and v x* [f; n] = [w x f; w x n + v_lin x f] on f and n at once
+// (rows (f_k, n_k)).
+inline Pairs bias_force(const RigidInertia& I, const Pairs& v, const Pairs& kappa) {
+  const Rows3 lin = {{low_lanes(v.p[0], kappa.p[0]), high_lanes(v.p[0], kappa.p[0]), low_lanes(v.p[1], kappa.p[1])}};
+  const Rows3 ang = {{high_lanes(v.p[1], kappa.p[1]), low_lanes(v.p[2], kappa.p[2]), high_lanes(v.p[2], kappa.p[2])}};
+  Rows3 f, n;  // lanes: (I v, I kappa)
+  rigid_times(I, lin, ang, f, n);
+  Rows3 fn, Ikappa;  // rows (f_k, n_k) of I v, and I kappa as rows (linear, angular)
+  for (int k = 0; k < 3; ++k) {
+    fn.r[k] = low_lanes(f.r[k], n.r[k]);
+    Ikappa.r[k] = high_lanes(f.r[k], n.r[k]);
+  }
+  const Pair w[3] = {splat(v.p[1][1]), splat(v.p[2][0]), splat(v.p[2][1])};
+  const Pair vl[3] = {splat(v.p[0][0]), splat(v.p[0][1]), splat(v.p[1][0])};
+  const Rows3 wx = cross(w, fn), vx = cross(vl, fn);  // (w x f, w x n), (v_lin x f, -)
+  Rows3 bias = wx + Ikappa;
+  for (int k = 0; k < 3; ++k) bias.r[k] += low_lanes(Pair{0, 0}, vx.r[k]);  // ang += v_lin x f
+  return from_halves(bias);
 }
 
 // A rigid body's inertia about its origin, given in its own axes as the 6x6
@@ -153,11 +188,11 @@ inline Pairs times(const Matrix6& M, const Vector6& x) {
 //   N = M X:  N.col(j) = M.col(j), N.col(3 + j) = M.col(3 + j) - (M.col(0:3) x).col(j)
 //   X^T N:    every column's rows 3..5 gain r x (its rows 0..2), as force_to_parent
 inline void shift_inertia(Pairs (&n)[6], const Shift& s) {
-  // (M.col(0:3) x).col(0) = r2 M.col(1) - r1 M.col(2), col(1) = r0 M.col(2) - r2 M.col(0),
-  // col(2) = r1 M.col(0) - r0 M.col(1)
-  n[3] = n[3] - (n[1] * s.r2 - n[2] * s.r1);
-  n[4] = n[4] - (n[2] * s.r0 - n[0] * s.r2);
-  n[5] = n[5] - (n[0] * s.r1 - n[1] * s.r0);
+  // (M.col(0:3) x).col(0) = r_z M.col(1) - r_y M.col(2), col(1) = r_x M.col(2) - r_z M.col(0),
+  // col(2) = r_y M.col(0) - r_x M.col(1)
+  n[3] = n[3] - (n[1] * s.zz - n[2] * s.yy);
+  n[4] = n[4] - (n[2] * s.xx - n[0] * s.zz);
+  n[5] = n[5] - (n[0] * s.yy - n[1] * s.xx);
   for (int j = 0; j < 6; ++j) force_to_parent(n[j], s);
 }
 
@@ -169,6 +204,14 @@ inline void add_shifted_minus_rank_one(Pairs (&n)[6], const Pairs& Us, double Di
   const double us[6] = {Us.p[0][0], Us.p[0][1], Us.p[1][0], Us.p[1][1], Us.p[2][0], Us.p[2][1]};
   shift_inertia(n, s);
   for (int j = 0; j < 6; ++j) store_pairs(P.data() + 6 * j, column(P, j) + (n[j] - Us * splat(us[j] * Dinv)));
+}
+
+// The same for M given as a matrix (its columns loaded first).
+inline void add_shifted_minus_rank_one(const Matrix6& M, const Pairs& Us, double Dinv, const Shift& s,
+                                       Matrix6& P) {
+  Pairs n[6];
+  for (int j = 0; j < 6; ++j) n[j] = column(M, j);
+  add_shifted_minus_rank_one(n, Us, Dinv, s, P);
 }
 
 // P += X^T M X (shift_inertia) for M given as a matrix.
