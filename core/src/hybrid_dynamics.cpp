@@ -55,15 +55,16 @@ bool any_nonzero(const Eigen::VectorXd& v) {
 
 // Joint torques fed to the sweeps: tau = ff - damping qd - friction tanh(qd / v_f).
 void joint_forces(const Model& model, Data& d, const Case& c, const Options& o) {
+  Data::Workspace& w = d.workspace;
   const int n = model.num_joints();
-  if (c.ff_torques.size()) d.tau = c.ff_torques;
-  else d.tau.setZero(n);
+  if (c.ff_torques.size()) w.tau = c.ff_torques;
+  else w.tau.setZero(n);
   if (!c.qd.size()) return;
   if (o.effects & kDamping)
-    for (int i = 0; i < n; ++i) d.tau[i] -= model.bodies[i].damping * c.qd[i];
+    for (int i = 0; i < n; ++i) w.tau[i] -= model.bodies[i].damping * c.qd[i];
   if (o.effects & kFriction)
     for (int i = 0; i < n; ++i)
-      d.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
+      w.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
 }
 
 // Body i's joint subspace S_i = [0; z_i] (revolute) or [z_i; 0] (prismatic), z_i the
@@ -142,6 +143,7 @@ constexpr double kMaxDouble = std::numeric_limits<double>::max();
 // Ia_i = IA_i - U U^T / D and pa_i = pA_i + U u / D are added, shifted by r_i, to its
 // parent's IA and pA, as X^T IA X - Us Us^T / D and X^T pA + Us u / D with Us = X^T U.
 void inward_sweep(const Model& model, Data& d, bool rotor) {
+  Data::Workspace& w = d.workspace;
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     const JointSubspace S = subspace(model, d, i);
@@ -150,17 +152,17 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
     const Pairs U = S.inertia_times(IA);
     const Pairs pA = load_pairs(d.pA[i]);
     const double D = S.project(U) + (rotor ? b.rotor_inertia : 0.0);
-    const double u = d.tau[i] - S.project(pA);
+    const double u = w.tau[i] - S.project(pA);
     const double Dinv = 1.0 / D;
     if (!(D > 0 && D <= kMaxDouble && Dinv <= kMaxDouble)) bad_pivot(b, D);
-    store_pairs(d.U[i], U);
+    store_pairs(w.U[i], U);
     const Shift shift(d.r[i]);
     Pairs Us = U;  // X^T U
     force_to_parent(Us, shift);
-    store_pairs(d.W[i], Us * Dinv);  // X^T U / D, for step 4
-    d.D[i] = D;
-    d.Dinv[i] = Dinv;
-    d.u[i] = u;
+    store_pairs(w.W[i], Us * Dinv);  // X^T U / D, for step 4
+    w.D[i] = D;
+    w.Dinv[i] = Dinv;
+    w.u[i] = u;
     const int p = b.parent;
     if (p < 0) continue;
     // Ia = IA - U U^T / D;  pa = pA + U u / D;  the parent adds both, shifted
@@ -212,14 +214,15 @@ double column_scale(const double* column) {
 
 // E = alpha s moved from the tip link's origin to the tip body's origin.
 void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc) {
+  Data::Workspace& w = d.workspace;
   const Link& tip = model.tip();
   const Vector3 r = d.X0[tip.body].R * tip.offset.p;
   d.E.resize(6, nc);
-  d.alpha_scale.resize(nc);
+  w.alpha_scale.resize(nc);
   for (int k = 0; k < nc; ++k) {
     const double s = column_scale(c.alpha.col(k).data());
     const Vector3 f = c.alpha.col(k).head<3>() * s;
-    d.alpha_scale[k] = s;
+    w.alpha_scale[k] = s;
     d.E.col(k).head<3>() = f;
     d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() * s + r.cross(f);
   }
@@ -230,9 +233,10 @@ void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc
 // (nu needs no finite probe of its own: alpha nu does, and a non-finite nu_k makes it
 // non-finite, as alpha_k is finite.)
 void unscale_constraint_forces(Data& d, int nc) {
-  for (int k = 0; k < nc; ++k) d.nu[k] *= d.alpha_scale[k];
+  Data::Workspace& w = d.workspace;
+  for (int k = 0; k < nc; ++k) d.nu[k] *= w.alpha_scale[k];
   for (Eigen::Index j = 0; j < d.dropped.cols(); ++j) {
-    for (int k = 0; k < nc; ++k) d.dropped(k, j) *= d.alpha_scale[k];
+    for (int k = 0; k < nc; ++k) d.dropped(k, j) *= w.alpha_scale[k];
     d.dropped.col(j).normalize();
   }
 }
@@ -243,9 +247,10 @@ void unscale_constraint_forces(Data& d, int nc) {
 //   EZ_i = E^T S_i;  E <- X_i^T (E - U_i EZ_i^T / D_i).
 template <int NC>
 void constraint_columns(const Model& model, Data& d) {
+  Data::Workspace& w = d.workspace;
   ConstraintColumnPairs<NC> E(d.E);
   for (int i = model.num_joints() - 1; i >= 0; --i)
-    E.pass_to_parent(subspace(model, d, i), d.U[i], d.Dinv[i], d.r[i], d.EZ[i].data());
+    E.pass_to_parent(subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], w.EZ[i].data());
   E.store(d.E);
 }
 
@@ -254,9 +259,10 @@ void constraint_columns(const Model& model, Data& d) {
 // whose E^T c term vanishes with c = 0). Returns K's finite probe.
 template <int NC>
 double coupling_terms(const Model& model, Data& d) {
+  Data::Workspace& w = d.workspace;
   CouplingSums<NC> sums;
-  for (int i = 0; i < model.num_joints(); ++i) sums.add(d.EZ[i].data(), d.Dinv[i], d.u[i]);
-  return sums.store(d.M0, d.G0);
+  for (int i = 0; i < model.num_joints(); ++i) sums.add(w.EZ[i].data(), w.Dinv[i], w.u[i]);
+  return sums.store(d.K, d.G0);
 }
 
 // Returns K's finite probe.
@@ -278,20 +284,21 @@ double constraint_sweep(const Model& model, Data& d, int nc) {
 // the last body's a~ is finite exactly when every qdd and a~ is (and with them the
 // constraint torques, u and W, which qdd adds); D qdd is probed on its own.
 double outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
+  Data::Workspace& w = d.workspace;
   const ConstraintPairs nu(d.nu, nc);
   double probe = 0;
   Pairs a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
-    const double ct = -nu.dot(d.EZ[i]);  // KDL's constraint torque -EZ_i^T nu = -S^T E nu
+    const double ct = -nu.dot(w.EZ[i]);  // KDL's constraint torque -EZ_i^T nu = -S^T E nu
     // U^T a~_i / D = W^T a~_p with W = X^T U / D (from the inward sweep): the product
     // needs only the parent's acceleration, and the shift of a~ runs beside it
-    const double qdd = (d.u[i] + ct) * d.Dinv[i] - dot(load_pairs(d.W[i]), a);
+    const double qdd = (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
     motion_to_child(a, Shift(d.r[i]));
     a = a + subspace(model, d, i).motion(qdd);
     store_pairs(d.a[i], a);
     d.qdd[i] = qdd;
     d.constraint_torques[i] = ct;
-    d.total_torques[i] = d.D[i] * qdd;
+    d.total_torques[i] = w.D[i] * qdd;
     probe += d.total_torques[i] * 0.0;
   }
   return probe + finite_probe(a);
@@ -384,9 +391,9 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
       kappa_tip = motion_shift(d.kappa[tip.body], d.X0[tip.body].R * tip.offset.p);
     }
     // Every term in the scaled columns: E, G_0 and alpha s (beta s).
-    d.rhs.resize(nc);
+    d.workspace.rhs.resize(nc);
     for (int k = 0; k < nc; ++k) {
-      const double s = d.alpha_scale[k];
+      const double s = d.workspace.alpha_scale[k];
       double r = d.G0[k] - c.beta[k] * s;
       if (moving) r += (c.alpha.col(k) * s).dot(kappa_tip);
       if (gravity) {
@@ -394,12 +401,12 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
         r -= e.dot(c.gravity);
         if (physical) r += (c.alpha.col(k).head<3>() * s).dot(c.gravity);
       }
-      d.rhs[k] = r;
+      d.workspace.rhs[k] = r;
     }
     solve_coupling(d, o);
   } else {
     d.rank = 0;
-    d.M0.resize(0, 0);
+    d.K.resize(0, 0);
     d.dropped.resize(0, 0);
   }
   // Each step returns the finite probe of what it wrote (0, or NaN if a number is not
