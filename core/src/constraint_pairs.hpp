@@ -6,7 +6,7 @@
 // product for every row, and the column pairs are independent chains the processor
 // overlaps. When NC is odd the second lane of the last pair is 0, and every update keeps
 // it 0; the EZ_i that the inward pass writes therefore have a 0 in that slot, which
-// ConstraintPairs::dot relies on.
+// ConstraintMagnitudes::dot relies on.
 #include <array>
 
 #include "achd/case.hpp"
@@ -16,11 +16,11 @@ namespace achd {
 
 // The unit constraint forces E (6 x NC), rolled from the tip to the base.
 template <int NC>
-struct ConstraintColumnPairs {
+struct UnitConstraintForces {
   static constexpr int NP = (NC + 1) / 2;
   Pair E[NP][6];  // E[j][row] = (E(row, 2j), E(row, 2j + 1))
 
-  explicit ConstraintColumnPairs(const ConstraintMatrix& M) {
+  explicit UnitConstraintForces(const ConstraintMatrix& M) {
     for (int j = 0; j < NP; ++j)
       for (int row = 0; row < 6; ++row)
         E[j][row] = Pair{M(row, 2 * j), 2 * j + 1 < NC ? M(row, 2 * j + 1) : 0.0};
@@ -94,11 +94,11 @@ struct CouplingSums {
 };
 
 // nc constraint values (such as the magnitudes nu), two to a Pair, 0 past nc.
-struct ConstraintPairs {
+struct ConstraintMagnitudes {
   Pair x[3] = {splat(0), splat(0), splat(0)};
   int np;
 
-  ConstraintPairs(const ConstraintVector& v, int nc) : np((nc + 1) / 2) {
+  ConstraintMagnitudes(const ConstraintVector& v, int nc) : np((nc + 1) / 2) {
     for (int k = 0; k < nc; k += 2) x[k / 2] = Pair{v[k], k + 1 < nc ? v[k + 1] : 0.0};
   }
 

@@ -73,7 +73,7 @@ inline JointSubspace subspace(const Model& model, const Data& d, int i) {
   return {d.X0[i].R.col(2), is_rotational(model.bodies[i])};
 }
 
-const Pairs kZero{};
+const SpatialVector kZero{};
 
 // Step 1. Poses (body_poses); IA_i = I_i in base axes;
 // v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  kappa_i = kappa_p (shifted) + c_i;
@@ -93,7 +93,7 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
     }
     const JointSubspace S = subspace(model, d, i);
     const double qd = c.qd[i];
-    Pairs vp = kZero, kappa = kZero;  // v_p and kappa_p about body i's origin
+    SpatialVector vp = kZero, kappa = kZero;  // v_p and kappa_p about body i's origin
     if (p >= 0) {
       const Shift s(d.r[i]);
       vp = load_pairs(d.v[p]);
@@ -102,7 +102,7 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       motion_to_child(kappa, s);
     }
     kappa = kappa + velocity_product_acceleration(vp, S, qd);  // kappa_i = kappa_p + c_i
-    const Pairs v = vp + S.motion(qd);                           // v_i = v_p + S qd_i
+    const SpatialVector v = vp + S.motion(qd);                 // v_i = v_p + S qd_i
     store_pairs(d.v[i], v);
     store_pairs(d.kappa[i], kappa);
     store_pairs(d.pA[i], bias_force(I, v, kappa));  // pA_i = v_i x* I_i v_i + I_i kappa_i
@@ -116,7 +116,7 @@ void add_external_wrenches(const Model& model, Data& d, const Case& c) {
     const Link& link = model.links[l];
     const int b = link.body;
     if (b < 0) continue;  // a link fixed to the root: the base takes the wrench
-    Pairs f = load_pairs(c.f_ext[l]);
+    SpatialVector f = load_pairs(c.f_ext[l]);
     if (!is_zero(link.offset.p)) force_to_parent(f, Shift(d.X0[b].R * link.offset.p));
     store_pairs(d.pA[b], load_pairs(d.pA[b]) - f);
   }
@@ -149,15 +149,15 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
     const JointSubspace S = subspace(model, d, i);
     const Matrix6& IA = d.IA[i];
     // U = IA S,  D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
-    const Pairs U = S.inertia_times(IA);
-    const Pairs pA = load_pairs(d.pA[i]);
+    const SpatialVector U = S.inertia_times(IA);
+    const SpatialVector pA = load_pairs(d.pA[i]);
     const double D = S.project(U) + (rotor ? b.rotor_inertia : 0.0);
     const double u = w.tau[i] - S.project(pA);
     const double Dinv = 1.0 / D;
     if (!(D > 0 && D <= kMaxDouble && Dinv <= kMaxDouble)) bad_pivot(b, D);
     store_pairs(w.U[i], U);
     const Shift shift(d.r[i]);
-    Pairs Us = U;  // X^T U
+    SpatialVector Us = U;  // X^T U
     force_to_parent(Us, shift);
     store_pairs(w.W[i], Us * Dinv);  // X^T U / D, for step 4
     w.D[i] = D;
@@ -167,7 +167,7 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
     if (p < 0) continue;
     // Ia = IA - U U^T / D;  pa = pA + U u / D;  the parent adds both, shifted
     add_shifted_minus_rank_one(IA, Us, Dinv, shift, d.IA[p]);  // IA_p += X^T IA X - Us Us^T / D
-    Pairs pA_shifted = pA;  // X^T pA
+    SpatialVector pA_shifted = pA;  // X^T pA
     force_to_parent(pA_shifted, shift);
     store_pairs(d.pA[p], load_pairs(d.pA[p]) + (pA_shifted + Us * (u * Dinv)));  // pA_p += X^T pa
   }
@@ -248,7 +248,7 @@ void unscale_constraint_forces(Data& d, int nc) {
 template <int NC>
 void constraint_columns(const Model& model, Data& d) {
   Data::Workspace& w = d.workspace;
-  ConstraintColumnPairs<NC> E(d.E);
+  UnitConstraintForces<NC> E(d.E);
   for (int i = model.num_joints() - 1; i >= 0; --i)
     E.pass_to_parent(subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], w.EZ[i].data());
   E.store(d.E);
@@ -285,9 +285,9 @@ double constraint_sweep(const Model& model, Data& d, int nc) {
 // constraint torques, u and W, which qdd adds); D qdd is probed on its own.
 double outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
   Data::Workspace& w = d.workspace;
-  const ConstraintPairs nu(d.nu, nc);
+  const ConstraintMagnitudes nu(d.nu, nc);
   double probe = 0;
-  Pairs a = load_pairs(a0);
+  SpatialVector a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
     const double ct = -nu.dot(w.EZ[i]);  // KDL's constraint torque -EZ_i^T nu = -S^T E nu
     // U^T a~_i / D = W^T a~_p with W = X^T U / D (from the inward sweep): the product
@@ -308,13 +308,13 @@ double outward_accelerations(const Model& model, Data& d, const Vector6& a0, int
 // (a~ + kappa), moved from the body origin to the link origin. `shift` = [g; 0] turns the
 // sweeps' KDL accelerations into physical ones. Returns their finite probe.
 double link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
-  const Pairs s = load_pairs(shift), base = load_pairs(a0);
+  const SpatialVector s = load_pairs(shift), base = load_pairs(a0);
   store_pairs(d.link_accelerations[0], base + s);
   double probe = finite_probe(base + s);
   for (int l = 0; l < model.num_links(); ++l) {
     const Link& link = model.links[l];
     const int b = link.body;
-    Pairs out = base;
+    SpatialVector out = base;
     if (b >= 0) {
       out = load_pairs(d.a[b]) + load_pairs(d.kappa[b]);
       if (!is_zero(link.offset.p)) motion_to_child(out, Shift(d.X0[b].R * link.offset.p));
@@ -328,7 +328,7 @@ double link_accelerations(const Model& model, Data& d, const Vector6& a0, const 
 
 // The constraint wrench alpha nu at the tip link's origin. Returns its finite probe.
 double constraint_wrench(Data& d, const Case& c, int nc) {
-  Pairs w = kZero;
+  SpatialVector w = kZero;
   for (int k = 0; k < nc; ++k) w = w + load_pairs(c.alpha.col(k).data()) * d.nu[k];
   store_pairs(d.constraint_wrench, w);
   return finite_probe(w);

@@ -12,17 +12,17 @@ struct JointSubspace {
   bool rotational;  // S = [0; z], else [z; 0]
 
   // S s: the spatial motion (velocity or acceleration) of joint rate s.
-  Pairs motion(double s) const {
+  SpatialVector motion(double s) const {
     const Vector3 zs = z * s;
     if (rotational) return {{Pair{0, 0}, Pair{0, zs[0]}, Pair{zs[1], zs[2]}}};
     return {{Pair{zs[0], zs[1]}, Pair{zs[2], 0}, Pair{0, 0}}};
   }
 
   // S^T f: the component along the joint of a spatial force f (or of a column I S).
-  double project(const Pairs& f) const { return z.dot(rotational ? angular_part(f) : linear_part(f)); }
+  double project(const SpatialVector& f) const { return z.dot(rotational ? angular_part(f) : linear_part(f)); }
 
   // I S: I's columns 3..5 (revolute) or 0..2 (prismatic) combined by z.
-  Pairs inertia_times(const Matrix6& I) const { return combine_columns(I, rotational ? 3 : 0, z); }
+  SpatialVector inertia_times(const Matrix6& I) const { return combine_columns(I, rotational ? 3 : 0, z); }
 
   // The first row of the part of a 6-vector that S spans (3, angular, or 0, linear).
   int first_row() const { return rotational ? 3 : 0; }
@@ -31,11 +31,11 @@ struct JointSubspace {
 // The velocity-product acceleration c = v_p x S qd of a body whose parent moves with v_p
 // (about the body's origin): [v_lin x zq; w x zq] (revolute) or [w x zq; 0] (prismatic),
 // zq = z qd.
-inline Pairs velocity_product_acceleration(const Pairs& v_parent, const JointSubspace& S, double qd) {
+inline SpatialVector velocity_product_acceleration(const SpatialVector& v_parent, const JointSubspace& S, double qd) {
   const Vector3& z = S.z;
   const Pair zq[3] = {splat(z[0] * qd), splat(z[1] * qd), splat(z[2] * qd)};
-  const Rows3 vxz = cross(halves(v_parent), zq);  // rows (v_lin x zq, w x zq)
-  if (S.rotational) return from_halves(vxz);
+  const Vec3Pair vxz = cross(linear_angular(v_parent), zq);  // rows (v_lin x zq, w x zq)
+  if (S.rotational) return from_linear_angular(vxz);
   return {{high_lanes(vxz.r[0], vxz.r[1]), Pair{vxz.r[2][1], 0}, Pair{0, 0}}};
 }
 
