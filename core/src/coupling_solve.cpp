@@ -160,21 +160,21 @@ double lower_bound_of_lambda_min(const Ldlt<n>& f) {
 // LDL^T. False (nothing written) when K needs the eigen-decomposition.
 template <int n>
 bool solve_by_ldlt_n(Data& data, const Options& options) {
-  const CouplingMatrix& K = data.M0;
+  const CouplingMatrix& K = data.K;
   Ldlt<n> f;
   if (!f.factor(K)) return false;
   const double below = lower_bound_of_lambda_min(f);
   const double trace = K.trace();
   const double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
   if (!(below > threshold && below >= kFactorMinRatio * trace)) return false;
-  f.solve(data.rhs, data.nu);
+  f.solve(data.workspace.rhs, data.nu);
   data.rank = n;
   data.dropped.resize(n, 0);
   return true;
 }
 
 bool solve_by_ldlt(Data& data, const Options& options) {
-  return with_constraint_count(static_cast<int>(data.M0.rows()),
+  return with_constraint_count(static_cast<int>(data.K.rows()),
                                [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
 }
 
@@ -195,8 +195,8 @@ double smallest_eigenvalue_of(const CouplingMatrix& K) {
 // policy (K is symmetric positive semi-definite, so its eigenvalues are its singular
 // values; round-off negatives count as zero).
 void solve_by_eigen_decomposition(Data& data, const Options& options) {
-  const int nc = static_cast<int>(data.M0.rows());
-  Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(data.M0);
+  const int nc = static_cast<int>(data.K.rows());
+  Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(data.K);
   const ConstraintVector sigma = eig.eigenvalues().cwiseMax(0.0);
   const CouplingMatrix& V = eig.eigenvectors();
   const double sigma_max = sigma.size() ? sigma.maxCoeff() : 0.0;
@@ -221,7 +221,7 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
       w = sigma[k] / (sigma[k] * sigma[k] + lambda * lambda);
       dropped[k] = sigma[k] <= lambda;  // damping dominates this direction
     }
-    if (w != 0.0) data.nu.noalias() += V.col(k) * (w * V.col(k).dot(data.rhs));
+    if (w != 0.0) data.nu.noalias() += V.col(k) * (w * V.col(k).dot(data.workspace.rhs));
     ndropped += dropped[k];
   }
   data.dropped.resize(nc, ndropped);
@@ -237,14 +237,15 @@ void solve_coupling(Data& data, const Options& options) {
 }
 
 double sigma_min(const Data& data) {
-  const int nc = static_cast<int>(data.M0.rows());
+  const int nc = static_cast<int>(data.K.rows());
   if (nc == 0) return 0;
-  // The coupling of the columns as given, K = S^-1 K_s S^-1 from K_s (data.M0) of the
+  // The coupling of the columns as given, K = S^-1 K_s S^-1 from K_s (data.K) of the
   // scaled columns alpha_k s_k: exact, as the s_k are powers of two, unless K itself is
   // beyond the range of a double.
-  CouplingMatrix K = data.M0;
+  CouplingMatrix K = data.K;
+  const ConstraintVector& scale = data.workspace.alpha_scale;
   for (int i = 0; i < nc; ++i)
-    for (int j = 0; j < nc; ++j) K(i, j) = K(i, j) / data.alpha_scale[i] / data.alpha_scale[j];
+    for (int j = 0; j < nc; ++j) K(i, j) = K(i, j) / scale[i] / scale[j];
   if (!K.allFinite())
     throw Error("sigma_min: the coupling matrix K = A M^-1 A^T of these alpha columns overflows a "
                 "double; scale the columns down (a column's scale does not change the solve)");

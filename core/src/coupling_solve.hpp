@@ -6,8 +6,8 @@
 
 namespace achd {
 
-// Writes data.nu, data.rank and data.dropped from data.M0 (holding K)
-// and data.rhs. No allocation: every matrix has at most kMaxConstraints rows.
+// Writes data.nu, data.rank and data.dropped from data.K
+// and data.workspace.rhs. No allocation: every matrix has at most kMaxConstraints rows.
 void solve_coupling(Data& data, const Options& options);
 
 }  // namespace achd

@@ -4,7 +4,7 @@ namespace achd {
 
 Data::Data(const Model& model) {
   const int n = model.num_joints();
-  qdd = constraint_torques = total_torques = joint_torques = tau = Eigen::VectorXd::Zero(n);
+  qdd = constraint_torques = total_torques = joint_torques = Eigen::VectorXd::Zero(n);
   nu.resize(0);
   constraint_wrench.setZero();
   link_accelerations.assign(model.num_links() + 1, Vector6::Zero());
@@ -16,13 +16,15 @@ Data::Data(const Model& model) {
   a.assign(n, Vector6::Zero());
   IA.assign(n, Matrix6::Zero());
   pA.assign(n, Vector6::Zero());
-  U.assign(n, Vector6::Zero());
-  W.assign(n, Vector6::Zero());
-  D.assign(n, 0.0);
-  Dinv.assign(n, 0.0);
-  u.assign(n, 0.0);
   E.resize(6, 0);
-  EZ.assign(n, {});
+  Workspace& w = workspace;
+  w.tau = Eigen::VectorXd::Zero(n);
+  w.U.assign(n, Vector6::Zero());
+  w.W.assign(n, Vector6::Zero());
+  w.D.assign(n, 0.0);
+  w.Dinv.assign(n, 0.0);
+  w.u.assign(n, 0.0);
+  w.EZ.assign(n, {});
 }
 
 }  // namespace achd

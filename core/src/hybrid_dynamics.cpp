@@ -34,11 +34,13 @@
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
-#include "spatial_pairs.hpp"
 #include "constraint_count.hpp"
+#include "constraint_pairs.hpp"
 #include "coupling_solve.hpp"
 #include "joint.hpp"
+#include "joint_subspace.hpp"
 #include "overflow_error.hpp"
+#include "spatial_pairs.hpp"
 
 namespace achd {
 namespace {
@@ -53,33 +55,25 @@ bool any_nonzero(const Eigen::VectorXd& v) {
 
 // Joint torques fed to the sweeps: tau = ff - damping qd - friction tanh(qd / v_f).
 void joint_forces(const Model& model, Data& d, const Case& c, const Options& o) {
+  Data::Workspace& w = d.workspace;
   const int n = model.num_joints();
-  if (c.ff_torques.size()) d.tau = c.ff_torques;
-  else d.tau.setZero(n);
+  if (c.ff_torques.size()) w.tau = c.ff_torques;
+  else w.tau.setZero(n);
   if (!c.qd.size()) return;
   if (o.effects & kDamping)
-    for (int i = 0; i < n; ++i) d.tau[i] -= model.bodies[i].damping * c.qd[i];
+    for (int i = 0; i < n; ++i) w.tau[i] -= model.bodies[i].damping * c.qd[i];
   if (o.effects & kFriction)
     for (int i = 0; i < n; ++i)
-      d.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
+      w.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
 }
 
-// The joint subspace S = [0; z] (revolute) or [z; 0] (prismatic), z the body's z axis.
-inline Vector3 joint_axis(const Data& d, int i) { return d.X0[i].R.col(2); }
-
-// S^T f
-inline double subspace_dot(bool rotational, const Vector3& z, const Pairs& f) {
-  return z.dot(rotational ? angular_part(f) : linear_part(f));
+// Body i's joint subspace S_i = [0; z_i] (revolute) or [z_i; 0] (prismatic), z_i the
+// body's z axis (once the poses are set).
+inline JointSubspace subspace(const Model& model, const Data& d, int i) {
+  return {d.X0[i].R.col(2), is_rotational(model.bodies[i])};
 }
 
-// S s
-inline Pairs subspace_times(bool rotational, const Vector3& z, double s) {
-  const Vector3 zs = z * s;
-  if (rotational) return {{Pair{0, 0}, Pair{0, zs[0]}, Pair{zs[1], zs[2]}}};
-  return {{Pair{zs[0], zs[1]}, Pair{zs[2], 0}, Pair{0, 0}}};
-}
-
-const Pairs kZero = {{Pair{0, 0}, Pair{0, 0}, Pair{0, 0}}};
+const SpatialVector kZero{};
 
 // Step 1. Poses (body_poses); IA_i = I_i in base axes;
 // v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  kappa_i = kappa_p (shifted) + c_i;
@@ -97,9 +91,9 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       d.pA[i].setZero();
       continue;
     }
-    const Vector3 z = joint_axis(d, i);
+    const JointSubspace S = subspace(model, d, i);
     const double qd = c.qd[i];
-    Pairs vp = kZero, kappa = kZero;
+    SpatialVector vp = kZero, kappa = kZero;  // v_p and kappa_p about body i's origin
     if (p >= 0) {
       const Shift s(d.r[i]);
       vp = load_pairs(d.v[p]);
@@ -107,33 +101,11 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       kappa = load_pairs(d.kappa[p]);
       motion_to_child(kappa, s);
     }
-    const bool rotational = is_rotational(b);
-    // c = v_p x S qd: [v_lin x zq; w x zq] (revolute) or [w x zq; 0] (prismatic), zq = z qd
-    const Pair zq[3] = {splat(z[0] * qd), splat(z[1] * qd), splat(z[2] * qd)};
-    const Rows3 vxz = cross(halves(vp), zq);  // rows (v_lin x zq, w x zq)
-    const Pairs ci = rotational ? from_halves(vxz)
-                                : Pairs{{high_lanes(vxz.r[0], vxz.r[1]), Pair{vxz.r[2][1], 0}, Pair{0, 0}}};
-    kappa = kappa + ci;
-    const Pairs v = vp + subspace_times(rotational, z, qd);
+    kappa = kappa + velocity_product_acceleration(vp, S, qd);  // kappa_i = kappa_p + c_i
+    const SpatialVector v = vp + S.motion(qd);                 // v_i = v_p + S qd_i
     store_pairs(d.v[i], v);
     store_pairs(d.kappa[i], kappa);
-    // pA = v x* I v + I kappa. I acts on v and kappa at once (rows (v_k, kappa_k)), and
-    // v x* [f; n] = [w x f; w x n + v_lin x f] takes f and n at once (rows (f_k, n_k)).
-    const Rows3 lin = {{low_lanes(v.p[0], kappa.p[0]), high_lanes(v.p[0], kappa.p[0]), low_lanes(v.p[1], kappa.p[1])}};
-    const Rows3 ang = {{high_lanes(v.p[1], kappa.p[1]), low_lanes(v.p[2], kappa.p[2]), high_lanes(v.p[2], kappa.p[2])}};
-    Rows3 f, n;  // lanes: (I v, I kappa)
-    rigid_times(I, lin, ang, f, n);
-    Rows3 fn, Ikappa;  // rows (f_k, n_k) of I v, and I kappa as rows (linear, angular)
-    for (int k = 0; k < 3; ++k) {
-      fn.r[k] = low_lanes(f.r[k], n.r[k]);
-      Ikappa.r[k] = high_lanes(f.r[k], n.r[k]);
-    }
-    const Pair w[3] = {splat(v.p[1][1]), splat(v.p[2][0]), splat(v.p[2][1])};
-    const Pair vl[3] = {splat(v.p[0][0]), splat(v.p[0][1]), splat(v.p[1][0])};
-    const Rows3 wx = cross(w, fn), vx = cross(vl, fn);  // (w x f, w x n), (v_lin x f, -)
-    Rows3 bias = wx + Ikappa;
-    for (int k = 0; k < 3; ++k) bias.r[k] += low_lanes(Pair{0, 0}, vx.r[k]);  // ang += v_lin x f
-    store_pairs(d.pA[i], from_halves(bias));
+    store_pairs(d.pA[i], bias_force(I, v, kappa));  // pA_i = v_i x* I_i v_i + I_i kappa_i
   }
 }
 
@@ -144,7 +116,7 @@ void add_external_wrenches(const Model& model, Data& d, const Case& c) {
     const Link& link = model.links[l];
     const int b = link.body;
     if (b < 0) continue;  // a link fixed to the root: the base takes the wrench
-    Pairs f = load_pairs(c.f_ext[l]);
+    SpatialVector f = load_pairs(c.f_ext[l]);
     if (!is_zero(link.offset.p)) force_to_parent(f, Shift(d.X0[b].R * link.offset.p));
     store_pairs(d.pA[b], load_pairs(d.pA[b]) - f);
   }
@@ -171,36 +143,33 @@ constexpr double kMaxDouble = std::numeric_limits<double>::max();
 // Ia_i = IA_i - U U^T / D and pa_i = pA_i + U u / D are added, shifted by r_i, to its
 // parent's IA and pA, as X^T IA X - Us Us^T / D and X^T pA + Us u / D with Us = X^T U.
 void inward_sweep(const Model& model, Data& d, bool rotor) {
+  Data::Workspace& w = d.workspace;
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
-    const bool rotational = is_rotational(b);
-    const Vector3 z = joint_axis(d, i);
+    const JointSubspace S = subspace(model, d, i);
     const Matrix6& IA = d.IA[i];
-    // U = IA S (the columns 3..5, revolute, or 0..2, prismatic, combined by z),
-    // D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
-    const Pairs U = combine_columns(IA, rotational ? 3 : 0, z);
-    const Pairs pA = load_pairs(d.pA[i]);
-    const double D = subspace_dot(rotational, z, U) + (rotor ? b.rotor_inertia : 0.0);
-    const double u = d.tau[i] - subspace_dot(rotational, z, pA);
+    // U = IA S,  D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
+    const SpatialVector U = S.inertia_times(IA);
+    const SpatialVector pA = load_pairs(d.pA[i]);
+    const double D = S.project(U) + (rotor ? b.rotor_inertia : 0.0);
+    const double u = w.tau[i] - S.project(pA);
     const double Dinv = 1.0 / D;
     if (!(D > 0 && D <= kMaxDouble && Dinv <= kMaxDouble)) bad_pivot(b, D);
-    store_pairs(d.U[i], U);
+    store_pairs(w.U[i], U);
     const Shift shift(d.r[i]);
-    Pairs Us = U;  // X^T U
+    SpatialVector Us = U;  // X^T U
     force_to_parent(Us, shift);
-    store_pairs(d.W[i], Us * splat(Dinv));  // X^T U / D, for step 4
-    d.D[i] = D;
-    d.Dinv[i] = Dinv;
-    d.u[i] = u;
+    store_pairs(w.W[i], Us * Dinv);  // X^T U / D, for step 4
+    w.D[i] = D;
+    w.Dinv[i] = Dinv;
+    w.u[i] = u;
     const int p = b.parent;
     if (p < 0) continue;
     // Ia = IA - U U^T / D;  pa = pA + U u / D;  the parent adds both, shifted
-    Pairs columns[6];
-    for (int j = 0; j < 6; ++j) columns[j] = column(IA, j);
-    add_shifted_minus_rank_one(columns, Us, Dinv, shift, d.IA[p]);
-    Pairs pa = pA;
-    force_to_parent(pa, shift);
-    store_pairs(d.pA[p], load_pairs(d.pA[p]) + (pa + Us * splat(u * Dinv)));
+    add_shifted_minus_rank_one(IA, Us, Dinv, shift, d.IA[p]);  // IA_p += X^T IA X - Us Us^T / D
+    SpatialVector pA_shifted = pA;  // X^T pA
+    force_to_parent(pA_shifted, shift);
+    store_pairs(d.pA[p], load_pairs(d.pA[p]) + (pA_shifted + Us * (u * Dinv)));  // pA_p += X^T pa
   }
 }
 
@@ -230,9 +199,7 @@ inline double power_of_two(int k) {
 // (|y|^2 in [1, 24), so the last term is 0, 1 or 2, an integer shift).
 double column_scale(const double* column) {
   // Every unit column, at the cost of |alpha_k|^2 by pairs: |alpha_k|^2 in [1/2, 2) is e = 0.
-  const Pair x0 = load_pair(column), x1 = load_pair(column + 2), x2 = load_pair(column + 4);
-  const Pair squares = x0 * x0 + x1 * x1 + x2 * x2;
-  const double length2 = squares[0] + squares[1];
+  const double length2 = squared_norm(load_pairs(column));
   if (length2 >= 0.5 && length2 < 2) return 1;
   double largest = 0;
   for (int r = 0; r < 6; ++r) largest = std::max(largest, std::abs(column[r]));
@@ -247,14 +214,15 @@ double column_scale(const double* column) {
 
 // E = alpha s moved from the tip link's origin to the tip body's origin.
 void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc) {
+  Data::Workspace& w = d.workspace;
   const Link& tip = model.tip();
   const Vector3 r = d.X0[tip.body].R * tip.offset.p;
   d.E.resize(6, nc);
-  d.alpha_scale.resize(nc);
+  w.alpha_scale.resize(nc);
   for (int k = 0; k < nc; ++k) {
     const double s = column_scale(c.alpha.col(k).data());
     const Vector3 f = c.alpha.col(k).head<3>() * s;
-    d.alpha_scale[k] = s;
+    w.alpha_scale[k] = s;
     d.E.col(k).head<3>() = f;
     d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() * s + r.cross(f);
   }
@@ -265,80 +233,36 @@ void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc
 // (nu needs no finite probe of its own: alpha nu does, and a non-finite nu_k makes it
 // non-finite, as alpha_k is finite.)
 void unscale_constraint_forces(Data& d, int nc) {
-  for (int k = 0; k < nc; ++k) d.nu[k] *= d.alpha_scale[k];
+  Data::Workspace& w = d.workspace;
+  for (int k = 0; k < nc; ++k) d.nu[k] *= w.alpha_scale[k];
   for (Eigen::Index j = 0; j < d.dropped.cols(); ++j) {
-    for (int k = 0; k < nc; ++k) d.dropped(k, j) *= d.alpha_scale[k];
+    for (int k = 0; k < nc; ++k) d.dropped(k, j) *= w.alpha_scale[k];
     d.dropped.col(j).normalize();
   }
 }
 
 // Step 2 for the nc = NC constraints, after the articulated-body sweep: the unit
-// constraint forces E roll from the tip to the base, held two columns to a Pair (a row
-// of a column pair is one Pair, so that every update is the same pair product for every
-// row, and the column pairs are independent chains the processor overlaps):
-//   EZ_i = E^T S_i;  E <- E - U_i EZ_i^T / D_i   (Vereshchagin eq. c),
-// then E moves to the parent's origin: rows 3..5 += r_i x rows 0..2.
+// constraint forces E roll from the tip to the base (constraint_pairs.hpp holds them two
+// columns to a pair), and each body keeps its EZ_i (Vereshchagin eq. c):
+//   EZ_i = E^T S_i;  E <- X_i^T (E - U_i EZ_i^T / D_i).
 template <int NC>
 void constraint_columns(const Model& model, Data& d) {
-  constexpr int NP = (NC + 1) / 2;
-  Pair E[NP][6];
-  for (int j = 0; j < NP; ++j)
-    for (int row = 0; row < 6; ++row)
-      E[j][row] = Pair{d.E(row, 2 * j), 2 * j + 1 < NC ? d.E(row, 2 * j + 1) : 0.0};
-  for (int i = model.num_joints() - 1; i >= 0; --i) {
-    const Vector3 z = joint_axis(d, i);
-    const int o = is_rotational(model.bodies[i]) ? 3 : 0;
-    const Pair z0 = splat(z[0]), z1 = splat(z[1]), z2 = splat(z[2]), Dinv = splat(d.Dinv[i]);
-    const Pair r0 = splat(d.r[i][0]), r1 = splat(d.r[i][1]), r2 = splat(d.r[i][2]);
-    for (int j = 0; j < NP; ++j) {
-      Pair* e = E[j];
-      const Pair ez = (e[o] * z0 + e[o + 1] * z1) + e[o + 2] * z2;
-      store_pair(d.EZ[i].data() + 2 * j, ez);
-      const Pair ezd = ez * Dinv;
-      for (int row = 0; row < 6; ++row) e[row] -= splat(d.U[i][row]) * ezd;
-      e[3] += r1 * e[2] - r2 * e[1];
-      e[4] += r2 * e[0] - r0 * e[2];
-      e[5] += r0 * e[1] - r1 * e[0];
-    }
-  }
-  for (int j = 0; j < NP; ++j)
-    for (int row = 0; row < 6; ++row) {
-      d.E(row, 2 * j) = E[j][row][0];
-      if (2 * j + 1 < NC) d.E(row, 2 * j + 1) = E[j][row][1];
-    }
+  Data::Workspace& w = d.workspace;
+  UnitConstraintForces<NC> E(d.E);
+  for (int i = model.num_joints() - 1; i >= 0; --i)
+    E.pass_to_parent(subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], w.EZ[i].data());
+  E.store(d.E);
 }
 
-// The coupling at the base from the stored EZ_i, two rows to a Pair:
+// The coupling at the base from the stored EZ_i:
 //   K = -M_0 = sum_i EZ_i EZ_i^T / D_i   (eq. d),   G_0 = sum_i EZ_i u_i / D_i   (eq. e,
-// whose E^T c term vanishes with c = 0). K's lower triangle is summed, then mirrored.
-// Returns K's finite probe.
+// whose E^T c term vanishes with c = 0). Returns K's finite probe.
 template <int NC>
 double coupling_terms(const Model& model, Data& d) {
-  constexpr int NP = (NC + 1) / 2;
-  Pair K[NC][NP], G[NP];
-  for (int j = 0; j < NP; ++j) {
-    G[j] = splat(0);
-    for (int k = 0; k < NC; ++k) K[k][j] = splat(0);
-  }
-  for (int i = 0; i < model.num_joints(); ++i) {
-    const double* ez = d.EZ[i].data();
-    const double Dinv = d.Dinv[i];
-    for (int k = 0; k < NC; ++k) {
-      const Pair s = splat(ez[k] * Dinv);
-      for (int j = k / 2; j < NP; ++j) K[k][j] += load_pair(ez + 2 * j) * s;
-    }
-    const Pair s = splat(d.u[i] * Dinv);
-    for (int j = 0; j < NP; ++j) G[j] += load_pair(ez + 2 * j) * s;
-  }
-  d.M0.resize(NC, NC);
-  d.G0.resize(NC);
-  Pair probe = splat(0);
-  for (int k = 0; k < NC; ++k) {
-    d.G0[k] = G[k / 2][k % 2];
-    for (int l = k; l < NC; ++l) d.M0(l, k) = d.M0(k, l) = K[k][l / 2][l % 2];
-    for (int j = k / 2; j < NP; ++j) probe += K[k][j] * splat(0);
-  }
-  return probe[0] + probe[1];
+  Data::Workspace& w = d.workspace;
+  CouplingSums<NC> sums;
+  for (int i = 0; i < model.num_joints(); ++i) sums.add(w.EZ[i].data(), w.Dinv[i], w.u[i]);
+  return sums.store(d.K, d.G0);
 }
 
 // Returns K's finite probe.
@@ -352,20 +276,6 @@ double constraint_sweep(const Model& model, Data& d, int nc) {
   return with_constraint_count(nc, [&](auto n) { return constraint_sweep<decltype(n)::value>(model, d); });
 }
 
-// EZ_i^T nu, two columns at a time: nu's pairs are padded with 0 past nc, and EZ_i's
-// last pair has 0 in its second lane when nc is odd (constraint_columns).
-inline double dot_nc(const std::array<double, kMaxConstraints>& ez, const Pair (&nu)[3], int np) {
-  Pair s = splat(0);
-  for (int j = 0; j < np; ++j) s += load_pair(ez.data() + 2 * j) * nu[j];
-  return s[0] + s[1];
-}
-
-// x * 0 summed over x: 0 when every x is finite, NaN otherwise (finite_probe.hpp).
-inline Pair finite_probe(const Pairs& x) {
-  const Pair zero = splat(0);
-  return x.p[0] * zero + x.p[1] * zero + x.p[2] * zero;
-}
-
 // Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i - EZ_i^T nu) / D_i;
 // a~_i += S qdd_i. (The chain is in order, parent i - 1: a~ stays in registers.)
 // Returns the finite probe of the results: a non-finite qdd_i makes every component of
@@ -374,39 +284,37 @@ inline Pair finite_probe(const Pairs& x) {
 // the last body's a~ is finite exactly when every qdd and a~ is (and with them the
 // constraint torques, u and W, which qdd adds); D qdd is probed on its own.
 double outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
-  Pair nu[3] = {splat(0), splat(0), splat(0)};
-  for (int k = 0; k < nc; k += 2) nu[k / 2] = Pair{d.nu[k], k + 1 < nc ? d.nu[k + 1] : 0.0};
-  const int np = (nc + 1) / 2;
+  Data::Workspace& w = d.workspace;
+  const ConstraintMagnitudes nu(d.nu, nc);
   double probe = 0;
-  Pairs a = load_pairs(a0);
+  SpatialVector a = load_pairs(a0);
   for (int i = 0; i < model.num_joints(); ++i) {
-    const double ct = -dot_nc(d.EZ[i], nu, np);  // KDL's constraint torque -S^T E nu
+    const double ct = -nu.dot(w.EZ[i]);  // KDL's constraint torque -EZ_i^T nu = -S^T E nu
     // U^T a~_i / D = W^T a~_p with W = X^T U / D (from the inward sweep): the product
     // needs only the parent's acceleration, and the shift of a~ runs beside it
-    const double qdd = (d.u[i] + ct) * d.Dinv[i] - dot(load_pairs(d.W[i]), a);
+    const double qdd = (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
     motion_to_child(a, Shift(d.r[i]));
-    a = a + subspace_times(is_rotational(model.bodies[i]), joint_axis(d, i), qdd);
+    a = a + subspace(model, d, i).motion(qdd);
     store_pairs(d.a[i], a);
     d.qdd[i] = qdd;
     d.constraint_torques[i] = ct;
-    d.total_torques[i] = d.D[i] * qdd;
+    d.total_torques[i] = w.D[i] * qdd;
     probe += d.total_torques[i] * 0.0;
   }
-  const Pair last = finite_probe(a);
-  return probe + (last[0] + last[1]);
+  return probe + finite_probe(a);
 }
 
 // Spatial acceleration of every link at its origin, base orientation: the body's
 // (a~ + kappa), moved from the body origin to the link origin. `shift` = [g; 0] turns the
 // sweeps' KDL accelerations into physical ones. Returns their finite probe.
 double link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
-  const Pairs s = load_pairs(shift), base = load_pairs(a0);
+  const SpatialVector s = load_pairs(shift), base = load_pairs(a0);
   store_pairs(d.link_accelerations[0], base + s);
-  Pair probe = finite_probe(base + s);
+  double probe = finite_probe(base + s);
   for (int l = 0; l < model.num_links(); ++l) {
     const Link& link = model.links[l];
     const int b = link.body;
-    Pairs out = base;
+    SpatialVector out = base;
     if (b >= 0) {
       out = load_pairs(d.a[b]) + load_pairs(d.kappa[b]);
       if (!is_zero(link.offset.p)) motion_to_child(out, Shift(d.X0[b].R * link.offset.p));
@@ -415,16 +323,15 @@ double link_accelerations(const Model& model, Data& d, const Vector6& a0, const 
     store_pairs(d.link_accelerations[l + 1], out);
     probe += finite_probe(out);
   }
-  return probe[0] + probe[1];
+  return probe;
 }
 
 // The constraint wrench alpha nu at the tip link's origin. Returns its finite probe.
 double constraint_wrench(Data& d, const Case& c, int nc) {
-  Pairs w = kZero;
-  for (int k = 0; k < nc; ++k) w = w + load_pairs(c.alpha.col(k).data()) * splat(d.nu[k]);
+  SpatialVector w = kZero;
+  for (int k = 0; k < nc; ++k) w = w + load_pairs(c.alpha.col(k).data()) * d.nu[k];
   store_pairs(d.constraint_wrench, w);
-  const Pair probe = finite_probe(w);
-  return probe[0] + probe[1];
+  return finite_probe(w);
 }
 
 // joint_torques = ff - J^T (alpha nu): with the tip wrench w = [f; n] = alpha nu at the tip
@@ -440,8 +347,8 @@ double joint_torques(const Model& model, Data& d, const Case& c, int nc) {
   const Vector3 f = d.constraint_wrench.head<3>(), n = d.constraint_wrench.tail<3>();
   const Vector3 p_tip = d.X0[tip.body].p + d.X0[tip.body].R * tip.offset.p;
   for (int i = 0; i <= tip.body; ++i) {
-    const Vector3 z = joint_axis(d, i);
-    d.joint_torques[i] -= is_rotational(model.bodies[i]) ? z.dot(n + (p_tip - d.X0[i].p).cross(f)) : z.dot(f);
+    const JointSubspace S = subspace(model, d, i);
+    d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p_tip - d.X0[i].p).cross(f)) : S.z.dot(f);
     probe += d.joint_torques[i] * 0.0;
   }
   return probe;
@@ -484,9 +391,9 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
       kappa_tip = motion_shift(d.kappa[tip.body], d.X0[tip.body].R * tip.offset.p);
     }
     // Every term in the scaled columns: E, G_0 and alpha s (beta s).
-    d.rhs.resize(nc);
+    d.workspace.rhs.resize(nc);
     for (int k = 0; k < nc; ++k) {
-      const double s = d.alpha_scale[k];
+      const double s = d.workspace.alpha_scale[k];
       double r = d.G0[k] - c.beta[k] * s;
       if (moving) r += (c.alpha.col(k) * s).dot(kappa_tip);
       if (gravity) {
@@ -494,12 +401,12 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
         r -= e.dot(c.gravity);
         if (physical) r += (c.alpha.col(k).head<3>() * s).dot(c.gravity);
       }
-      d.rhs[k] = r;
+      d.workspace.rhs[k] = r;
     }
     solve_coupling(d, o);
   } else {
     d.rank = 0;
-    d.M0.resize(0, 0);
+    d.K.resize(0, 0);
     d.dropped.resize(0, 0);
   }
   // Each step returns the finite probe of what it wrote (0, or NaN if a number is not

@@ -36,7 +36,7 @@ void name_the_first_overflow(const Model& model, const Data& d, int nc) {
     if (!finite(d.kappa[i]))
       overflow(joint(model, i) + ": the velocity products (Coriolis, centrifugal) are not finite "
                                  "(qd too large for this robot)");
-    if (!std::isfinite(d.tau[i]))
+    if (!std::isfinite(d.workspace.tau[i]))
       overflow(joint(model, i) + ": the applied joint torque (ff_torques less damping and friction) "
                                  "is not finite");
   }
@@ -45,7 +45,7 @@ void name_the_first_overflow(const Model& model, const Data& d, int nc) {
     if (!finite(d.IA[i]))
       overflow(joint(model, i) + ": the articulated inertia is not finite (link masses, inertias "
                                  "or distances too large)");
-    if (!finite(d.pA[i]) || !std::isfinite(d.u[i]))
+    if (!finite(d.pA[i]) || !std::isfinite(d.workspace.u[i]))
       overflow(joint(model, i) + ": the articulated bias force is not finite (ff_torques, f_ext, "
                                  "gravity or velocity products too large for this robot)");
   }
@@ -54,10 +54,10 @@ void name_the_first_overflow(const Model& model, const Data& d, int nc) {
     return "constraint column " + std::to_string(k) + " (alpha[" + std::to_string(k) + "])";
   };
   for (int k = 0; k < nc; ++k)
-    if (!finite(d.M0.col(k).data(), nc))
+    if (!finite(d.K.col(k).data(), nc))
       overflow(column(k) + ": the coupling K = E^T D^-1 E is not finite (the robot is too light along it)");
   for (int k = 0; k < nc; ++k)
-    if (!std::isfinite(d.rhs[k]))
+    if (!std::isfinite(d.workspace.rhs[k]))
       overflow(column(k) + ": the constraint's right-hand side is not finite (beta[" + std::to_string(k) +
                "], gravity or velocity products too large)");
   for (int k = 0; k < nc; ++k)

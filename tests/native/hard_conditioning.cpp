@@ -77,7 +77,7 @@ Report check(const std::string& name, const Model& model, const Eigen::VectorXd&
   const Eigen::VectorXd m_eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(
                                     M, Eigen::EigenvaluesOnly).eigenvalues();
   const Eigen::VectorXd k_eig = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(
-                                    d.M0, Eigen::EigenvaluesOnly).eigenvalues();
+                                    d.K, Eigen::EigenvaluesOnly).eigenvalues();
   Report r;
   r.cond_M = m_eig.maxCoeff() / m_eig.minCoeff();
   r.cond_K = k_eig.maxCoeff() / k_eig.minCoeff();
@@ -86,7 +86,7 @@ Report check(const std::string& name, const Model& model, const Eigen::VectorXd&
   r.rnea_residual = (rnea(model, q, qd, d.qdd, c.gravity) - d.joint_torques).norm();
   r.rnea_bound = c_n_eps * (M_norm * qdd_norm + d.joint_torques.norm() + h.norm());
   r.constraint_residual = (c.alpha.transpose() * d.link_accelerations.back() - c.beta).norm();
-  r.constraint_bound = c_n_eps * r.cond_K * d.rhs.norm();
+  r.constraint_bound = c_n_eps * r.cond_K * d.workspace.rhs.norm();
   EXPECT_EQ(d.rank, 3) << name;
   EXPECT_LE(r.rnea_residual, r.rnea_bound) << name;
   EXPECT_LE(r.constraint_residual, r.constraint_bound) << name;

@@ -18,7 +18,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 struct Solve {
   Data data;
   Eigen::Vector2d residual;  // alpha^T a_tip - beta
-  double sigma_max = 0;      // of K (data.M0 holds K after the solve)
+  double sigma_max = 0;      // of K (data.K holds K after the solve)
 };
 
 Solve solve(const Model& model, double theta, const Options& options) {
@@ -26,7 +26,7 @@ Solve solve(const Model& model, double theta, const Options& options) {
   const Case c = stretched_arm_case(model, theta);
   hybrid_dynamics(model, s.data, c, options);
   s.residual = c.alpha.transpose() * s.data.link_accelerations.back() - c.beta;
-  s.sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(s.data.M0).eigenvalues().maxCoeff();
+  s.sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(s.data.K).eigenvalues().maxCoeff();
   return s;
 }
 
@@ -58,7 +58,7 @@ TEST(HardSingularity, DampedKeepsTorquesAndAccelerationsBounded) {
     hybrid_dynamics(model, d_free, free, o);
     const Eigen::MatrixXd M = crba(model, free.q);
     const Eigen::VectorXd m_eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues();
-    const double lambda = o.damping * s.sigma_max, rhs = s.data.rhs.norm();
+    const double lambda = o.damping * s.sigma_max, rhs = s.data.workspace.rhs.norm();
     const double gain = 0.57 * std::sqrt(2.0) * rhs / std::sqrt(lambda);
     // 1 + 1e-9: the bounds evaluated in floating point
     EXPECT_LE(s.data.nu.norm(), rhs / (2 * lambda) * (1 + 1e-9)) << theta;
@@ -84,7 +84,7 @@ double largest_jump(const Model& model, const Options& o) {
   for (double theta = 0.1; theta >= 1e-12; theta /= r) {
     const Solve s = solve(model, theta, o);
     const Case c = stretched_arm_case(model, theta);
-    const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(s.data.M0);
+    const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(s.data.K);
     const Eigen::MatrixXd JA = tip_jacobian(model, c.q).transpose() * c.alpha;
     Eigen::Vector2d parts;  // |tau_lost|, |tau_kept|; eigenvalues ascending
     for (int k = 0; k < 2; ++k) {

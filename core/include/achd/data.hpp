@@ -1,6 +1,8 @@
 #pragma once
 // The workspace of the algorithms, sized once from a Model: solves write here and
-// never allocate. Outputs are the public members in the "results" block.
+// never allocate. Outputs are the public members in the "results" block; the sweeps'
+// quantities follow, named as in docs/design.md, section 6.4; `workspace` holds what only
+// the sweeps' schedule needs.
 #include <array>
 #include <vector>
 
@@ -9,7 +11,6 @@
 
 namespace achd {
 
-using ConstraintForceMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxConstraints>;
 using CouplingMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraints, kMaxConstraints>;
 
@@ -24,11 +25,11 @@ struct Data {
   ConstraintVector nu;                 // constraint force magnitudes
   Vector6 constraint_wrench;           // alpha nu: what the tip exerts on the constraint
   std::vector<Vector6> link_accelerations;  // root link first, then Model::links
-  int rank = 0;                  // of the coupling matrix K = -M_0 (nc x nc); its
+  int rank = 0;                  // of the coupling matrix K (nc x nc); its
                                  // smallest singular value: sigma_min(data)
   CouplingMatrix dropped;        // nc x k: constraint-space directions truncated/damped
 
-  // ---- per body workspace (Featherstone's names; index = body) ----
+  // ---- the sweeps' quantities per body (Featherstone's names; index = body) ----
   // The sweeps use base axes everywhere, and express body i's vectors and inertias about
   // the body's origin p_i (the "mixed" representation KDL reports link accelerations in):
   // passing them between a body and its parent is a shift by r_i, never a rotation, and
@@ -39,21 +40,43 @@ struct Data {
   std::vector<Vector3> r;        // p_i - p_parent, base axes (kinematics.hpp's body_poses)
   std::vector<Vector6> v;        // velocity
   std::vector<Vector6> kappa;    // velocity-product acceleration, summed from the base
-  std::vector<Vector6> a;        // acceleration less kappa (a - kappa)
-  std::vector<Matrix6> IA;       // rigid inertia in base axes, then articulated inertia
-  std::vector<Vector6> pA;       // bias force (with I kappa), then articulated bias force
-  std::vector<Vector6> U;        // IA S
-  std::vector<Vector6> W;        // U / D about the parent's origin (X^T U / D)
-  std::vector<double> D, Dinv, u;  // S^T IA S (+ rotor), 1 / D, tau - S^T pA
-  std::vector<std::array<double, kMaxConstraints>> EZ;  // E^T S at each body
-  ConstraintForceMatrix E;               // unit constraint forces alpha_k s_k, rolled
-                                         // from the tip to the base (after the sweep: E_0)
-  CouplingMatrix M0;                     // K = -M_0, the coupling of the columns alpha_k s_k
-                                         // at the base (sigma_min() reads it)
-  ConstraintVector G0;                   // acceleration energy of the bias terms
-  ConstraintVector alpha_scale;          // s_k: the sweeps use the columns alpha_k s_k
-  ConstraintVector rhs;                  // E_0^T a_0 + G_0 - beta
-  Eigen::VectorXd tau;                   // joint torques fed to the sweeps
+                                 // (what the body's acceleration would be with qdd = 0
+                                 // and no gravity)
+  std::vector<Vector6> a;        // a~ = a - kappa, where a is KDL's acc: it includes the
+                                 // fictitious base acceleration a_0 = [-g; 0] when gravity
+                                 // is on (physical acceleration: a~ + kappa - a_0)
+  std::vector<Matrix6> IA;       // the rigid inertia I_i in base axes (outward sweep);
+                                 // the inward sweep adds the children's shares, so from
+                                 // when it reaches body i it is the articulated inertia IA_i
+  std::vector<Vector6> pA;       // the rigid bias force v x* I v + I kappa - f_ext
+                                 // (outward sweep and external wrenches); the inward sweep
+                                 // adds the children's shares, so from when it reaches
+                                 // body i it is the articulated bias force pA_i
+
+  // ---- the constraint part at the base (nc = the number of constraints) ----
+  // The sweeps work on the columns alpha_k s_k, s_k = workspace.alpha_scale[k] (a power of
+  // two, see docs/design.md "Column scaling"), whose forces are nu_k / s_k.
+  ConstraintMatrix E;    // unit constraint forces alpha_k s_k (6 x nc), moved from the tip
+                         // to the base (after the solve: E_0)
+  CouplingMatrix K;      // K = -M_0 = sum_i EZ_i EZ_i^T / D_i (nc x nc), the coupling of
+                         // the columns alpha_k s_k at the base (sigma_min() reads it)
+  ConstraintVector G0;   // G_0 = sum_i EZ_i u_i / D_i, acceleration energy of the bias terms
+
+  // ---- internal: caches of the sweeps' schedule, not results ----
+  // Public only so that tests can inspect a solve; their layout may change.
+  struct Workspace {
+    Eigen::VectorXd tau;            // joint torques fed to the sweeps: ff less damping, friction
+    std::vector<Vector6> U;         // IA S
+    std::vector<Vector6> W;         // U / D about the parent's origin (X^T U / D), for
+                                    // the final outward sweep
+    std::vector<double> D, Dinv;    // S^T IA S (+ rotor inertia), 1 / D
+    std::vector<double> u;          // tau - S^T pA
+    // E^T S at each body, nc values; when nc is odd the slot after them is 0 (the columns
+    // are held two to a pair: constraint_pairs.hpp)
+    std::vector<std::array<double, kMaxConstraints>> EZ;
+    ConstraintVector alpha_scale;   // s_k: the sweeps use the columns alpha_k s_k
+    ConstraintVector rhs;           // K nu' = rhs: E_0^T a_0 + G_0 - beta' (scaled columns)
+  } workspace;
 };
 
 }  // namespace achd

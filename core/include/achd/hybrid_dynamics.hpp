@@ -23,7 +23,7 @@ void hybrid_dynamics(const Model& model, Data& data, const Case& c, const Option
 // alpha columns as given (its smallest eigenvalue: K is symmetric positive
 // semi-definite), 0 without constraints: how close the constraint set is to singular.
 // Throws achd::Error if K is beyond the range of a double (columns of length ~1e154). Computed when called, from the K kept in `data`
-// (data.M0): exactly, by a tridiagonal reduction and Laguerre's iteration, which costs
+// (data.K): exactly, by a tridiagonal reduction and Laguerre's iteration, which costs
 // about a third of a six-constraint solve, so a solve alone does not pay for it.
 double sigma_min(const Data& data);
 
