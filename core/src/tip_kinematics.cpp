@@ -19,6 +19,11 @@ void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::Vect
   }
 }
 
+ChainMotion::ChainMotion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd)
+    : X0(model.num_joints()), r(model.num_joints()), v(model.num_joints()) {
+  body_motion(model, q, qd, X0, r, v);
+}
+
 TipState tip_state(const Model& model, const std::vector<Transform>& X0,
                    const std::vector<Vector6>& v) {
   const Link& tip = model.tip();

@@ -21,6 +21,15 @@ struct TipState {
 void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                  std::vector<Transform>& X0, std::vector<Vector3>& r, std::vector<Vector6>& v);
 
+// body_motion into storage of its own (allocated here): for the simulator's const
+// queries, which must not write the simulator's workspace.
+struct ChainMotion {
+  ChainMotion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  std::vector<Transform> X0;
+  std::vector<Vector3> r;
+  std::vector<Vector6> v;
+};
+
 // The tip from body_motion's output: p = X0_b * offset;  v_tip = v_b + w_b x (R0 o),
 // w_tip = w_b, with o the tip's offset from its body's origin.
 TipState tip_state(const Model& model, const std::vector<Transform>& X0,
