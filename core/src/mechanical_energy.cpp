@@ -1,6 +1,6 @@
 // Kinetic and potential energy of the simulated chain, O(n) from the body velocities.
-// Each query sweeps the chain into a ChainMotion of its own (see simulator.hpp: the
-// const queries write nothing in the simulator).
+// Each query sweeps the chain into the calling thread's ChainMotion (see simulator.hpp:
+// the const queries write nothing in the simulator).
 #include "achd/simulator.hpp"
 #include "tip_kinematics.hpp"
 
@@ -34,16 +34,16 @@ double potential(const ChainMotion& m, const std::vector<double>& mass,
 }  // namespace
 
 double Simulator::kinetic_energy() const {
-  return kinetic(model_, ChainMotion(model_, q, qd), qd, options_.effects & kRotorInertia);
+  return kinetic(model_, thread_chain_motion(model_, q, qd), qd, options_.effects & kRotorInertia);
 }
 
 double Simulator::potential_energy() const {
   if (!(options_.effects & kGravity)) return 0;
-  return potential(ChainMotion(model_, q, qd), mass_, com_, options_.gravity);
+  return potential(thread_chain_motion(model_, q, qd), mass_, com_, options_.gravity);
 }
 
 double Simulator::energy() const {
-  const ChainMotion m(model_, q, qd);
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
   const double T = kinetic(model_, m, qd, options_.effects & kRotorInertia);
   return T + (options_.effects & kGravity ? potential(m, mass_, com_, options_.gravity) : 0.0);
 }

@@ -158,12 +158,12 @@ double Simulator::setpoint(int index) const {
 }
 
 Transform Simulator::tip_pose() const {
-  const ChainMotion m(model_, q, qd);
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
   return tip_state(model_, m.X0, m.v).pose;
 }
 
 Vector6 Simulator::tip_velocity() const {
-  const ChainMotion m(model_, q, qd);
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
   const TipState tip = tip_state(model_, m.X0, m.v);
   Vector6 out;
   out << tip.v, tip.w;
@@ -171,7 +171,7 @@ Vector6 Simulator::tip_velocity() const {
 }
 
 std::array<double, kNumDirections> Simulator::residuals() const {
-  const ChainMotion m(model_, q, qd);
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
   const TipState tip = tip_state(model_, m.X0, m.v);
   std::array<double, kNumDirections> r{};
   for (int k = 0; k < kNumDirections; ++k) r[k] = direction_error(held_, k, tip);

@@ -396,6 +396,21 @@ TEST(Simulator, StepDoesNotAllocate) {
   }
 }
 
+// The const queries sweep into the calling thread's scratch storage: after the first
+// query, none allocates.
+TEST(Simulator, QueriesAllocateNothingAfterTheFirst) {
+  Simulator sim(lwr());
+  sim.reset(lwr_q0(), Eigen::VectorXd::Constant(7, 0.3));
+  sim.set_direction(1, DirectionMode::Hold);
+  double sum = sim.energy();  // the thread's first query of a 7-joint chain
+  const long before = g_allocations;
+  for (int k = 0; k < 10; ++k)
+    sum += sim.tip_pose().p.x() + sim.tip_velocity()[0] + sim.residuals()[1] + sim.max_residuals()[1] +
+           sim.kinetic_energy() + sim.potential_energy() + sim.energy();
+  EXPECT_EQ(g_allocations - before, 0);
+  EXPECT_TRUE(std::isfinite(sum));
+}
+
 // The const queries write nothing in the simulator: two threads calling them at once on
 // one simulator get, every time, the bits a single thread gets.
 TEST(Simulator, ConstQueriesFromTwoThreadsAgreeWithOneThread) {

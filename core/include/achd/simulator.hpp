@@ -106,9 +106,10 @@ class Simulator {
   // Steps completed since construction or reset().
   std::int64_t steps_taken() const { return steps_taken_; }
 
-  // The queries below (residuals to energy) compute from q and qd into storage of their
-  // own and write nothing in the simulator: two threads may call them at once on one
-  // simulator (while neither steps it nor sets its state). They allocate that storage.
+  // The queries below (residuals to energy) compute from q and qd into scratch storage
+  // of the calling thread and write nothing in the simulator: two threads may call them
+  // at once on one simulator (while neither steps it nor sets its state). A thread's
+  // first query (and its first of a longer chain) allocates that storage.
   // Held-direction residuals in m or rad (0 for directions that are not held).
   std::array<double, kNumDirections> residuals() const;
   // The largest |residual| of each direction since it was set (or since reset()).
