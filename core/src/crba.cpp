@@ -2,15 +2,17 @@
 #include "achd/dynamics.hpp"
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
+#include "check_workspace.hpp"
 #include "joint.hpp"
 
 namespace achd {
 
-Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia) {
+void crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia, ChainWorkspace& ws,
+          Eigen::MatrixXd& M) {
   const int n = model.num_joints();
-  if (q.size() != n) throw Error("crba: q must have " + std::to_string(n) + " values");
-  std::vector<Transform> Xup(n);
-  std::vector<Matrix6> Ic(n);
+  check_workspace_call("crba", model, ws, q);
+  std::vector<Transform>& Xup = ws.Xup;
+  std::vector<Matrix6>& Ic = ws.Ic;
   for (int i = 0; i < n; ++i) {
     Xup[i] = joint_transform(model.bodies[i], q[i]);
     Ic[i] = model.bodies[i].inertia;
@@ -20,7 +22,7 @@ Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, bool rotor_in
     if (model.bodies[i].parent >= 0)
       Ic[model.bodies[i].parent] += inertia_to_parent(Xup[i], Ic[i]);
   // M_ii = S_i^T Ic_i S_i;  M_ij = S_j^T (X^T ... F),  F = Ic_i S_i carried to each ancestor j.
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
+  M.setZero(n, n);
   for (int i = 0; i < n; ++i) {
     const Body& b = model.bodies[i];
     Vector6 F = inertia_times_subspace(b, Ic[i]);
@@ -31,6 +33,12 @@ Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, bool rotor_in
       M(i, j) = M(j, i) = subspace_dot(model.bodies[j], F);
     }
   }
+}
+
+Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia) {
+  ChainWorkspace ws(model);
+  Eigen::MatrixXd M(model.num_joints(), model.num_joints());
+  crba(model, q, rotor_inertia, ws, M);
   return M;
 }
 

@@ -1,7 +1,10 @@
 #include "achd/kinematics.hpp"
 
 #include <algorithm>
+#include <string>
 
+#include "achd/error.hpp"
+#include "check_workspace.hpp"
 #include "joint.hpp"
 #include "matrix3_pairs.hpp"
 #include "sin_cos.hpp"
@@ -69,76 +72,103 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
   }
 }
 
-namespace {
+ChainWorkspace::ChainWorkspace(const Model& model)
+    : X0(model.num_joints()),
+      r(model.num_joints(), Vector3::Zero()),
+      v(model.num_joints(), Vector6::Zero()),
+      a(model.num_joints(), Vector6::Zero()),
+      f(model.num_joints(), Vector6::Zero()),
+      Xup(model.num_joints()),
+      Ic(model.num_joints(), Matrix6::Zero()) {}
 
-// Poses of the bodies in the base frame.
-std::vector<Transform> body_poses(const Model& model, const Eigen::VectorXd& q) {
+void check_workspace_call(const char* function, const Model& model, const ChainWorkspace& ws,
+                          const Eigen::VectorXd& q) {
   const int n = model.num_joints();
-  std::vector<Transform> X0(n);
-  std::vector<Vector3> r(n);
-  body_poses(model, q, X0, r);
-  return X0;
+  if (q.size() != n)
+    throw Error(std::string(function) + ": q must have " + std::to_string(n) + " values, got " +
+                std::to_string(q.size()));
+  if (static_cast<int>(ws.X0.size()) != n || static_cast<int>(ws.Ic.size()) != n)
+    throw Error(std::string(function) + ": the workspace was made for a model with " +
+                std::to_string(ws.X0.size()) + " joints, this one has " + std::to_string(n));
 }
 
-}  // namespace
+void forward_kinematics(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& ws,
+                        std::vector<Transform>& poses) {
+  check_workspace_call("forward_kinematics", model, ws, q);
+  body_poses(model, q, ws.X0, ws.r);
+  poses.resize(model.num_links());
+  for (int l = 0; l < model.num_links(); ++l) {
+    const Link& link = model.links[l];
+    poses[l] = link.body < 0 ? link.offset : ws.X0[link.body] * link.offset;
+  }
+}
 
 std::vector<Transform> forward_kinematics(const Model& model, const Eigen::VectorXd& q) {
-  const std::vector<Transform> X0 = body_poses(model, q);
-  std::vector<Transform> poses;
-  poses.reserve(model.num_links());
-  for (const Link& l : model.links) poses.push_back(l.body < 0 ? l.offset : X0[l.body] * l.offset);
+  ChainWorkspace ws(model);
+  std::vector<Transform> poses(model.num_links());
+  forward_kinematics(model, q, ws, poses);
   return poses;
+}
+
+void link_velocities(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                     ChainWorkspace& ws, std::vector<Vector6>& velocities) {
+  check_workspace_call("link_velocities", model, ws, q);
+  if (qd.size() != q.size())
+    throw Error("link_velocities: qd must have " + std::to_string(q.size()) + " values, got " +
+                std::to_string(qd.size()));
+  body_poses(model, q, ws.X0, ws.r);
+  // Body velocity in base orientation, at the body origin: v_i = v_p (moved by r_i) + S qd.
+  std::vector<Vector6>& vb = ws.v;
+  for (int i = 0; i < model.num_joints(); ++i) {
+    const Body& b = model.bodies[i];
+    Vector6 vi = Vector6::Zero();
+    if (b.parent >= 0) vi = motion_shift(vb[b.parent], ws.r[i]);
+    const Vector6 sj = subspace_times(b, qd[i]);
+    vi.head<3>() += ws.X0[i].R * sj.head<3>();
+    vi.tail<3>() += ws.X0[i].R * sj.tail<3>();
+    vb[i] = vi;
+  }
+  velocities.resize(model.num_links());
+  for (int l = 0; l < model.num_links(); ++l) {
+    const Link& link = model.links[l];
+    velocities[l] = link.body < 0 ? Vector6::Zero().eval()
+                                  : motion_shift(vb[link.body], ws.X0[link.body].R * link.offset.p);
+  }
 }
 
 std::vector<Vector6> link_velocities(const Model& model, const Eigen::VectorXd& q,
                                      const Eigen::VectorXd& qd) {
-  const std::vector<Transform> X0 = body_poses(model, q);
-  // Body velocity in base orientation, at the body origin: v_i = v_p (moved) + S qd.
-  std::vector<Vector6> vb(model.num_joints());
-  for (int i = 0; i < model.num_joints(); ++i) {
-    const Body& b = model.bodies[i];
-    Vector6 vi = Vector6::Zero();
-    if (b.parent >= 0) {
-      vi = vb[b.parent];
-      // move the reference point from the parent's origin to this body's origin
-      vi.head<3>() += vi.tail<3>().cross(X0[i].p - X0[b.parent].p);
-    }
-    const Vector6 sj = subspace_times(b, qd[i]);
-    vi.head<3>() += X0[i].R * sj.head<3>();
-    vi.tail<3>() += X0[i].R * sj.tail<3>();
-    vb[i] = vi;
-  }
-  std::vector<Vector6> out;
-  out.reserve(model.num_links());
-  for (const Link& l : model.links) {
-    if (l.body < 0) {
-      out.push_back(Vector6::Zero());
-      continue;
-    }
-    Vector6 vl = vb[l.body];
-    vl.head<3>() += vl.tail<3>().cross(X0[l.body].R * l.offset.p);
-    out.push_back(vl);
-  }
-  return out;
+  ChainWorkspace ws(model);
+  std::vector<Vector6> velocities(model.num_links());
+  link_velocities(model, q, qd, ws, velocities);
+  return velocities;
 }
 
-Eigen::MatrixXd tip_jacobian(const Model& model, const Eigen::VectorXd& q) {
-  const std::vector<Transform> X0 = body_poses(model, q);
+void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& ws,
+                  Eigen::MatrixXd& J) {
+  check_workspace_call("tip_jacobian", model, ws, q);
+  body_poses(model, q, ws.X0, ws.r);
   const Link& tip = model.tip();
-  const Vector3 p_tip = tip.body < 0 ? tip.offset.p : (X0[tip.body] * tip.offset).p;
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, model.num_joints());
+  const Vector3 p_tip = tip.body < 0 ? tip.offset.p : (ws.X0[tip.body] * tip.offset).p;
+  J.setZero(6, model.num_joints());
   // Column i: joint i's unit motion seen at the tip. Revolute: [z x (p_tip - p_i); z];
   // prismatic: [z; 0], with z the joint axis (the body's z) in base orientation.
   for (int i = 0; i <= tip.body; ++i) {
     const Body& b = model.bodies[i];
-    const Vector3 z = X0[i].R.col(2);
+    const Vector3 z = ws.X0[i].R.col(2);
     if (is_rotational(b)) {
-      J.col(i).head<3>() = z.cross(p_tip - X0[i].p);
+      J.col(i).head<3>() = z.cross(p_tip - ws.X0[i].p);
       J.col(i).tail<3>() = z;
     } else {
       J.col(i).head<3>() = z;
     }
   }
+}
+
+Eigen::MatrixXd tip_jacobian(const Model& model, const Eigen::VectorXd& q) {
+  ChainWorkspace ws(model);
+  Eigen::MatrixXd J(6, model.num_joints());
+  tip_jacobian(model, q, ws, J);
   return J;
 }
 

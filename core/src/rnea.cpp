@@ -4,26 +4,29 @@
 #include "achd/dynamics.hpp"
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
-#include "spatial_pairs.hpp"
+#include "check_workspace.hpp"
 #include "joint.hpp"
+#include "spatial_pairs.hpp"
 
 namespace achd {
 
-Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                     const Eigen::VectorXd& qdd, const Vector3& gravity,
-                     const std::vector<Vector6>& f_ext, std::uint32_t effects,
-                     double friction_velocity) {
+void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+          const Eigen::VectorXd& qdd, const Vector3& gravity, const std::vector<Vector6>& f_ext,
+          std::uint32_t effects, double friction_velocity, ChainWorkspace& ws, Eigen::VectorXd& tau) {
   const int n = model.num_joints();
-  if (q.size() != n || qd.size() != n || qdd.size() != n)
+  check_workspace_call("rnea", model, ws, q);
+  if (qd.size() != n || qdd.size() != n)
     throw Error("rnea: q, qd and qdd must have " + std::to_string(n) + " values");
   if (!f_ext.empty() && static_cast<int>(f_ext.size()) != model.num_links())
     throw Error("rnea: f_ext must have " + std::to_string(model.num_links()) + " wrenches");
   // The solver's representation (hybrid_dynamics.cpp): base axes, body i's vectors about
   // its origin, passed between bodies by the shift r_i; the same poses as the solver.
-  std::vector<Transform> X0(n);
-  std::vector<Vector3> r(n);
+  std::vector<Transform>& X0 = ws.X0;
+  std::vector<Vector3>& r = ws.r;
+  std::vector<Vector6>& v = ws.v;
+  std::vector<Vector6>& a = ws.a;
+  std::vector<Vector6>& f = ws.f;
   body_poses(model, q, X0, r);
-  std::vector<Vector6> v(n), a(n), f(n);
   Vector6 a0 = Vector6::Zero();  // gravity as the base accelerating at -g
   if (effects & kGravity) a0.head<3>() = -gravity;
   const bool products = effects & kVelocityProducts;
@@ -56,7 +59,7 @@ Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::
       f[link.body] -= force_shift(f_ext[l], X0[link.body].R * link.offset.p);
     }
   // Inward: tau_i = S^T f_i (+ rotor qdd, + damping qd, + friction);  f_p += f_i (shifted)
-  Eigen::VectorXd tau(n);
+  tau.resize(n);
   for (int i = n - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     const Vector3 z = X0[i].R.col(2);
@@ -66,6 +69,15 @@ Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::
     if (effects & kFriction) tau[i] += b.friction * std::tanh(qd[i] / friction_velocity);
     if (b.parent >= 0) f[b.parent] += force_shift(f[i], r[i]);
   }
+}
+
+Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                     const Eigen::VectorXd& qdd, const Vector3& gravity,
+                     const std::vector<Vector6>& f_ext, std::uint32_t effects,
+                     double friction_velocity) {
+  ChainWorkspace ws(model);
+  Eigen::VectorXd tau(model.num_joints());
+  rnea(model, q, qd, qdd, gravity, f_ext, effects, friction_velocity, ws, tau);
   return tau;
 }
 

@@ -158,21 +158,21 @@ double Simulator::setpoint(int index) const {
 }
 
 Transform Simulator::tip_pose() const {
-  body_motion(model_, q, qd, X0_, r_, v_);
-  return tip_state(model_, X0_, v_).pose;
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
+  return tip_state(model_, m.X0, m.v).pose;
 }
 
 Vector6 Simulator::tip_velocity() const {
-  body_motion(model_, q, qd, X0_, r_, v_);
-  const TipState tip = tip_state(model_, X0_, v_);
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
+  const TipState tip = tip_state(model_, m.X0, m.v);
   Vector6 out;
   out << tip.v, tip.w;
   return out;
 }
 
 std::array<double, kNumDirections> Simulator::residuals() const {
-  body_motion(model_, q, qd, X0_, r_, v_);
-  const TipState tip = tip_state(model_, X0_, v_);
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
+  const TipState tip = tip_state(model_, m.X0, m.v);
   std::array<double, kNumDirections> r{};
   for (int k = 0; k < kNumDirections; ++k) r[k] = direction_error(held_, k, tip);
   return r;

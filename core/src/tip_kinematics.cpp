@@ -19,6 +19,19 @@ void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::Vect
   }
 }
 
+const ChainMotion& thread_chain_motion(const Model& model, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd& qd) {
+  thread_local ChainMotion m;
+  const size_t n = model.num_joints();
+  if (m.X0.size() < n) {
+    m.X0.resize(n);
+    m.r.resize(n);
+    m.v.resize(n);
+  }
+  body_motion(model, q, qd, m.X0, m.r, m.v);
+  return m;
+}
+
 TipState tip_state(const Model& model, const std::vector<Transform>& X0,
                    const std::vector<Vector6>& v) {
   const Link& tip = model.tip();

@@ -21,6 +21,21 @@ struct TipState {
 void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                  std::vector<Transform>& X0, std::vector<Vector3>& r, std::vector<Vector6>& v);
 
+// body_motion's output for the simulator's const queries, which must not write the
+// simulator's workspace (two threads may query one simulator).
+struct ChainMotion {
+  std::vector<Transform> X0;
+  std::vector<Vector3> r;
+  std::vector<Vector6> v;
+};
+
+// body_motion into the calling thread's own ChainMotion, grown to the longest chain the
+// thread has swept and never shrunk (entries past num_joints() are stale), so a thread
+// allocates only on its first query of a longer chain. The reference is valid until the
+// thread's next call.
+const ChainMotion& thread_chain_motion(const Model& model, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd& qd);
+
 // The tip from body_motion's output: p = X0_b * offset;  v_tip = v_b + w_b x (R0 o),
 // w_tip = w_b, with o the tip's offset from its body's origin.
 TipState tip_state(const Model& model, const std::vector<Transform>& X0,

@@ -1,7 +1,8 @@
 // The solver's qdd is the minimiser of Gauss's function
 //   Z(qdd) = 1/2 (qdd - qdd_free)^T M (qdd - qdd_free)  subject to  A qdd = beta - alpha^T b,
-// computed densely: M from CRBA, bias h = RNEA(q, qd, 0; g, f_ext), A = alpha^T J and the
-// tip's acceleration at qdd = 0, b, from the separate reference kinematics sweep. Its
+// computed densely: M from the reference CRBA, bias h = the reference
+// RNEA(q, qd, 0; g, f_ext) (reference_dynamics.hpp), A = alpha^T J and the tip's
+// acceleration at qdd = 0, b, from the separate reference kinematics sweep. Its
 // stationarity conditions are the KKT system
 //   [ M  A^T ] [ qdd ]   [ ff - h             ]
 //   [ A  0   ] [ nu  ] = [ beta - alpha^T b   ],
@@ -14,6 +15,7 @@
 #include <cstdio>
 
 #include "random_chain.hpp"
+#include "reference_dynamics.hpp"
 #include "reference_kinematics.hpp"
 #include "robot_index.hpp"
 
@@ -32,8 +34,8 @@ struct Worst {
 
 void check_against_kkt(const Model& m, const Case& c, Worst& w) {
   const int n = m.num_joints(), nc = c.num_constraints();
-  const Eigen::MatrixXd M = crba(m, c.q);
-  const Eigen::VectorXd h = rnea(m, c.q, c.qd, Eigen::VectorXd::Zero(n), c.gravity, c.f_ext);
+  const Eigen::MatrixXd M = reference_crba(m, c.q);
+  const Eigen::VectorXd h = reference_rnea(m, c.q, c.qd, Eigen::VectorXd::Zero(n), c.gravity, c.f_ext);
   const Eigen::MatrixXd A = c.alpha.transpose() * reference_link_jacobian(m, c.q, m.num_links() - 1);
   const Vector6 b =
       reference_motion(m, c.q, c.qd, Eigen::VectorXd::Zero(n)).back().spatial_acceleration();

@@ -20,6 +20,7 @@
 
 #include "achd/achd.hpp"
 #include "hard_chain_urdf.hpp"
+#include "reference_dynamics.hpp"
 
 namespace achd::test {
 namespace {
@@ -72,8 +73,8 @@ Report check(const std::string& name, const Model& model, const Eigen::VectorXd&
   hybrid_dynamics(model, d, c);
   EXPECT_TRUE(d.qdd.allFinite() && d.nu.allFinite() && d.joint_torques.allFinite()) << name;
 
-  const Eigen::MatrixXd M = crba(model, q);
-  const Eigen::VectorXd h = rnea(model, q, qd, Eigen::VectorXd::Zero(n), c.gravity);
+  const Eigen::MatrixXd M = reference_crba(model, q);
+  const Eigen::VectorXd h = reference_rnea(model, q, qd, Eigen::VectorXd::Zero(n), c.gravity);
   const Eigen::VectorXd m_eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(
                                     M, Eigen::EigenvaluesOnly).eigenvalues();
   const Eigen::VectorXd k_eig = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(
@@ -83,7 +84,7 @@ Report check(const std::string& name, const Model& model, const Eigen::VectorXd&
   r.cond_K = k_eig.maxCoeff() / k_eig.minCoeff();
   const double c_n_eps = 10 * n * kEps;
   const double M_norm = m_eig.maxCoeff(), qdd_norm = d.qdd.norm();
-  r.rnea_residual = (rnea(model, q, qd, d.qdd, c.gravity) - d.joint_torques).norm();
+  r.rnea_residual = (reference_rnea(model, q, qd, d.qdd, c.gravity) - d.joint_torques).norm();
   r.rnea_bound = c_n_eps * (M_norm * qdd_norm + d.joint_torques.norm() + h.norm());
   r.constraint_residual = (c.alpha.transpose() * d.link_accelerations.back() - c.beta).norm();
   r.constraint_bound = c_n_eps * r.cond_K * d.workspace.rhs.norm();

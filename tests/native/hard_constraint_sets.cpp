@@ -8,6 +8,7 @@
 
 #include "achd/achd.hpp"
 #include "hard_chain_urdf.hpp"
+#include "reference_dynamics.hpp"
 
 namespace achd::test {
 namespace {
@@ -60,7 +61,7 @@ Result solve(const Model& m, const Case& c, const Options& o = {}) {
   Result r{Data(m), {}, 0};
   hybrid_dynamics(m, r.data, c, o);
   r.residual = c.alpha.transpose() * r.data.link_accelerations.back() - c.beta;
-  const Eigen::VectorXd tau = rnea(m, c.q, c.qd, r.data.qdd, c.gravity);
+  const Eigen::VectorXd tau = reference_rnea(m, c.q, c.qd, r.data.qdd, c.gravity);
   r.rnea_error = (tau - r.data.joint_torques).cwiseAbs().maxCoeff() /
                  std::max(1.0, r.data.joint_torques.cwiseAbs().maxCoeff());
   return r;

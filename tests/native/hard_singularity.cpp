@@ -9,6 +9,7 @@
 #include "achd/kinematics.hpp"
 
 #include "hard_stretched_arm.hpp"
+#include "reference_dynamics.hpp"
 
 namespace achd::test {
 namespace {
@@ -56,7 +57,7 @@ TEST(HardSingularity, DampedKeepsTorquesAndAccelerationsBounded) {
     free.beta.resize(0);
     Data d_free(model);
     hybrid_dynamics(model, d_free, free, o);
-    const Eigen::MatrixXd M = crba(model, free.q);
+    const Eigen::MatrixXd M = reference_crba(model, free.q);
     const Eigen::VectorXd m_eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues();
     const double lambda = o.damping * s.sigma_max, rhs = s.data.workspace.rhs.norm();
     const double gain = 0.57 * std::sqrt(2.0) * rhs / std::sqrt(lambda);
@@ -153,7 +154,7 @@ TEST(HardSingularity, JointTorquesMatchInverseDynamicsAtEveryAngle) {
     for (double theta : sweep_angles()) {
       const Solve s = solve(model, theta, o);
       const Case c = stretched_arm_case(model, theta);
-      const Eigen::VectorXd tau = rnea(model, c.q, c.q * 0, s.data.qdd, c.gravity);
+      const Eigen::VectorXd tau = reference_rnea(model, c.q, c.q * 0, s.data.qdd, c.gravity);
       const double scale = std::max(1.0, s.data.joint_torques.cwiseAbs().maxCoeff());
       // RNEA and the solver each round O(n) products of size |tau|: 1e2 eps relative.
       EXPECT_LE((tau - s.data.joint_torques).cwiseAbs().maxCoeff(), 1e2 * kEps * scale)

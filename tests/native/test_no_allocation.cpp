@@ -1,6 +1,8 @@
 // hybrid_dynamics() never allocates: malloc/calloc/realloc and operator new are counted
 // while it runs, for every robot of robots/index.json, every constraint count 0..6, with
 // qd, f_ext and ff torques nonzero, in both conventions and both singularity policies.
+// Nor do the workspace forms of rnea, crba, forward_kinematics, link_velocities and
+// tip_jacobian, once their outputs have their sizes.
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -106,6 +108,43 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
     }
   }
   EXPECT_EQ(solves, static_cast<int>(index["robots"].size()) * 7 * 4);
+}
+
+TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
+  std::ifstream in(kRepo + "/robots/index.json");
+  ASSERT_TRUE(in) << kRepo;
+  const nlohmann::json index = nlohmann::json::parse(in);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (const auto& r : index["robots"]) {
+    const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
+                                               r["root"].get<std::string>(), r["tip"].get<std::string>());
+    const int n = m.num_joints();
+    const Eigen::VectorXd q = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    const Eigen::VectorXd qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    std::vector<achd::Vector6> f_ext(m.num_links());
+    for (auto& w : f_ext) w = achd::Vector6::NullaryExpr([&] { return U(rng); });
+    achd::ChainWorkspace ws(m);
+    Eigen::VectorXd tau(n);
+    Eigen::MatrixXd M(n, n), J(6, n);
+    std::vector<achd::Transform> poses(m.num_links());
+    std::vector<achd::Vector6> velocities(m.num_links());
+    g_allocations = 0;
+    g_counting = true;
+    for (int k = 0; k < 2; ++k) {
+      achd::rnea(m, q, qd, qdd, achd::Vector3(0, 0, -9.81), f_ext, achd::kAllEffects, 0.05, ws, tau);
+      achd::crba(m, q, true, ws, M);
+      achd::forward_kinematics(m, q, ws, poses);
+      achd::link_velocities(m, q, qd, ws, velocities);
+      achd::tip_jacobian(m, q, ws, J);
+    }
+    g_counting = false;
+    EXPECT_EQ(g_allocations, 0) << r["name"];
+    // They computed something: the value forms give the same.
+    EXPECT_EQ(tau, achd::rnea(m, q, qd, qdd, achd::Vector3(0, 0, -9.81), f_ext, achd::kAllEffects, 0.05));
+    EXPECT_EQ(M, achd::crba(m, q, true));
+  }
 }
 
 }  // namespace

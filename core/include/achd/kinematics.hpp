@@ -1,5 +1,7 @@
 #pragma once
-// Forward kinematics and the tip Jacobian.
+// Forward kinematics, link velocities and the tip Jacobian, each in two forms: one that
+// returns a new value, and one that writes into caller-owned storage with a
+// ChainWorkspace and allocates nothing (for loops: sizes stay those of the first call).
 #include <vector>
 
 #include <Eigen/Core>
@@ -8,17 +10,39 @@
 
 namespace achd {
 
+// Scratch storage of the workspace forms of forward_kinematics, link_velocities,
+// tip_jacobian (kinematics.hpp), rnea and crba (dynamics.hpp): every vector holds one
+// entry per body, sized by the constructor for `model`. One workspace per thread; its
+// contents between calls mean nothing.
+struct ChainWorkspace {
+  explicit ChainWorkspace(const Model& model);
+  std::vector<Transform> X0;        // body poses in the base (body_poses)
+  std::vector<Vector3> r;           // body origin minus parent origin, base axes
+  std::vector<Vector6> v, a, f;     // body velocities, accelerations, forces (RNEA)
+  std::vector<Transform> Xup;       // parent body frame -> body frame (CRBA)
+  std::vector<Matrix6> Ic;          // composite inertias (CRBA)
+};
+
 // Pose in the root frame of every link after the root (Model::links order).
 std::vector<Transform> forward_kinematics(const Model& model, const Eigen::VectorXd& q);
+// The same into `poses`, which is resized to num_links() if it is not that size already.
+void forward_kinematics(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& ws,
+                        std::vector<Transform>& poses);
 
 // Spatial velocity of every link after the root: linear velocity of the link origin and
-// angular velocity, both in base orientation.
+// angular velocity, both in base orientation (zero for links fixed to the root).
 std::vector<Vector6> link_velocities(const Model& model, const Eigen::VectorXd& q,
                                      const Eigen::VectorXd& qd);
+// The same into `velocities`, resized to num_links() if it is not that size already.
+void link_velocities(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                     ChainWorkspace& ws, std::vector<Vector6>& velocities);
 
 // Tip Jacobian (6 x nj): rows [linear; angular] of the tip link's origin, base
 // orientation, so that [v_tip; w_tip] = J qd.
 Eigen::MatrixXd tip_jacobian(const Model& model, const Eigen::VectorXd& q);
+// The same into `J`, resized to 6 x nj if it is not that size already.
+void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& ws,
+                  Eigen::MatrixXd& J);
 
 // Joint transform of one body at q: parent body frame -> body frame.
 Transform joint_transform(const Body& body, double q);

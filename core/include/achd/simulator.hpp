@@ -106,6 +106,10 @@ class Simulator {
   // Steps completed since construction or reset().
   std::int64_t steps_taken() const { return steps_taken_; }
 
+  // The queries below (residuals to energy) compute from q and qd into scratch storage
+  // of the calling thread and write nothing in the simulator: two threads may call them
+  // at once on one simulator (while neither steps it nor sets its state). A thread's
+  // first query (and its first of a longer chain) allocates that storage.
   // Held-direction residuals in m or rad (0 for directions that are not held).
   std::array<double, kNumDirections> residuals() const;
   // The largest |residual| of each direction since it was set (or since reset()).
@@ -117,7 +121,7 @@ class Simulator {
   Vector6 tip_velocity() const;
   double kinetic_energy() const;
   double potential_energy() const;  // gravity only; 0 when gravity is off
-  double energy() const { return kinetic_energy() + potential_energy(); }
+  double energy() const;  // kinetic_energy() + potential_energy(), from one sweep
   // The solve at the start of the last completed step (nu, joint torques, ...).
   const Data& data() const { return data_[current_]; }
   // The friction smoothing velocity a step of dt uses: max(options().solver.friction_velocity,
@@ -161,10 +165,10 @@ class Simulator {
   std::vector<double> mass_;   // per body, from the spatial inertia
   std::vector<Vector3> com_;   // per body, body frame
   std::vector<double> axial_inertia_;  // S^T I S of each body alone
-  // Workspace (sized once): body poses and velocities, integrator stages.
-  mutable std::vector<Transform> X0_;
-  mutable std::vector<Vector3> r_;
-  mutable std::vector<Vector6> v_;
+  // Workspace of step() (sized once): body poses and velocities, integrator stages.
+  std::vector<Transform> X0_;
+  std::vector<Vector3> r_;
+  std::vector<Vector6> v_;
   Eigen::VectorXd q0_, qd0_, q_stage_, qd_stage_, k_q_[4], k_qd_[4];
   std::array<double, kNumDirections> angle0_{}, angle_stage_{}, k_angle_[4]{};
 };

@@ -29,15 +29,6 @@ struct Transform {
   // Pose composition: (this * c) maps C' coordinates through C to P.
   Transform operator*(const Transform& c) const { return {R * c.R, p + R * c.p}; }
 
-  // Motion vector given in P at P's origin, returned in C at C's origin:
-  //   w_C = R^T w,  v_C = R^T (v + w x p)
-  Vector6 motion_to_child(const Vector6& m) const {
-    Vector6 r;
-    const Vector3 w = m.tail<3>();
-    r.head<3>().noalias() = R.transpose() * (m.head<3>() + w.cross(p));
-    r.tail<3>().noalias() = R.transpose() * w;
-    return r;
-  }
   // Force given in C about C's origin, returned in P about P's origin (X^T f):
   //   f_P = R f,  n_P = R n + p x f_P
   Vector6 force_to_parent(const Vector6& f) const {
@@ -45,21 +36,6 @@ struct Transform {
     r.head<3>().noalias() = R * f.head<3>();
     r.tail<3>().noalias() = R * f.tail<3>();
     r.tail<3>() += p.cross(r.head<3>());
-    return r;
-  }
-  // Motion vector given in C at C's origin, returned in P at P's origin (X^-1 m).
-  Vector6 motion_to_parent(const Vector6& m) const {
-    Vector6 r;
-    r.tail<3>().noalias() = R * m.tail<3>();
-    r.head<3>().noalias() = R * m.head<3>();
-    r.head<3>() -= r.tail<3>().cross(p);
-    return r;
-  }
-  // Force given in P about P's origin, returned in C about C's origin (X^-T f).
-  Vector6 force_to_child(const Vector6& f) const {
-    Vector6 r;
-    r.head<3>().noalias() = R.transpose() * f.head<3>();
-    r.tail<3>().noalias() = R.transpose() * (f.tail<3>() - p.cross(f.head<3>()));
     return r;
   }
 };
