@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <random>
+
+#include <Eigen/Geometry>
 
 #include "random_chain.hpp"
 #include "reference_dynamics.hpp"
@@ -253,6 +256,28 @@ TEST(ReferenceDynamics, WorkspaceFormsCheckTheirArguments) {
   EXPECT_EQ(message([&] { tip_jacobian(b.model, qb, ws, M); }),
             "tip_jacobian: the workspace was made for a model with 3 joints, this one has 5");
   EXPECT_EQ(message([&] { crba(a.model, qa, true, ws, M); }), "");
+}
+
+// Transform's two maps are each other's duals: moving a motion m and a force f from a
+// child frame C to its parent P keeps their power, (X^-1 m) . (X^T f) = m . f, and the
+// angular part of a motion is only rotated. (free_motions.cpp uses motion_to_parent.)
+TEST(Spatial, MotionToParentKeepsThePowerOfForceToParent) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int k = 0; k < 100; ++k) {
+    Transform X;
+    X.R = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    X.p = Vector3(u(rng), u(rng), u(rng));
+    Vector6 m, f;
+    for (int r = 0; r < 6; ++r) m[r] = u(rng), f[r] = u(rng);
+    const Vector6 mp = X.motion_to_parent(m), fp = X.force_to_parent(f);
+    EXPECT_NEAR(mp.dot(fp), m.dot(f), 1e-13 * (1 + std::abs(m.dot(f))));
+    EXPECT_LE((mp.tail<3>() - X.R * m.tail<3>()).norm(), 1e-15 * 8);
+    // The velocity of C's origin seen from P: a point fixed in C at p_C moves with
+    // R v + w_P x (R p_C) in P at that point; taken at P's origin it is v_P + w_P x p_P.
+    const Vector3 at_c_origin = mp.head<3>() + mp.tail<3>().cross(X.p);
+    EXPECT_LE((at_c_origin - X.R * m.head<3>()).norm(), 1e-13);
+  }
 }
 
 }  // namespace

@@ -38,6 +38,15 @@ struct Transform {
     r.tail<3>() += p.cross(r.head<3>());
     return r;
   }
+  // Motion vector given in C at C's origin, returned in P at P's origin (X^-1 m):
+  //   w_P = R w,  v_P = R v - w_P x p
+  Vector6 motion_to_parent(const Vector6& m) const {
+    Vector6 r;
+    r.tail<3>().noalias() = R * m.tail<3>();
+    r.head<3>().noalias() = R * m.head<3>();
+    r.head<3>() -= r.tail<3>().cross(p);
+    return r;
+  }
 };
 
 // Moving the reference point, axes unchanged. A motion vector about point P, taken about
