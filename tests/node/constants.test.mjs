@@ -2,7 +2,7 @@
 // buffer indices the JS wrapper uses are C++'s. Each check reads what C++ actually got
 // (achd_solver_options, achd_sim_options, the raw buffer pointers) and compares it with
 // achd.constants (achd_constants(): options.hpp, simulator.hpp, achd/names.hpp,
-// wasm/src/boundary.hpp), so a value hard-coded in api.js that disagrees fails here.
+// wasm/src/boundary.hpp), so a value hard-coded in wasm/js that disagrees fails here.
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';

@@ -2,8 +2,8 @@
 // What the JS wrapper mirrors from C++, declared once here: the buffers behind the
 // zero-copy views, by index (the enums) and by name (the name tables, in the same order),
 // and the JSON descriptions of option structs. achd_constants() (constants_api.cpp) hands
-// all of it, with the effect bits, enum names and defaults, to api.js at module start;
-// api.js holds no copy of any of them.
+// all of it, with the effect bits, enum names and defaults, to the JS wrapper at module start;
+// wasm/js holds no copy of any of them.
 #include <string>
 
 #include "achd/simulator.hpp"

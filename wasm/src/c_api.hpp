@@ -1,5 +1,5 @@
 #pragma once
-// The C ABI between the wasm module and its JS wrapper (wasm/js/api.js). Functions that
+// The C ABI between the wasm module and its JS wrapper (wasm/js/*.mjs). Functions that
 // can fail return a status (0 = ok) or a null pointer and leave the message of the
 // exception in last_error(); the wrapper turns it into a JS Error. Try blocks cost
 // nothing here: the module is built with native wasm exceptions.

@@ -1,5 +1,5 @@
 // achd_constants(): the effect bits, enum names, defaults and buffer names the JS wrapper
-// needs, as one JSON object read once by api.js. Everything in it comes from the C++
+// needs, as one JSON object read once by wasm/js/constants.mjs. Everything in it comes from the C++
 // declarations (options.hpp, simulator.hpp, achd/names.hpp, boundary.hpp), so JS has no
 // hand-kept copy. achd_solver_options / achd_sim_options describe what a solver or
 // simulator was actually given, in the same form, so that tests/node/constants.test.mjs

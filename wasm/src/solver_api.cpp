@@ -53,7 +53,7 @@ ACHD_EXPORT Solver* achd_solver_create(const Robot* r, int max_constraints) {
 
 ACHD_EXPORT void achd_solver_delete(Solver* s) { delete s; }
 
-// The buffers behind the JS views, by achd::wasm::SolverBuffer index (api.js reads their
+// The buffers behind the JS views, by achd::wasm::SolverBuffer index (wasm/js reads their
 // names, kSolverBufferNames, from achd_constants()).
 ACHD_EXPORT double* achd_solver_buffer(Solver* s, int which) {
   achd::Case& c = s->c;

@@ -1,0 +1,183 @@
+// A loaded robot (achd.loadURDF): its description, solves and algorithms.
+import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeprecated } from './constants.mjs';
+import { achdLastError, achdWasm } from './runtime.mjs';
+import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdEffectBits, achdIsArrayLike, achdNonNegative, achdPositive, achdSolverOptions, achdWriteSpatialList, achdWriteVector } from './validation.mjs';
+import { achdChunks, achdWithScratch } from './memory.mjs';
+import { AchdHandle } from './handle.mjs';
+import { Solver } from './solver.mjs';
+import { Simulator } from './simulator.mjs';
+
+export class Robot extends AchdHandle {
+  constructor(ptr) {
+    super('Robot', ptr, achdWasm.module._achd_robot_delete);
+    const info = JSON.parse(achdWasm.text.UTF8ToString(achdWasm.module._achd_robot_info(ptr)));
+    const bound = (x) => (Math.abs(x) >= 1e300 ? Math.sign(x) * Infinity : x);
+    this.root = info.root;
+    this.tip = info.tip;
+    this.numJoints = info.joints.length;
+    this.numLinks = info.links.length;
+    this.jointNames = info.joints.map((j) => j.name);
+    this.jointTypes = info.joints.map((j) => j.type);
+    this.limits = info.joints.map((j) => ({
+      lower: bound(j.lower), upper: bound(j.upper), velocity: j.velocity, effort: j.effort,
+    }));
+    this.damping = info.joints.map((j) => j.damping);
+    this.friction = info.joints.map((j) => j.friction);
+    this.linkNames = info.links;
+    this._solver = null;  // the solver behind solve(), created on first use
+  }
+  delete() {
+    if (this._solver) this._solver.delete();
+    this._solver = null;
+    super.delete();
+  }
+  createSolver(options) {
+    const ptr = this._live();
+    if (options === undefined || options === null) options = {};
+    achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
+    const max = achdConstants().max_constraints;
+    const mc = options.maxConstraints === undefined ? max : options.maxConstraints;
+    if (!Number.isInteger(mc))
+      throw new Error(`options.maxConstraints must be an integer in [0, ${max}], got ${mc}`);
+    const args = achdSolverOptions(options);
+    const s = achdWasm.module._achd_solver_create(ptr, mc);
+    if (!s) throw achdLastError();
+    achdWasm.module._achd_solver_set_options(s, ...args);
+    return new Solver(this, s, mc);  // gravity: the C++ Case's default
+  }
+  // The case object in, the result object out (docs/design.md section 5; plain arrays:
+  // copies).
+  solve(c, options) {
+    this._live();
+    achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques']);
+    if (!('q' in c)) throw new Error("missing required field 'q'");
+    if (!('gravity' in c)) throw new Error("missing required field 'gravity'");
+    const args = achdSolverOptions(options);
+    if (!this._solver) this._solver = this.createSolver();
+    const s = this._solver, ptr = s._ptr, nj = this.numJoints, nl = this.numLinks;
+    const names = s._bufferNames(), max = achdConstants().max_constraints;
+    const at = (name) => achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)) >> 3;
+    achdWriteVector(c.q, 'q', nj, at('q'));
+    achdWriteVector(c.gravity, 'gravity', 3, at('gravity'));
+    if (c.qd === undefined) achdWasm.module.HEAPF64.fill(0, at('qd'), at('qd') + nj);
+    else achdWriteVector(c.qd, 'qd', nj, at('qd'));
+    if (c.ff_torques === undefined) achdWasm.module.HEAPF64.fill(0, at('ff_torques'), at('ff_torques') + nj);
+    else achdWriteVector(c.ff_torques, 'ff_torques', nj, at('ff_torques'));
+    let nc = 0;
+    if (c.alpha !== undefined) {
+      if (!Array.isArray(c.alpha)) throw new Error('alpha must be an array of 6-element columns');
+      if (c.alpha.length > max) throw new Error(`alpha: at most ${max} constraints, got ${c.alpha.length}`);
+      nc = c.alpha.length;
+      achdWriteSpatialList(c.alpha, 'alpha', nc, at('alpha'), 'columns');
+    }
+    if (c.beta !== undefined) {
+      if (!achdIsArrayLike(c.beta)) throw new Error('beta must be an array of numbers');
+      if (c.beta.length !== nc)
+        throw new Error(`beta: expected ${nc} values (one per alpha column), got ${c.beta.length}`);
+      achdWriteVector(c.beta, 'beta', nc, at('beta'));
+    } else {
+      achdWasm.module.HEAPF64.fill(0, at('beta'), at('beta') + nc);
+    }
+    if (c.f_ext !== undefined) {
+      if (!Array.isArray(c.f_ext)) throw new Error('f_ext must be an array of 6-element wrenches');
+      if (c.f_ext.length !== nl)
+        throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${c.f_ext.length}`);
+      s.useExternalWrenches = true;
+      achdWriteSpatialList(c.f_ext, 'f_ext', nl, at('f_ext'), 'wrenches');
+    } else {
+      s.useExternalWrenches = false;
+    }
+    s.numConstraints = nc;
+    achdWasm.module._achd_solver_set_options(ptr, ...args);
+    s.solve();
+    return s.result();
+  }
+  _q(q, p) { achdWriteVector(q, 'q', this.numJoints, p); }
+  // [{name, position: [x, y, z], rotation: [9, row-major]}] per link after the root.
+  forwardKinematics(q) {
+    const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
+    return achdWithScratch(nj + 12 * nl, (p) => {
+      this._q(q, p);
+      if (achdWasm.module._achd_robot_forward_kinematics(ptr, 8 * p, 8 * (p + nj))) throw achdLastError();
+      return this.linkNames.map((name, l) => {
+        const o = p + nj + 12 * l;
+        return { name, position: Array.from(achdWasm.module.HEAPF64.subarray(o, o + 3)),
+          rotation: Array.from(achdWasm.module.HEAPF64.subarray(o + 3, o + 12)) };
+      });
+    });
+  }
+  // 6 rows (linear first) of nj numbers: [v; w] of the tip link's origin = J qd.
+  tipJacobian(q) {
+    const ptr = this._live(), nj = this.numJoints;
+    return achdWithScratch(7 * nj, (p) => {
+      this._q(q, p);
+      if (achdWasm.module._achd_robot_tip_jacobian(ptr, 8 * p, 8 * (p + nj))) throw achdLastError();
+      return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nj, p + 7 * nj)), nj);
+    });
+  }
+  // M(q) as nj rows, rotor inertia included unless {rotorInertia: false}.
+  massMatrix(q, options) {
+    const ptr = this._live(), nj = this.numJoints;
+    if (options === undefined) options = {};
+    achdCheckObject(options, 'options', ['rotorInertia']);
+    const rotor = options.rotorInertia === undefined ? true : options.rotorInertia;
+    if (typeof rotor !== 'boolean') throw new Error('options.rotorInertia must be true or false');
+    return achdWithScratch(nj + nj * nj, (p) => {
+      this._q(q, p);
+      if (achdWasm.module._achd_robot_mass_matrix(ptr, 8 * p, rotor ? 1 : 0, 8 * (p + nj))) throw achdLastError();
+      return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nj, p + nj + nj * nj)), Math.max(nj, 1));
+    });
+  }
+  // Inverse dynamics: the joint torques for (q, qd, qdd) under gravity and f_ext.
+  rnea(q, qd, qdd, options) {
+    const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
+    if (options === undefined) options = {};
+    achdCheckObject(options, 'options', ['gravity', 'f_ext', 'effects', 'frictionVelocity']);
+    const k = achdConstants();
+    const effects = achdEffectBits(options.effects, k.options.effects, 'options.effects');
+    const fv = achdPositive(options.frictionVelocity, k.options.friction_velocity, 'options.frictionVelocity');
+    return achdWithScratch(4 * nj + 3 + 6 * nl, (p) => {
+      const g = p + 4 * nj, f = g + 3;
+      this._q(q, p);
+      achdWriteVector(qd, 'qd', nj, p + nj);
+      achdWriteVector(qdd, 'qdd', nj, p + 2 * nj);
+      achdWriteVector(options.gravity === undefined ? k.case_gravity : options.gravity, 'gravity', 3, g);
+      if (options.f_ext !== undefined) {
+        if (!Array.isArray(options.f_ext) || options.f_ext.length !== nl)
+          throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${
+            Array.isArray(options.f_ext) ? options.f_ext.length : typeof options.f_ext}`);
+        achdWriteSpatialList(options.f_ext, 'f_ext', nl, f, 'wrenches');
+      }
+      if (achdWasm.module._achd_robot_rnea(ptr, 8 * p, 8 * (p + nj), 8 * (p + 2 * nj), 8 * g,
+        options.f_ext === undefined ? 0 : 8 * f, effects, fv, 8 * (p + 3 * nj))) throw achdLastError();
+      return Array.from(achdWasm.module.HEAPF64.subarray(p + 3 * nj, p + 4 * nj));
+    });
+  }
+  createSimulator(options) {
+    const ptr = this._live();
+    if (options === undefined || options === null) options = {};
+    achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
+      'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping']);
+    // Defaults are achd::SimulatorOptions' (core/include/achd/simulator.hpp).
+    const k = achdConstants(), d = k.simulator_options;
+    let integratorName = options.integrator;
+    if (Object.prototype.hasOwnProperty.call(ACHD_OLD_INTEGRATOR_NAMES, integratorName)) {
+      achdDeprecated(`integrator '${integratorName}'`, `'${ACHD_OLD_INTEGRATOR_NAMES[integratorName]}'`);
+      integratorName = ACHD_OLD_INTEGRATOR_NAMES[integratorName];
+    }
+    const integrator = achdChoice(integratorName, k.integrators, d.integrator, 'options.integrator');
+    const effects = achdEffectBits(options.effects, d.effects, 'options.effects');
+    const limits = achdChoice(options.limits, k.limit_policies, d.limits, 'options.limits');
+    const frictionVelocity = achdPositive(options.frictionVelocity, d.solver.friction_velocity, 'options.frictionVelocity');
+    const frequency = achdNonNegative(options.stabilisationFrequency, d.stabilisation_frequency, 'options.stabilisationFrequency');
+    const damping = achdPositive(options.stabilisationDamping, d.stabilisation_damping, 'options.stabilisationDamping');
+    const create = (gravity) => achdWasm.module._achd_sim_create(ptr, integrator, effects, gravity, limits, frictionVelocity,
+      frequency, damping);
+    const sim = options.gravity === undefined ? create(0) : achdWithScratch(3, (p) => {
+      achdWriteVector(options.gravity, 'gravity', 3, p);
+      return create(8 * p);
+    });
+    if (!sim) throw achdLastError();
+    return new Simulator(this, sim);
+  }
+}

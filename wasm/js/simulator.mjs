@@ -1,0 +1,131 @@
+// The simulator (robot.createSimulator).
+import { achdConstants, achdDeprecated } from './constants.mjs';
+import { achdLastError, achdWasm } from './runtime.mjs';
+import { achdCheckObject, achdCheckVector, achdWriteVector } from './validation.mjs';
+import { achdCopy, achdWithScratch } from './memory.mjs';
+import { AchdHandle } from './handle.mjs';
+
+// by default (about 0.1 s of the 7-DoF arm with RK4).
+export const ACHD_MAX_RUN_CHUNK = 2 ** 30;
+export const ACHD_PROGRESS_INTERVAL = 10000;
+
+// Time stepping; q, qd, ff_torques, f_ext are views on the simulator's state.
+export class Simulator extends AchdHandle {
+  constructor(robot, ptr) {
+    super('Simulator', ptr, achdWasm.module._achd_sim_delete);
+    this.numJoints = robot.numJoints;
+    this.numLinks = robot.numLinks;
+    this._linkNames = robot.linkNames;
+    this._jointNames = robot.jointNames;
+  }
+  _bufferOf(ptr, index) { return achdWasm.module._achd_sim_buffer(ptr, index); }
+  _bufferNames() { return achdConstants().simulator_buffers; }
+  _layout() {
+    return [['q', this.numJoints], ['qd', this.numJoints], ['t', 1], ['ff_torques', this.numJoints],
+      ['f_ext', 6 * this.numLinks]];
+  }
+  get q() { return this._view('q'); }
+  get qd() { return this._view('qd'); }
+  get ff_torques() { return this._view('ff_torques'); }
+  get f_ext() { return this._view('f_ext'); }
+  get t() { return this._view('t')[0]; }
+  // n steps of dt (n up to 2^53 - 1), given to wasm in chunks (its run() takes an int);
+  // with options.onProgress, chunks of options.progressInterval steps, after each of
+  // which onProgress(stepsDone, n) is called: returning false stops the run. Returns the
+  // number of steps run. A failed step throws (the state stays at the last good step).
+  step(n = 1, dt = 1e-3, options = undefined) {
+    const ptr = this._live();
+    if (!Number.isSafeInteger(n) || n < 0)
+      throw new Error(`step: n must be an integer >= 0 and <= 2^53 - 1, got ${n}`);
+    if (typeof dt !== 'number' || !Number.isFinite(dt) || dt <= 0)
+      throw new Error(`step: dt must be a finite number > 0, got ${dt}`);
+    if (options === undefined || options === null) options = {};
+    achdCheckObject(options, 'step options', ['onProgress', 'progressInterval']);
+    const onProgress = options.onProgress;
+    if (onProgress !== undefined && typeof onProgress !== 'function')
+      throw new Error('step options.onProgress must be a function (stepsDone, total) => boolean');
+    const interval = options.progressInterval === undefined ? ACHD_PROGRESS_INTERVAL : options.progressInterval;
+    if (!Number.isSafeInteger(interval) || interval < 1)
+      throw new Error(`step options.progressInterval must be an integer >= 1, got ${interval}`);
+    const chunk = Math.min(onProgress ? interval : ACHD_MAX_RUN_CHUNK, ACHD_MAX_RUN_CHUNK);
+    let done = 0;
+    while (done < n) {
+      const k = Math.min(chunk, n - done);
+      if (achdWasm.module._achd_sim_run(ptr, k, dt)) throw achdLastError();
+      done += k;
+      if (onProgress && onProgress(done, n) === false) break;
+    }
+    return done;
+  }
+  // Steps completed since createSimulator() or reset().
+  get stepsTaken() { return achdWasm.module._achd_sim_steps_taken(this._live()); }
+  reset(q, qd) {
+    const ptr = this._live(), n = this.numJoints;
+    achdWithScratch(2 * n, (p) => {
+      achdWriteVector(q, 'q', n, p);
+      if (qd === undefined) achdWasm.module.HEAPF64.fill(0, p + n, p + 2 * n);
+      else achdWriteVector(qd, 'qd', n, p + n);
+      if (achdWasm.module._achd_sim_reset(ptr, 8 * p, 8 * (p + n))) throw achdLastError();
+    });
+    this._buffer = null;  // reset() may have given q and qd new buffers
+  }
+  // name: x y z rx ry rz; mode: 'hold', 'free' or a number (classical acceleration setpoint).
+  setDirection(name, mode) {
+    const ptr = this._live();
+    const directions = achdConstants().directions, modes = achdConstants().direction_modes;
+    const index = directions.indexOf(name);
+    if (index < 0) throw new Error(`setDirection: unknown direction '${name}' (${directions.join(', ')})`);
+    let code, setpoint = 0;
+    if (mode === 'free' || mode === 'hold') code = modes.indexOf(mode);
+    else if (typeof mode === 'number' && Number.isFinite(mode)) { code = modes.indexOf('accelerate'); setpoint = mode; }
+    else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${mode}`);
+    if (achdWasm.module._achd_sim_set_direction(ptr, index, code, setpoint)) throw achdLastError();
+  }
+  // Held-direction residuals (m or rad); null for directions that are not held (free
+  // or accelerated: neither has a position or angle to keep).
+  residuals() {
+    const ptr = this._live();
+    const directions = achdConstants().directions, modes = achdConstants().direction_modes;
+    return achdWithScratch(directions.length, (p) => {
+      achdWasm.module._achd_sim_residuals(ptr, 8 * p);
+      const out = {};
+      directions.forEach((name, k) => {
+        out[name] = achdWasm.module._achd_sim_direction_mode(ptr, k) === modes.indexOf('hold') ? achdWasm.module.HEAPF64[p + k] : null;
+      });
+      return out;
+    });
+  }
+  energy() {
+    const ptr = this._live();
+    const kinetic = achdWasm.module._achd_sim_kinetic_energy(ptr), potential = achdWasm.module._achd_sim_potential_energy(ptr);
+    return { kinetic, potential, total: kinetic + potential };
+  }
+  // Names of the joints at or past a limit after the last step (a copy; [] under 'ignore').
+  limitHits() {
+    const ptr = this._live(), n = achdWasm.module._achd_sim_limit_hits(ptr, 0);
+    return achdWithScratch(n, (p) => {
+      achdWasm.module._achd_sim_limit_hits(ptr, 8 * p);
+      return Array.from(achdWasm.module.HEAP32.subarray(2 * p, 2 * p + n), (i) => this._jointNames[i]);
+    });
+  }
+  // Outputs of the solve at the start of the last step (copies), named as the solver's.
+  _result(name, n) {
+    return achdCopy(achdWasm.module._achd_sim_result(this._live(), achdConstants().simulator_results.indexOf(name)), n);
+  }
+  nu() { return this._result('nu', achdWasm.module._achd_sim_nu_size(this._live())); }
+  joint_torques() { return this._result('joint_torques', this.numJoints); }
+  qdd() { return this._result('qdd', this.numJoints); }
+  jointTorques() {
+    achdDeprecated('Simulator.jointTorques()', 'Simulator.joint_torques()');
+    return this.joint_torques();
+  }
+  // The wrench on one link (index after the root, or its name), base orientation.
+  setExternalWrench(link, wrench) {
+    this._live();
+    const index = typeof link === 'string' ? this._linkNames.indexOf(link) : link;
+    if (!Number.isInteger(index) || index < 0 || index >= this.numLinks)
+      throw new Error(`setExternalWrench: unknown link ${JSON.stringify(link)} (index 0..${this.numLinks - 1} or a link name)`);
+    achdCheckVector(wrench, 'wrench', 6);
+    this.f_ext.set(wrench, 6 * index);
+  }
+}

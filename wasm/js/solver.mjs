@@ -1,0 +1,84 @@
+// The zero-copy solver (robot.createSolver).
+import { achdConstants } from './constants.mjs';
+import { achdLastError, achdSigmaMin, achdWasm } from './runtime.mjs';
+import { achdSolverOptions } from './validation.mjs';
+import { achdChunks, achdCopy } from './memory.mjs';
+import { AchdHandle } from './handle.mjs';
+
+// The zero-copy solver: write the views, call solve(), read the views.
+export class Solver extends AchdHandle {
+  constructor(robot, ptr, maxConstraints) {
+    super('Solver', ptr, achdWasm.module._achd_solver_delete);
+    this.numJoints = robot.numJoints;
+    this.numLinks = robot.numLinks;
+    this.maxConstraints = maxConstraints;
+    this._nc = 0;
+    this._external = false;
+  }
+  _bufferOf(ptr, index) { return achdWasm.module._achd_solver_buffer(ptr, index); }
+  _bufferNames() { return achdConstants().solver_buffers; }
+  _layout() {
+    const nj = this.numJoints, nl = this.numLinks, mc = this.maxConstraints;
+    return [['q', nj], ['qd', nj], ['ff_torques', nj], ['gravity', 3], ['alpha', 6 * mc], ['beta', mc],
+      ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc], ['joint_torques', nj], ['constraint_torques', nj],
+      ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6]];
+  }
+  get q() { return this._view('q'); }
+  get qd() { return this._view('qd'); }
+  get ff_torques() { return this._view('ff_torques'); }
+  get gravity() { return this._view('gravity'); }
+  get alpha() { return this._view('alpha'); }
+  get beta() { return this._view('beta'); }
+  get f_ext() { return this._view('f_ext'); }
+  get qdd() { return this._view('qdd'); }
+  get nu() { return this._view('nu'); }
+  get joint_torques() { return this._view('joint_torques'); }
+  get constraint_torques() { return this._view('constraint_torques'); }
+  get total_torques() { return this._view('total_torques'); }
+  get link_accelerations() { return this._view('link_accelerations'); }
+  get constraint_wrench() { return this._view('constraint_wrench'); }
+  get rank() { return achdWasm.module._achd_solver_rank(this._live()); }
+  get sigma_min() { return achdSigmaMin(this._live()); }
+  get numConstraints() { this._live(); return this._nc; }
+  set numConstraints(nc) {
+    if (!Number.isInteger(nc)) throw new Error(`numConstraints must be an integer, got ${nc}`);
+    if (achdWasm.module._achd_solver_set_num_constraints(this._live(), nc)) throw achdLastError();
+    this._nc = nc;
+    this._buffer = null;  // the nu view's length changed
+  }
+  get useExternalWrenches() { this._live(); return this._external; }
+  set useExternalWrenches(on) {
+    if (typeof on !== 'boolean') throw new Error('useExternalWrenches must be true or false');
+    achdWasm.module._achd_solver_use_external_wrenches(this._live(), on ? 1 : 0);
+    this._external = on;
+  }
+  setOptions(options) {
+    const ptr = this._live();
+    achdWasm.module._achd_solver_set_options(ptr, ...achdSolverOptions(options));
+  }
+  // hybrid_dynamics on the views, in place: no allocation, no copy.
+  solve() {
+    if (achdWasm.module._achd_solver_solve(this._ptr === 0 ? this._live() : this._ptr)) throw achdLastError();
+  }
+  // The outputs of the last solve as plain arrays (the result object of docs/design.md
+  // section 5; a copy).
+  result() {
+    const ptr = this._live();
+    const nj = this.numJoints, nc = achdWasm.module._achd_solver_nu_size(ptr);
+    const rows = achdWasm.module._achd_solver_dropped_rows(ptr), cols = achdWasm.module._achd_solver_dropped_cols(ptr);
+    const names = this._bufferNames();
+    const copy = (name, n) => achdCopy(achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)), n);
+    return {
+      qdd: copy('qdd', nj),
+      constraint_torques: copy('constraint_torques', nj),
+      total_torques: copy('total_torques', nj),
+      nu: copy('nu', nc),
+      joint_torques: copy('joint_torques', nj),
+      constraint_wrench: copy('constraint_wrench', 6),
+      link_accelerations: achdChunks(copy('link_accelerations', 6 * (this.numLinks + 1)), 6),
+      rank: achdWasm.module._achd_solver_rank(ptr),
+      sigma_min: achdSigmaMin(ptr),
+      dropped: rows ? achdChunks(copy('dropped', rows * cols), rows) : [],
+    };
+  }
+}
