@@ -6,24 +6,13 @@
 #include <cstdio>
 #include <iostream>
 
-#include <console_bridge/console.h>
 #include <kdl/chainhdsolver_vereshchagin.hpp>
 #include <kdl_parser/kdl_parser.hpp>
 
+#include "console_capture.hpp"
+
 namespace achd::cli {
 namespace {
-
-// kdl_parser warns through ROS's rosconsole (in colour, on stderr) and urdfdom logs
-// through console_bridge; the command line's stderr is one `achd: error:` line or
-// nothing. While kdl_parser runs, console_bridge's messages are captured (its first error
-// goes into the message) and file descriptor 2 points at /dev/null.
-class CaptureHandler : public console_bridge::OutputHandler {
- public:
-  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error.empty()) first_error = text;
-  }
-  std::string first_error;
-};
 
 class QuietStderr {
  public:
@@ -51,16 +40,15 @@ class QuietStderr {
   int saved_;
 };
 
+// kdl_parser warns through ROS's rosconsole (in colour, on stderr) and urdfdom logs
+// through console_bridge; the command line's stderr is one `achd: error:` line or
+// nothing. While kdl_parser runs, console_bridge's messages are captured (its first error
+// goes into the message) and file descriptor 2 points at /dev/null.
 bool parse_quietly(const std::string& urdf, bool is_xml, KDL::Tree& tree, std::string& why) {
-  CaptureHandler handler;
-  console_bridge::useOutputHandler(&handler);
-  bool parsed;
-  {
-    const QuietStderr quiet;
-    parsed = is_xml ? kdl_parser::treeFromString(urdf, tree) : kdl_parser::treeFromFile(urdf, tree);
-  }
-  console_bridge::restorePreviousOutputHandler();
-  why = handler.first_error;
+  const ConsoleCapture console;
+  const QuietStderr quiet;
+  const bool parsed = is_xml ? kdl_parser::treeFromString(urdf, tree) : kdl_parser::treeFromFile(urdf, tree);
+  why = console.first_error();
   return parsed;
 }
 

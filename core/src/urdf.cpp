@@ -16,35 +16,25 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "achd/error.hpp"
+#include "console_capture.hpp"
 #include "sin_cos.hpp"
 #include "xml_depth.hpp"
 
 namespace achd {
 namespace {
 
-// Collects urdfdom's console messages so that a parse failure can say why.
-class CaptureHandler : public console_bridge::OutputHandler {
- public:
-  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error.empty()) first_error = text;
-  }
-  std::string first_error;
-};
-
 urdf::ModelInterfaceSharedPtr parse(const std::string& xml, std::string& why) {
   static std::mutex mutex;  // console_bridge's handler is process-global
   std::lock_guard<std::mutex> lock(mutex);
-  CaptureHandler handler;
-  console_bridge::useOutputHandler(&handler);
   urdf::ModelInterfaceSharedPtr model;
+  ConsoleCapture console;
   try {
     model = urdf::parseURDF(xml);
+    why = console.first_error();
   } catch (const std::exception& e) {
-    handler.first_error = e.what();
+    why = e.what();
     model.reset();
   }
-  console_bridge::restorePreviousOutputHandler();
-  why = handler.first_error;
   return model;
 }
 
