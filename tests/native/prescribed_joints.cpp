@@ -170,16 +170,21 @@ TEST(PrescribedJoints, EveryJointPrescribedIsInverseDynamics) {
     const int n = m.num_joints();
     prescribe_some(rng, m, c);
     c.prescribed.assign(n, true);
-    Data d(m);
-    hybrid_dynamics(m, d, c);
     const Eigen::VectorXd rnea = reference_rnea(m, c.q, c.qd, c.qdd_given, c.gravity, c.f_ext);
-    EXPECT_EQ(d.qdd, c.qdd_given);
-    const double e = rel_error(d.prescribed_torques, rnea);
-    EXPECT_LE(e, 1e-12) << ch.urdf;
-    EXPECT_EQ(d.prescribed_torques, d.joint_torques);
-    EXPECT_EQ(d.rank, 0);
-    for (int k = 0; k < c.num_constraints(); ++k) EXPECT_EQ(d.nu[k], 0.0);
-    worst = std::max(worst, e);
+    // Under both policies (the damped one's lambda is 0 for K = 0).
+    for (const SingularityPolicy policy : {SingularityPolicy::Truncate, SingularityPolicy::Damped}) {
+      Options o;
+      o.policy = policy;
+      Data d(m);
+      hybrid_dynamics(m, d, c, o);
+      EXPECT_EQ(d.qdd, c.qdd_given);
+      const double e = rel_error(d.prescribed_torques, rnea);
+      EXPECT_LE(e, 1e-12) << ch.urdf;
+      EXPECT_EQ(d.prescribed_torques, d.joint_torques);
+      EXPECT_EQ(d.rank, 0);
+      for (int k = 0; k < c.num_constraints(); ++k) EXPECT_EQ(d.nu[k], 0.0);
+      worst = std::max(worst, e);
+    }
     ++cases;
   });
   std::printf("  %d cases: prescribed_torques vs reference RNEA %.3g\n", cases, worst);
