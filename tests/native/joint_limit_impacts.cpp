@@ -155,7 +155,8 @@ TEST(JointLimitImpacts, ResetAndMovedJointsLeaveTheirStops) {
 
 // Without held directions the impact is the plain inelastic joint stop: the joint's
 // velocity goes to 0 and the others change as M^-1 e_i lambda says, so the generalised
-// momentum of the other joints about the stop, (M qd)_j for j != i, is unchanged.
+// momentum of the other joints about the stop, (M qd)_j for j != i, is unchanged, and
+// kinetic energy is lost.
 TEST(JointLimitImpacts, ImpactWithoutHeldDirectionsKeepsTheOtherJointsMomentum) {
   const Scene s = ur5_elbow();
   SimulatorOptions o;
@@ -175,6 +176,8 @@ TEST(JointLimitImpacts, ImpactWithoutHeldDirectionsKeepsTheOtherJointsMomentum) 
   for (int j = 0; j < 6; ++j)
     if (j != s.joint) EXPECT_NEAR(after[j], before[j], 1e-12 * before.cwiseAbs().maxCoeff()) << "joint " << j;
   EXPECT_EQ(sim.qd[s.joint], 0.0);
+  // Inelastic: the impact takes kinetic energy, 1/2 qd^T M qd, out.
+  EXPECT_LT(0.5 * sim.qd.dot(after), 0.5 * qd.dot(before));
 }
 
 }  // namespace
