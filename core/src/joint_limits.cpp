@@ -74,6 +74,7 @@ void Simulator::update_limit_stops(double w_n) {
   }
   if (!resting) return;
   // The step's first solve, with the stops' joints prescribed: the torque each stop exerts.
+  stage_ = 0;
   evaluate(q, qd, held_.angle, w_n, limit_data_, limit_angle_rate_);
   for (int i = 0; i < n; ++i) {
     if (!limit_stop_[i]) continue;
