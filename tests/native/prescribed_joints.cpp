@@ -134,6 +134,31 @@ TEST(PrescribedJoints, RandomChainsMatchDenseKktAndRnea) {
   EXPECT_GE(cases, 100);
 }
 
+// With damping and friction on, a prescribed joint's torque includes what they take:
+// joint_torques (prescribed_torques in place of ff) is still RNEA with those terms.
+TEST(PrescribedJoints, PassiveTermsAreInThePrescribedTorques) {
+  std::mt19937 rng(1410);
+  int cases = 0;
+  double worst = 0;
+  for_random_cases(1404, 20, true, [&](const RandomChain& ch, Case c) {
+    const Model& m = ch.model;
+    prescribe_some(rng, m, c);
+    if (!(dense_solve(m, c).condition < 1e4)) return;
+    Options o;
+    o.effects = kAllEffects;
+    Data d(m);
+    hybrid_dynamics(m, d, c, o);
+    const Eigen::VectorXd rnea =
+        reference_rnea(m, c.q, c.qd, d.qdd, c.gravity, c.f_ext, kAllEffects, o.friction_velocity);
+    const double e = rel_error(d.joint_torques, rnea);
+    EXPECT_LE(e, 1e-10) << ch.urdf;
+    worst = std::max(worst, e);
+    ++cases;
+  });
+  std::printf("  %d cases: joint_torques vs RNEA with damping and friction %.3g\n", cases, worst);
+  EXPECT_GE(cases, 50);
+}
+
 // A prescribed joint's torque, given back as its ff_torques with the joint free, gives the
 // same solve (where the free joints alone can satisfy the constraints).
 TEST(PrescribedJoints, PrescribedTorqueAsFeedForwardGivesTheSameSolve) {
