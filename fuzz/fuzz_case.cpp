@@ -17,8 +17,8 @@ namespace {
 
 bool finite_results(const achd::Model& model, const achd::Data& d) {
   bool ok = d.qdd.allFinite() && d.joint_torques.allFinite() && d.constraint_torques.allFinite() &&
-            d.total_torques.allFinite() && d.nu.allFinite() && d.constraint_wrench.allFinite() &&
-            d.dropped.allFinite();
+            d.total_torques.allFinite() && d.prescribed_torques.allFinite() && d.nu.allFinite() &&
+            d.constraint_wrench.allFinite() && d.dropped.allFinite();
   for (int l = 0; l <= model.num_links(); ++l) ok = ok && d.link_accelerations[l].allFinite();
   return ok;
 }
@@ -29,7 +29,7 @@ void solve_and_check(const achd::Model& model, achd::Data& data, const achd::Cas
   try {
     achd::hybrid_dynamics(model, data, c, options);
     if (!finite_results(model, data) || !std::isfinite(achd::sigma_min(data))) std::abort();
-    (void)nlohmann::json::parse(achd::cli::result_json(model, data));  // throws on nan, inf
+    (void)nlohmann::json::parse(achd::cli::result_json(model, data, c));  // throws on nan, inf
   } catch (const achd::Error&) {
   }
 }

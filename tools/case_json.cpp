@@ -46,12 +46,41 @@ std::string array(const V& v) {
   return s + "]";
 }
 
+// "qdd_given": the prescribed joints' accelerations, as an object keyed by joint name or
+// an array in model order with null for a joint that is not prescribed.
+void prescribed_joints(const json& v, const Model& model, Case& c) {
+  const int nj = model.num_joints();
+  c.qdd_given = Eigen::VectorXd::Zero(nj);
+  c.prescribed.assign(nj, false);
+  if (v.is_object()) {
+    for (const auto& item : v.items()) {
+      const int i = model.joint_index(item.key());
+      if (i < 0)
+        throw Error("qdd_given: no movable joint '" + item.key() + "' between the root and the tip");
+      c.qdd_given[i] = number(item.value(), "qdd_given['" + item.key() + "']");
+      c.prescribed[i] = true;
+    }
+    return;
+  }
+  if (!v.is_array())
+    throw Error("qdd_given must be an object {joint name: acceleration} or an array of " + std::to_string(nj) +
+                " numbers or nulls (null: the joint is not prescribed)");
+  if (static_cast<int>(v.size()) != nj)
+    throw Error("qdd_given: expected " + std::to_string(nj) + " values (one per joint, null where not prescribed), got " +
+                std::to_string(v.size()));
+  for (int i = 0; i < nj; ++i) {
+    if (v[i].is_null()) continue;
+    c.qdd_given[i] = number(v[i], at("qdd_given", i) + " (joint '" + model.bodies[i].joint_name + "')");
+    c.prescribed[i] = true;
+  }
+}
+
 }  // namespace
 
 Case case_from_json(const json& j, const Model& model, const std::string& source) {
   try {
     if (!j.is_object()) throw Error("the case must be a JSON object");
-    static const char* known[] = {"q", "qd", "gravity", "alpha", "beta", "f_ext", "ff_torques"};
+    static const char* known[] = {"q", "qd", "gravity", "alpha", "beta", "f_ext", "ff_torques", "qdd_given"};
     for (const auto& item : j.items()) {
       bool ok = false;
       for (const char* k : known) ok = ok || item.key() == k;
@@ -94,6 +123,7 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
                     " wrenches (one per link after the root), got " + std::to_string(f.size()));
       for (size_t i = 0; i < f.size(); ++i) c.f_ext.push_back(spatial(f[i], at("f_ext", i)));
     }
+    if (j.contains("qdd_given")) prescribed_joints(j["qdd_given"], model, c);
     validate(model, c);
     return c;
   } catch (const Error& e) {
@@ -111,13 +141,19 @@ Case parse_case(const std::string& text, const Model& model, const std::string& 
   return case_from_json(j, model, source);
 }
 
-std::string result_json(const Model& model, const Data& d) {
+std::string result_json(const Model& model, const Data& d, const Case& c) {
   std::string s = "{\n";
   s += "  \"qdd\": " + array(d.qdd) + ",\n";
   s += "  \"constraint_torques\": " + array(d.constraint_torques) + ",\n";
   s += "  \"total_torques\": " + array(d.total_torques) + ",\n";
   s += "  \"nu\": " + array(d.nu) + ",\n";
   s += "  \"joint_torques\": " + array(d.joint_torques) + ",\n";
+  if (c.any_prescribed()) {  // null where the joint is not prescribed, as in qdd_given
+    s += "  \"prescribed_torques\": [";
+    for (int i = 0; i < model.num_joints(); ++i)
+      s += (i ? ", " : "") + (c.prescribed[i] ? fmt(d.prescribed_torques[i]) : std::string("null"));
+    s += "],\n";
+  }
   s += "  \"constraint_wrench\": " + array(d.constraint_wrench) + ",\n";
   s += "  \"link_accelerations\": [";
   for (int i = 0; i <= model.num_links(); ++i)

@@ -14,8 +14,9 @@ namespace achd::cli {
 Case parse_case(const std::string& text, const Model& model, const std::string& source);
 Case case_from_json(const nlohmann::json& j, const Model& model, const std::string& source);
 
-// The result of the last solve as JSON text, numbers with 17 significant digits.
-std::string result_json(const Model& model, const Data& data);
+// The result of the last solve of `c` as JSON text, numbers with 17 significant digits;
+// "prescribed_torques" (null where a joint is not prescribed) only when c prescribes a joint.
+std::string result_json(const Model& model, const Data& data, const Case& c);
 
 // Reads a whole file; throws achd::Error("PATH: cannot open file").
 std::string read_file(const std::string& path);

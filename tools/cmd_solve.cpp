@@ -23,7 +23,7 @@ int cmd_solve(int argc, char** argv) {
   const Case c = parse_case(text, model, case_path);
   Data data(model);
   hybrid_dynamics(model, data, c, options);
-  std::cout << result_json(model, data);
+  std::cout << result_json(model, data, c);
   return 0;
 }
 

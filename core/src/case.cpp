@@ -15,6 +15,12 @@ Case Case::zeros(const Model& model) {
   return c;
 }
 
+bool Case::any_prescribed() const {
+  for (bool p : prescribed)
+    if (p) return true;
+  return false;
+}
+
 namespace {
 
 void check_vector(const Eigen::VectorXd& v, int n, const char* field, bool optional) {
@@ -39,12 +45,14 @@ bool plainly_valid(const Model& model, const Case& c) {
   const int nc = c.num_constraints();
   if (c.q.size() != nj || (c.qd.size() && c.qd.size() != nj) ||
       (c.ff_torques.size() && c.ff_torques.size() != nj) || nc > kMaxConstraints ||
-      c.beta.size() != nc || (!c.f_ext.empty() && static_cast<int>(c.f_ext.size()) != model.num_links()))
+      c.beta.size() != nc || (!c.f_ext.empty() && static_cast<int>(c.f_ext.size()) != model.num_links()) ||
+      (c.qdd_given.size() && c.qdd_given.size() != nj) ||
+      c.prescribed.size() != static_cast<size_t>(c.qdd_given.size()))
     return false;
   double s = finite_probe(c.q.data(), nj) + finite_probe(c.qd.data(), c.qd.size()) +
              finite_probe(c.ff_torques.data(), c.ff_torques.size()) +
              finite_probe(c.gravity.data(), 3) + finite_probe(c.alpha.data(), 6 * nc) +
-             finite_probe(c.beta.data(), nc);
+             finite_probe(c.beta.data(), nc) + finite_probe(c.qdd_given.data(), c.qdd_given.size());
   if (!c.f_ext.empty()) s += finite_probe(c.f_ext[0].data(), 6 * Eigen::Index(c.f_ext.size()));
   return s == 0;
 }
@@ -82,6 +90,21 @@ void validate(const Model& model, const Case& c) {
         if (!std::isfinite(c.f_ext[i][r]))
           throw Error("f_ext[" + std::to_string(i) + "][" + std::to_string(r) + "] is not finite");
   }
+  // Prescribed joints: qdd_given and its mask come together, one per joint.
+  const size_t n = static_cast<size_t>(nj);
+  if (c.qdd_given.size() && static_cast<size_t>(c.qdd_given.size()) != n)
+    throw Error("qdd_given: expected " + std::to_string(nj) + " values (one per joint), got " +
+                std::to_string(c.qdd_given.size()));
+  if (!c.prescribed.empty() && c.prescribed.size() != n)
+    throw Error("prescribed: expected " + std::to_string(nj) + " flags (one per joint), got " +
+                std::to_string(c.prescribed.size()));
+  if (c.prescribed.empty() != (c.qdd_given.size() == 0))
+    throw Error(c.prescribed.empty() ? "qdd_given is set but prescribed (which joints it prescribes) is empty"
+                                     : "prescribed is set but qdd_given (their accelerations) is empty");
+  for (int i = 0; i < c.qdd_given.size(); ++i)
+    if (!std::isfinite(c.qdd_given[i]))
+      throw Error("qdd_given[" + std::to_string(i) + "] (joint '" + model.bodies[i].joint_name +
+                  "') is not finite");
 }
 
 void validate(const Options& o) {

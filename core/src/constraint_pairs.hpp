@@ -56,8 +56,9 @@ struct UnitConstraintForces {
 };
 
 // The sums of Vereshchagin's eqs. (d) and (e) over the bodies, from each body's EZ:
-//   K = -M_0 = sum_i EZ_i EZ_i^T / D_i,   G_0 = sum_i EZ_i u_i / D_i,
-// two rows to a Pair; K's lower triangle only (it is symmetric).
+//   K = -M_0 = sum_i EZ_i EZ_i^T / D_i,   G_0 = sum_i EZ_i known_i,
+// known_i = u_i / D_i (a free joint's acceleration at a~_p = 0, nu = 0) or a prescribed
+// joint's given qdd; two rows to a Pair; K's lower triangle only (it is symmetric).
 template <int NC>
 struct CouplingSums {
   static constexpr int NP = (NC + 1) / 2;
@@ -70,12 +71,12 @@ struct CouplingSums {
     }
   }
 
-  void add(const double* ez, double Dinv, double u) {
+  void add(const double* ez, double Dinv, double known) {
     for (int k = 0; k < NC; ++k) {
       const Pair s = splat(ez[k] * Dinv);
       for (int j = k / 2; j < NP; ++j) K[k][j] += load_pair(ez + 2 * j) * s;
     }
-    const Pair s = splat(u * Dinv);
+    const Pair s = splat(known);
     for (int j = 0; j < NP; ++j) G[j] += load_pair(ez + 2 * j) * s;
   }
 

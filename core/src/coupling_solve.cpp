@@ -218,7 +218,8 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
       w = kept ? 1.0 / sigma[k] : 0.0;
       dropped[k] = !kept;
     } else {
-      w = sigma[k] / (sigma[k] * sigma[k] + lambda * lambda);
+      // (0, not 0 / 0, when K = 0: then lambda = 0 too, and no direction has a force)
+      w = sigma[k] > 0 ? sigma[k] / (sigma[k] * sigma[k] + lambda * lambda) : 0.0;
       dropped[k] = sigma[k] <= lambda;  // damping dominates this direction
     }
     if (w != 0.0) data.nu.noalias() += V.col(k) * (w * V.col(k).dot(data.workspace.rhs));

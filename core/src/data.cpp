@@ -4,7 +4,7 @@ namespace achd {
 
 Data::Data(const Model& model) {
   const int n = model.num_joints();
-  qdd = constraint_torques = total_torques = joint_torques = Eigen::VectorXd::Zero(n);
+  qdd = constraint_torques = total_torques = joint_torques = prescribed_torques = Eigen::VectorXd::Zero(n);
   nu.resize(0);
   constraint_wrench.setZero();
   link_accelerations.assign(model.num_links() + 1, Vector6::Zero());

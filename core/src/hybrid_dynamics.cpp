@@ -22,6 +22,16 @@
 // forces carry I kappa: the sweeps need no Ia c and no E^T c (RBDA 7.3's and
 // Vereshchagin's c terms), and the constraint alpha^T a_tip = beta reads
 // alpha^T a~_tip = beta - alpha^T kappa_tip.
+//
+// Prescribed joints (Featherstone's hybrid dynamics, RBDA 9.2; Case::prescribed): a joint
+// whose acceleration is given is no degree of freedom of the articulated body. Its body
+// passes IA and pA to the parent unreduced (a rigid attachment), pA with the inertial force
+// U qdd_given = IA S qdd_given of its known motion; the constraint sweep passes E unreduced
+// and counts the known motion in G_0 (EZ qdd_given in place of a free joint's EZ u / D);
+// the final sweep takes qdd_given, and the torque it needs is what a free joint's equation
+// D qdd = u - U^T a~ - EZ^T nu leaves over. In the code a prescribed joint has Dinv = 0 and
+// W = 0, and the sweeps are templated on whether any joint is prescribed, so a solve
+// without prescribed joints runs the code it ran before.
 #include "achd/hybrid_dynamics.hpp"
 
 #include <algorithm>
@@ -53,12 +63,16 @@ bool any_nonzero(const Eigen::VectorXd& v) {
   return false;
 }
 
-// Joint torques fed to the sweeps: tau = ff - damping qd - friction tanh(qd / v_f).
-void joint_forces(const Model& model, Data& d, const Case& c, const Options& o) {
+// Joint torques fed to the sweeps: tau = ff - damping qd - friction tanh(qd / v_f); a
+// prescribed joint's ff is ignored (its torque is an output), so its tau is the passive part.
+void joint_forces(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
   Data::Workspace& w = d.workspace;
   const int n = model.num_joints();
   if (c.ff_torques.size()) w.tau = c.ff_torques;
   else w.tau.setZero(n);
+  if (prescribed)
+    for (int i = 0; i < n; ++i)
+      if (c.prescribed[i]) w.tau[i] = 0;
   if (!c.qd.size()) return;
   if (o.effects & kDamping)
     for (int i = 0; i < n; ++i) w.tau[i] -= model.bodies[i].damping * c.qd[i];
@@ -138,11 +152,35 @@ constexpr double kMaxDouble = std::numeric_limits<double>::max();
               ", is too small to invert (1 / D overflows): the links after it are too light");
 }
 
+// Step 2 for a prescribed body i: rigidly attached to its parent, moving by S qdd_given
+// relative to it (no division: D may even be 0), so the parent adds X^T IA X and
+// X^T (pA + U qdd_given). Dinv = 0 and W = 0 make the constraint sweep pass E unreduced and
+// add nothing to K.
+void prescribed_to_parent(const Model& model, Data& d, int i, const Matrix6& IA, const SpatialVector& U,
+                          const SpatialVector& pA, double D, double u, double qdd_given) {
+  Data::Workspace& w = d.workspace;
+  store_pairs(w.U[i], U);
+  w.W[i].setZero();
+  w.D[i] = D;
+  w.Dinv[i] = 0;
+  w.u[i] = u;
+  const int p = model.bodies[i].parent;
+  if (p < 0) return;
+  const Shift shift(d.r[i]);
+  add_shifted(IA, shift, d.IA[p]);  // IA_p += X^T IA X
+  SpatialVector f = pA + U * qdd_given;  // pA + IA S qdd_given
+  force_to_parent(f, shift);
+  store_pairs(d.pA[p], load_pairs(d.pA[p]) + f);
+}
+
 // Step 2, for i = n-1 .. 0: the articulated-body inertias and bias forces (RBDA 7.3,
 // with c = 0: the velocity products are in pA as I kappa). Body i's
 // Ia_i = IA_i - U U^T / D and pa_i = pA_i + U u / D are added, shifted by r_i, to its
 // parent's IA and pA, as X^T IA X - Us Us^T / D and X^T pA + Us u / D with Us = X^T U.
-void inward_sweep(const Model& model, Data& d, bool rotor) {
+// A prescribed joint (P: some joint is) passes X^T IA X and X^T pA + Us qdd_given, and
+// keeps Dinv = 0, W = 0.
+template <bool P>
+void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
   Data::Workspace& w = d.workspace;
   for (int i = model.num_joints() - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
@@ -153,6 +191,12 @@ void inward_sweep(const Model& model, Data& d, bool rotor) {
     const SpatialVector pA = load_pairs(d.pA[i]);
     const double D = S.project(U) + (rotor ? b.rotor_inertia : 0.0);
     const double u = w.tau[i] - S.project(pA);
+    if constexpr (P) {
+      if (c.prescribed[i]) {
+        prescribed_to_parent(model, d, i, IA, U, pA, D, u, c.qdd_given[i]);
+        continue;
+      }
+    }
     const double Dinv = 1.0 / D;
     if (!(D > 0 && D <= kMaxDouble && Dinv <= kMaxDouble)) bad_pivot(b, D);
     store_pairs(w.U[i], U);
@@ -256,24 +300,35 @@ void constraint_columns(const Model& model, Data& d) {
 
 // The coupling at the base from the stored EZ_i:
 //   K = -M_0 = sum_i EZ_i EZ_i^T / D_i   (eq. d),   G_0 = sum_i EZ_i u_i / D_i   (eq. e,
-// whose E^T c term vanishes with c = 0). Returns K's finite probe.
-template <int NC>
-double coupling_terms(const Model& model, Data& d) {
+// whose E^T c term vanishes with c = 0). A prescribed joint (Dinv = 0) adds nothing to K,
+// and its known motion S qdd_given adds EZ_i qdd_given to G_0 (eq. e's E^T c with
+// c = S qdd_given). Returns K's finite probe.
+template <int NC, bool P>
+double coupling_terms(const Model& model, Data& d, const Case& c) {
   Data::Workspace& w = d.workspace;
   CouplingSums<NC> sums;
-  for (int i = 0; i < model.num_joints(); ++i) sums.add(w.EZ[i].data(), w.Dinv[i], w.u[i]);
+  for (int i = 0; i < model.num_joints(); ++i) {
+    double known = w.u[i] * w.Dinv[i];
+    if constexpr (P) {
+      if (c.prescribed[i]) known = c.qdd_given[i];
+    }
+    sums.add(w.EZ[i].data(), w.Dinv[i], known);
+  }
   return sums.store(d.K, d.G0);
 }
 
 // Returns K's finite probe.
-template <int NC>
-double constraint_sweep(const Model& model, Data& d) {
+template <int NC, bool P>
+double constraint_sweep(const Model& model, Data& d, const Case& c) {
   constraint_columns<NC>(model, d);
-  return coupling_terms<NC>(model, d);
+  return coupling_terms<NC, P>(model, d, c);
 }
 
-double constraint_sweep(const Model& model, Data& d, int nc) {
-  return with_constraint_count(nc, [&](auto n) { return constraint_sweep<decltype(n)::value>(model, d); });
+double constraint_sweep(const Model& model, Data& d, const Case& c, int nc, bool prescribed) {
+  return with_constraint_count(nc, [&](auto n) {
+    constexpr int NC = decltype(n)::value;
+    return prescribed ? constraint_sweep<NC, true>(model, d, c) : constraint_sweep<NC, false>(model, d, c);
+  });
 }
 
 // Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i - EZ_i^T nu) / D_i;
@@ -282,8 +337,11 @@ double constraint_sweep(const Model& model, Data& d, int nc) {
 // a~_i non-finite (S qdd_i, with z_i a unit vector: inf or 0 * inf), and a non-finite
 // component of a~_p stays non-finite in a~_i (the shift and S qdd_i only add to it), so
 // the last body's a~ is finite exactly when every qdd and a~ is (and with them the
-// constraint torques, u and W, which qdd adds); D qdd is probed on its own.
-double outward_accelerations(const Model& model, Data& d, const Vector6& a0, int nc) {
+// constraint torques, u and W, which qdd adds); D qdd is probed on its own, and so is a
+// prescribed joint's torque, D qdd_given + U^T a~_p (shifted) - u - ct: what tau (with
+// the passive part, which u holds) must be for the free joint's equation to give qdd_given.
+template <bool P>
+double outward_accelerations(const Model& model, Data& d, const Case& c, const Vector6& a0, int nc) {
   Data::Workspace& w = d.workspace;
   const ConstraintMagnitudes nu(d.nu, nc);
   double probe = 0;
@@ -292,8 +350,20 @@ double outward_accelerations(const Model& model, Data& d, const Vector6& a0, int
     const double ct = -nu.dot(w.EZ[i]);  // KDL's constraint torque -EZ_i^T nu = -S^T E nu
     // U^T a~_i / D = W^T a~_p with W = X^T U / D (from the inward sweep): the product
     // needs only the parent's acceleration, and the shift of a~ runs beside it
-    const double qdd = (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
+    double qdd;
+    if constexpr (P) {
+      qdd = c.prescribed[i] ? c.qdd_given[i] : (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
+    } else {
+      qdd = (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
+    }
     motion_to_child(a, Shift(d.r[i]));
+    if constexpr (P) {
+      if (c.prescribed[i]) {
+        const double torque = w.D[i] * qdd + dot(load_pairs(w.U[i]), a) - w.u[i] - ct;
+        d.prescribed_torques[i] = torque;
+        probe += torque * 0.0;
+      }
+    }
     a = a + subspace(model, d, i).motion(qdd);
     store_pairs(d.a[i], a);
     d.qdd[i] = qdd;
@@ -334,13 +404,17 @@ double constraint_wrench(Data& d, const Case& c, int nc) {
   return finite_probe(w);
 }
 
-// joint_torques = ff - J^T (alpha nu): with the tip wrench w = [f; n] = alpha nu at the tip
+// joint_torques = ff - J^T (alpha nu), a prescribed joint's prescribed_torques as its ff:
+// with the tip wrench w = [f; n] = alpha nu at the tip
 // link's origin p_t, tau_i -= z_i . (n + (p_t - p_i) x f) (revolute) or z_i . f
 // (prismatic); each body on its own, from the poses. Returns their finite probe (with no
-// constraints they are the case's ff_torques, finite).
-double joint_torques(const Model& model, Data& d, const Case& c, int nc) {
+// constraints they are the case's ff_torques, finite, or probed prescribed torques).
+double joint_torques(const Model& model, Data& d, const Case& c, int nc, bool prescribed) {
   if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
   else d.joint_torques.setZero();
+  if (prescribed)
+    for (int i = 0; i < model.num_joints(); ++i)
+      if (c.prescribed[i]) d.joint_torques[i] = d.prescribed_torques[i];
   if (!nc) return 0;
   double probe = 0;
   const Link& tip = model.tip();
@@ -364,16 +438,18 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   // Skipped by themselves when their inputs are zero: the result is identical.
   const bool moving = (o.effects & kVelocityProducts) && any_nonzero(c.qd);
   const bool wrenches = (o.effects & kExternalWrenches) && !c.f_ext.empty();
+  const bool prescribed = c.any_prescribed();
 
-  joint_forces(model, d, c, o);
+  joint_forces(model, d, c, o, prescribed);
   outward_kinematics(model, d, c, moving);
   if (wrenches) add_external_wrenches(model, d, c);
 
-  inward_sweep(model, d, o.effects & kRotorInertia);
+  if (prescribed) inward_sweep<true>(model, d, c, o.effects & kRotorInertia);
+  else inward_sweep<false>(model, d, c, o.effects & kRotorInertia);
   if (nc) {
     constraint_forces_at_tip(model, d, c, nc);
     // K must be finite before it is factored (an infinite pivot would pass for a zero).
-    const double K_probe = constraint_sweep(model, d, nc);
+    const double K_probe = constraint_sweep(model, d, c, nc, prescribed);
     if (K_probe != 0) name_the_first_overflow(model, d, nc);
   }
 
@@ -411,14 +487,16 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   }
   // Each step returns the finite probe of what it wrote (0, or NaN if a number is not
   // finite): checked once, at the end, and named only if it fails.
-  double probe = outward_accelerations(model, d, a0, nc);  // with the scaled columns' nu'
+  d.prescribed_torques.setZero();
+  double probe = prescribed ? outward_accelerations<true>(model, d, c, a0, nc)  // with the scaled
+                            : outward_accelerations<false>(model, d, c, a0, nc);  // columns' nu'
   unscale_constraint_forces(d, nc);
 
   Vector6 shift = Vector6::Zero();
   if (o.convention == Convention::Physical && gravity) shift.head<3>() = c.gravity;
   probe += link_accelerations(model, d, a0, shift);
   probe += constraint_wrench(d, c, nc);
-  probe += joint_torques(model, d, c, nc);
+  probe += joint_torques(model, d, c, nc, prescribed);
   if (probe != 0) name_the_first_overflow(model, d, nc);
 }
 

@@ -80,6 +80,9 @@ void name_the_first_overflow(const Model& model, const Data& d, int nc) {
       overflow(joint(model, i) + ": constraint_torques[" + std::to_string(i) + "] is not finite");
     if (!std::isfinite(d.total_torques[i]))
       overflow(joint(model, i) + ": total_torques[" + std::to_string(i) + "] = D qdd is not finite");
+    if (!std::isfinite(d.prescribed_torques[i]))
+      overflow(joint(model, i) + ": prescribed_torques[" + std::to_string(i) +
+               "], the torque its given acceleration (qdd_given) needs, is not finite");
   }
   overflow("a result is not finite");  // unreachable: every result was checked above
 }

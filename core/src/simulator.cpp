@@ -96,12 +96,21 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
       options_(options),
       data_{{Data(model_), Data(model_)}},
       stage_data_(model_),
-      case_(Case::zeros(model_)) {
+      case_(Case::zeros(model_)),
+      limit_data_(model_) {
   const int n = model_.num_joints();
   q = qd = ff_torques = Eigen::VectorXd::Zero(n);
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
   case_.f_ext.reserve(model_.num_links());
   limit_hits_.reserve(n);
+  // Joints resting on a limit stop are prescribed (joint_limits.cpp); none at first.
+  case_.qdd_given = Eigen::VectorXd::Zero(n);
+  case_.prescribed.assign(n, false);
+  limit_stop_.assign(n, 0);
+  limit_reached_.assign(n, 0);
+  impact_case_ = Case::zeros(model_);
+  impact_case_.qdd_given = case_.qdd_given;
+  impact_case_.prescribed = case_.prescribed;
   X0_.resize(n);
   r_.assign(n, Vector3::Zero());
   v_.assign(n, Vector6::Zero());
@@ -131,6 +140,8 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   direction_columns(held_, case_.alpha);
   max_residual_.fill(0);
   limit_hits_.clear();
+  limit_stop_.assign(n, 0);
+  case_.prescribed.assign(n, false);
 }
 
 void Simulator::set_direction(int index, DirectionMode mode, double setpoint) {
@@ -255,11 +266,13 @@ void Simulator::step(double dt) {
     held_.angle = angle0_;
   };
   try {
+    update_limit_stops(w_n);
     switch (options_.integrator) {
       case Integrator::ExplicitEuler: step_explicit_euler(dt, w_n, first); break;
       case Integrator::SemiImplicitEuler: step_semi_implicit_euler(dt, w_n, first); break;
       case Integrator::RK4: step_rk4(dt, w_n, first); break;
     }
+    stop_at_limits();
   } catch (const Error& e) {
     undo();
     throw step_failure(dt, e.what());
@@ -368,19 +381,14 @@ void Simulator::step_rk4(double dt, double w_n, Data& first) {
     held_.angle[k] = angle0_[k] + w * (k_angle_[0][k] + 2 * k_angle_[1][k] + 2 * k_angle_[2][k] + k_angle_[3][k]);
 }
 
-// Report: list the joints at or past a limit. Clamp: also put q back on the limit and
-// zero the velocity component that points further into it.
+// Report and Clamp: list the joints at or past a limit (Clamp has put them on it, see
+// stop_at_limits).
 void Simulator::apply_limits() {
   limit_hits_.clear();
   if (options_.limits == LimitPolicy::Ignore) return;
   for (int i = 0; i < model_.num_joints(); ++i) {
     const JointLimits& l = model_.bodies[i].limits;
-    const bool low = q[i] <= l.lower, high = q[i] >= l.upper;
-    if (!low && !high) continue;
-    limit_hits_.push_back(i);
-    if (options_.limits != LimitPolicy::Clamp) continue;
-    q[i] = low ? l.lower : l.upper;
-    if ((low && qd[i] < 0) || (high && qd[i] > 0)) qd[i] = 0;
+    if (q[i] <= l.lower || q[i] >= l.upper) limit_hits_.push_back(i);
   }
 }
 

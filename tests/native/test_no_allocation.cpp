@@ -1,6 +1,7 @@
 // hybrid_dynamics() never allocates: malloc/calloc/realloc and operator new are counted
 // while it runs, for every robot of robots/index.json, every constraint count 0..6, with
-// qd, f_ext and ff torques nonzero, in both conventions and both singularity policies.
+// qd, f_ext and ff torques nonzero, in both conventions and both singularity policies,
+// without and with prescribed joints.
 // Nor do the workspace forms of rnea, crba, forward_kinematics, link_velocities and
 // tip_jacobian, once their outputs have their sizes.
 #include <cstdlib>
@@ -104,6 +105,13 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
               << " damped=" << (policy == achd::SingularityPolicy::Damped);
           ASSERT_TRUE(d.qdd.allFinite());
           ++solves;
+          // The same solve with every other joint's acceleration prescribed.
+          achd::Case p = c;
+          p.qdd_given = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+          p.prescribed.assign(n, false);
+          for (int i = 0; i < n; i += 2) p.prescribed[i] = true;
+          EXPECT_EQ(allocations_of_solve(m, d, p, o), 0) << r["name"] << " nc=" << nc << " prescribed";
+          ASSERT_TRUE(d.prescribed_torques.allFinite());
         }
     }
   }

@@ -396,6 +396,30 @@ TEST(Simulator, StepDoesNotAllocate) {
   }
 }
 
+// LimitPolicy::Clamp allocates only in construction: the UR5's elbow, its lower limit
+// narrowed to 0.6, falls onto it at 0.32 s while z and rx are held (an impact, then rest
+// with the release check before every step).
+TEST(Simulator, StepWithJointLimitStopsDoesNotAllocate) {
+  Model m = load_urdf_file((kRoot / "robots/ur5.urdf").string(), "base_link", "wrist_3_link");
+  m.bodies[2].limits.lower = 0.6;
+  Eigen::VectorXd q0(6);
+  q0 << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
+  for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
+    SimulatorOptions o;
+    o.integrator = integrator;
+    o.limits = LimitPolicy::Clamp;
+    Simulator sim(m, o);
+    sim.reset(q0, {});
+    sim.set_direction(2, DirectionMode::Hold);
+    sim.set_direction(3, DirectionMode::Hold);
+    sim.step(1e-3);
+    const long before = g_allocations;
+    sim.run(700, 1e-3);
+    EXPECT_EQ(g_allocations - before, 0) << integrator_name(integrator);
+    EXPECT_EQ(sim.limit_stop(2), -1) << integrator_name(integrator);
+  }
+}
+
 // The const queries sweep into the calling thread's scratch storage: after the first
 // query, none allocates.
 TEST(Simulator, QueriesAllocateNothingAfterTheFirst) {

@@ -23,8 +23,17 @@ struct Case {
   ConstraintMatrix alpha = ConstraintMatrix(6, 0);  // unit constraint forces, columns
   ConstraintVector beta = ConstraintVector(0);      // one per column of alpha
   std::vector<Vector6> f_ext;  // empty = none, else one per link after the root
+  // Prescribed joints (Featherstone's hybrid dynamics): joint i with prescribed[i] true has
+  // the acceleration qdd_given[i] instead of a torque (its ff_torques[i] is ignored); the
+  // solve returns the torque it needs in Data::prescribed_torques. Both empty = no joint
+  // prescribed (an all-false mask is the same); else both one per joint, and qdd_given is
+  // finite everywhere (entries of joints that are not prescribed are not read).
+  Eigen::VectorXd qdd_given;
+  std::vector<bool> prescribed;
 
   int num_constraints() const { return static_cast<int>(alpha.cols()); }
+  // True when some joint is prescribed.
+  bool any_prescribed() const;
   // A case of zeros for the model (q = 0, no constraints, gravity -9.81 z).
   static Case zeros(const Model& model);
 };

@@ -21,7 +21,12 @@ struct Data {
   Eigen::VectorXd qdd;                 // joint accelerations
   Eigen::VectorXd constraint_torques;  // KDL's -S^T E nu
   Eigen::VectorXd total_torques;       // KDL's D qdd
-  Eigen::VectorXd joint_torques;       // ff - J^T alpha nu = RNEA(q, qd, qdd)
+  Eigen::VectorXd joint_torques;       // ff - J^T alpha nu = RNEA(q, qd, qdd), with a
+                                       // prescribed joint's prescribed_torques as its ff
+  Eigen::VectorXd prescribed_torques;  // per joint: for a prescribed joint (Case::prescribed)
+                                       // the actuator torque its given qdd needs while the
+                                       // constraint forces act (the ff_torques that, with the
+                                       // joint free, gives the same solve); 0 for the others
   ConstraintVector nu;                 // constraint force magnitudes
   Vector6 constraint_wrench;           // alpha nu: what the tip exerts on the constraint
   std::vector<Vector6> link_accelerations;  // root link first, then Model::links

@@ -132,6 +132,8 @@ class Simulator {
   SimulatorOptions& options() { return options_; }
   // Joints that were at or past a limit in the last step (LimitPolicy Report/Clamp).
   const std::vector<int>& limit_hits() const { return limit_hits_; }
+  // LimitPolicy::Clamp: the stop joint i rests on, -1 (lower limit), +1 (upper) or 0 (free).
+  int limit_stop(int joint) const;
 
  private:
   // Joint accelerations (into `out`) and held-angle rates at one state.
@@ -143,6 +145,13 @@ class Simulator {
   void step_semi_implicit_euler(double dt, double w_n, Data& first);
   void step_rk4(double dt, double w_n, Data& first);
   void apply_limits();
+  // LimitPolicy::Clamp (joint_limits.cpp): before a step, the joints that the solve pulls
+  // off their stops are freed (one solve when a joint rests on a stop); after it, the
+  // joints that reached a limit stop by an inelastic impact that the held directions
+  // respect, and rest on it (their acceleration prescribed as 0 in every solve).
+  void update_limit_stops(double w_n);
+  void stop_at_limits();
+  void solve_impact(const char* what);
   // The error of a failed step, `cause` put in context (step, t, directions).
   Error step_failure(double dt, const std::string& cause) const;
 
@@ -171,6 +180,12 @@ class Simulator {
   std::vector<Vector6> v_;
   Eigen::VectorXd q0_, qd0_, q_stage_, qd_stage_, k_q_[4], k_qd_[4];
   std::array<double, kNumDirections> angle0_{}, angle_stage_{}, k_angle_[4]{};
+  // LimitPolicy::Clamp: the stop each joint rests on (limit_stop()), the joints that
+  // reached a limit in this step, and the impact solve's case and result (sized once).
+  std::vector<signed char> limit_stop_, limit_reached_;
+  Case impact_case_;
+  Data limit_data_;
+  std::array<double, kNumDirections> limit_angle_rate_{};
 };
 
 }  // namespace achd

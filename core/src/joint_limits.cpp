@@ -1,0 +1,192 @@
+// Joint limits as inelastic stops that the held directions respect (LimitPolicy::Clamp),
+// the Simulator's members for it (the hooks in simulator.cpp call them).
+//
+// Impact. A joint that reached its limit in a step (q_i at or past it, not yet resting on
+// it) is put back on the limit and, when it moves into the limit, stopped by an
+// inelastic impact, a velocity jump
+//   dqd = M^-1 (e_i lambda + J^T alpha mu)  with  qd_i + dqd_i = 0  and  alpha^T J dqd = 0
+// for the held columns alpha (the held directions' velocities do not change; accelerated
+// directions are free during the impact). That is one hybrid solve at the same q with
+// only the constraints and rotor inertia on (no gravity, velocity products, passive
+// terms, ff_torques or f_ext): joint i prescribed with qdd_given = -qd_i, the joints already
+// resting on a stop with 0, the held columns with beta = 0; its qdd is dqd. Several joints
+// reaching their limits in one step stop together. The position goes back on the limit
+// the same way: dq with dq_i = limit_i - q_i and the held quantities (the tip's position
+// along a held linear direction, its rotation about a held angular one) unchanged, by the
+// same solve with beta the held quantities' change, repeated (Newton) until they are
+// unchanged to round-off.
+// Rest. A joint on its stop has its acceleration prescribed as 0 in every solve of a
+// step (Case::prescribed), so the held directions are solved with the joints that remain
+// free, and its q and qd stay exactly the limit and 0.
+// Release. Before each step, one solve at the step's state (the step's first solve) gives
+// the torque the stop exerts, prescribed_torques_i - ff_i. When it would have to pull the
+// joint into the limit (positive on an upper stop, negative on a lower one), the joint is
+// free again: the acceleration it would have, free, points out of the limit.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "achd/error.hpp"
+#include "achd/hybrid_dynamics.hpp"
+#include "achd/simulator.hpp"
+#include "held_directions.hpp"
+#include "tip_kinematics.hpp"
+
+namespace achd {
+namespace {
+
+// +1 when q is at or past the upper limit, -1 at or past the lower one, else 0.
+int limit_side(const JointLimits& l, double q) { return q >= l.upper ? 1 : q <= l.lower ? -1 : 0; }
+double limit_at(const JointLimits& l, int side) { return side > 0 ? l.upper : l.lower; }
+
+// Newton iterations of the position projection; the first leaves the held quantities
+// changed by O(dq^2), each next squares that.
+constexpr int kProjectionIterations = 4;
+
+// The held quantity of a held direction k at the tip, measured from `before`: the tip
+// origin's displacement along a linear direction, the rotation about an angular one.
+double held_change(int k, const Transform& before, const Transform& now) {
+  const Vector3 e = direction_axis(k);
+  if (is_linear_direction(k)) return e.dot(now.p - before.p);
+  const Eigen::AngleAxisd turn(now.R * before.R.transpose());
+  return e.dot(turn.axis() * turn.angle());
+}
+
+}  // namespace
+
+int Simulator::limit_stop(int joint) const {
+  if (joint < 0 || joint >= model_.num_joints())
+    throw Error("limit_stop: joint index " + std::to_string(joint) + " is not in 0.." +
+                std::to_string(model_.num_joints() - 1));
+  return limit_stop_[joint];
+}
+
+void Simulator::update_limit_stops(double w_n) {
+  const int n = model_.num_joints();
+  bool resting = false;
+  for (int i = 0; i < n; ++i) {
+    // A stop the caller moved the joint off (by setting q or qd, or the policy) is gone.
+    const bool on_it = limit_stop_[i] && options_.limits == LimitPolicy::Clamp && qd[i] == 0 &&
+                       q[i] == limit_at(model_.bodies[i].limits, limit_stop_[i]);
+    if (!on_it) limit_stop_[i] = 0;
+    case_.prescribed[i] = limit_stop_[i] != 0;
+    resting = resting || on_it;
+  }
+  if (!resting) return;
+  // The step's first solve, with the stops' joints prescribed: the torque each stop exerts.
+  stage_ = 0;
+  evaluate(q, qd, held_.angle, w_n, limit_data_, limit_angle_rate_);
+  for (int i = 0; i < n; ++i) {
+    if (!limit_stop_[i]) continue;
+    const double ff = case_.ff_torques.size() ? case_.ff_torques[i] : 0.0;
+    const double stop_torque = limit_data_.prescribed_torques[i] - ff;
+    if (limit_stop_[i] * stop_torque > 0) {  // it would have to pull the joint into the limit
+      limit_stop_[i] = 0;
+      case_.prescribed[i] = false;
+    }
+  }
+}
+
+// One solve of the impact case (impact_case_ holds q, the prescribed joints and beta),
+// with only the constraints and rotor inertia on; `what` names it in an error.
+void Simulator::solve_impact(const char* what) {
+  Options o = solver_;
+  o.effects = options_.effects & (kConstraints | kRotorInertia);
+  o.convention = Convention::Physical;
+  try {
+    hybrid_dynamics(model_, limit_data_, impact_case_, o);
+  } catch (const Error& e) {
+    std::string joints;
+    for (int i = 0; i < model_.num_joints(); ++i)
+      if (limit_reached_[i])
+        joints += (joints.empty() ? "'" : ", '") + model_.bodies[i].joint_name + "'";
+    throw Error(std::string("the ") + what + " of joint " + joints + " at its limit failed: " + e.what());
+  }
+}
+
+void Simulator::stop_at_limits() {
+  if (options_.limits != LimitPolicy::Clamp) return;
+  if (!q.allFinite() || !qd.allFinite()) return;  // step() names the joint
+  const int n = model_.num_joints();
+  bool reached = false;
+  for (int i = 0; i < n; ++i) {
+    const JointLimits& l = model_.bodies[i].limits;
+    if (limit_stop_[i]) {
+      // Resting: the step's prescribed qdd = 0 kept it there; these are exact.
+      q[i] = limit_at(l, limit_stop_[i]);
+      qd[i] = 0;
+      limit_reached_[i] = 0;
+      continue;
+    }
+    limit_reached_[i] = static_cast<signed char>(limit_side(l, q[i]));
+    reached = reached || limit_reached_[i];
+  }
+  if (!reached) return;
+  stage_ = -1;  // a failure here is no integrator stage's
+
+  // The held columns (beta filled below); accelerated directions are free.
+  int nc = 0;
+  for (int k = 0; k < kNumDirections; ++k) nc += held_.mode[k] == DirectionMode::Hold;
+  impact_case_.alpha.setZero(6, nc);
+  impact_case_.beta.setZero(nc);
+  for (int k = 0, col = 0; k < kNumDirections; ++k) {
+    if (held_.mode[k] != DirectionMode::Hold) continue;
+    impact_case_.alpha(k, col++) = 1;  // [e; 0] or [0; e]: direction k's 1 is in row k
+  }
+  for (int i = 0; i < n; ++i) impact_case_.prescribed[i] = limit_stop_[i] || limit_reached_[i];
+
+  // Position: back on the limit with the held quantities unchanged.
+  body_motion(model_, q, qd, X0_, r_, v_);
+  const TipState before = tip_state(model_, X0_, v_);
+  for (int it = 0; it < kProjectionIterations; ++it) {
+    double off = 0;
+    for (int i = 0; i < n; ++i) {
+      const double to_limit =
+          limit_reached_[i] ? limit_at(model_.bodies[i].limits, limit_reached_[i]) - q[i] : 0.0;
+      impact_case_.qdd_given[i] = to_limit;
+      off = std::max(off, std::abs(to_limit));
+    }
+    if (it > 0) {
+      const Transform now = tip_state(model_, X0_, v_).pose;
+      for (int k = 0, col = 0; k < kNumDirections; ++k)
+        if (held_.mode[k] == DirectionMode::Hold) {
+          impact_case_.beta[col] = -held_change(k, before.pose, now);
+          off = std::max(off, std::abs(impact_case_.beta[col++]));
+        }
+    }
+    if (off == 0) break;
+    impact_case_.q = q;
+    solve_impact("position projection");
+    q += limit_data_.qdd;
+    for (int i = 0; i < n; ++i)
+      if (limit_reached_[i]) q[i] = limit_at(model_.bodies[i].limits, limit_reached_[i]);
+    body_motion(model_, q, qd, X0_, r_, v_);
+  }
+
+  // Velocity: the inelastic impact of the joints moving into their limits (a joint past
+  // its limit but already moving back stays free), which also gives the held directions
+  // back the velocities they had before the position went back (J changed with q).
+  const TipState now = tip_state(model_, X0_, v_);
+  for (int k = 0, col = 0; k < kNumDirections; ++k)
+    if (held_.mode[k] == DirectionMode::Hold) {
+      const Vector3 e = direction_axis(k);
+      impact_case_.beta[col++] = is_linear_direction(k) ? e.dot(before.v - now.v) : e.dot(before.w - now.w);
+    }
+  for (int i = 0; i < n; ++i) {
+    const bool into = limit_reached_[i] && limit_reached_[i] * qd[i] >= 0;
+    if (limit_reached_[i] && !into) limit_reached_[i] = 0;
+    impact_case_.prescribed[i] = limit_stop_[i] || into;
+    impact_case_.qdd_given[i] = into ? -qd[i] : 0.0;
+  }
+  impact_case_.q = q;
+  solve_impact("impact");
+  qd += limit_data_.qdd;
+  for (int i = 0; i < n; ++i)
+    if (limit_reached_[i]) {
+      qd[i] = 0;
+      limit_stop_[i] = limit_reached_[i];
+      case_.prescribed[i] = true;
+    }
+}
+
+}  // namespace achd
