@@ -117,7 +117,9 @@ int cmd_simulate(int argc, char** argv) {
   out["steps"] = steps;
   out["t"] = sim.t;  // = steps * dt exactly (Simulator::t)
   out["wall_ns_per_step"] = steps ? step_ns / static_cast<double>(steps) : 0.0;
-  out["friction_velocity"] = sim.friction_velocity(scene.dt);
+  out["friction_velocity"] = scene.options.solver.friction_velocity;
+  out["substeps"] = sim.substeps();
+  out["rejected_substeps"] = sim.rejected_substeps();
   if (conserves && max_kinetic > 0) out["energy_drift"] = max_energy_error / max_kinetic;
   else out["energy_drift"] = nullptr;
   out["energy"] = {{"initial", E0}, {"final", sim.energy()}, {"max_kinetic", max_kinetic}};
