@@ -54,14 +54,7 @@ std::uint32_t effects(const json& j) {
   return bits;
 }
 
-Integrator integrator(const json& v) {
-  const std::string s = text(v, "integrator");
-  for (Integrator i : kIntegrators)
-    if (s == integrator_name(i)) return i;
-  std::string names;
-  for (Integrator i : kIntegrators) names += std::string(names.empty() ? "'" : ", '") + integrator_name(i) + "'";
-  throw Error("integrator: expected one of " + names + ", got '" + s + "'");
-}
+Integrator integrator(const json& v) { return integrator_from_name(text(v, "integrator"), "integrator"); }
 
 LimitPolicy limits(const json& v) {
   const std::string s = text(v, "limits");
@@ -110,6 +103,14 @@ const json& required(const json& j, const char* field) {
 }
 
 }  // namespace
+
+Integrator integrator_from_name(const std::string& name, const std::string& field) {
+  for (Integrator i : kIntegrators)
+    if (name == integrator_name(i)) return i;
+  std::string names;
+  for (Integrator i : kIntegrators) names += std::string(names.empty() ? "'" : ", '") + integrator_name(i) + "'";
+  throw Error(field + ": expected one of " + names + ", got '" + name + "'");
+}
 
 std::int64_t Scene::steps() const { return steps_for_duration(duration, dt); }
 

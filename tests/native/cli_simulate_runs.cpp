@@ -145,6 +145,31 @@ TEST_F(CliSimulateRuns, SummaryStepsTimesDtIsT) {
   }
 }
 
+// The summary counts the integrator's substeps; --integrator, --rtol and --atol replace
+// the scene's (before: unknown options, exit 2, and no "substeps" in the summary).
+TEST_F(CliSimulateRuns, IntegratorAndTolerancesFromTheCommandLineAndSubstepsInTheSummary) {
+  const std::string scene = ACHD_SOURCE_DIR "/robots/scenes/kuka_lwr4_hold_z_rx.json";
+  const auto summary = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"simulate", scene};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliRun r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json adaptive = summary({}), loose = summary({"--rtol", "1e-5", "--atol", "1e-7"}),
+                       implicit = summary({"--integrator", "implicit_euler"});
+  EXPECT_EQ(adaptive.at("integrator"), "dormand_prince");
+  EXPECT_GT(adaptive.at("substeps").get<std::int64_t>(), adaptive.at("steps").get<std::int64_t>());
+  EXPECT_GT(adaptive.at("rejected_substeps").get<std::int64_t>(), 0);
+  EXPECT_LT(loose.at("substeps").get<std::int64_t>(), adaptive.at("substeps").get<std::int64_t>());
+  EXPECT_EQ(implicit.at("integrator"), "implicit_euler");
+  EXPECT_EQ(implicit.at("substeps"), implicit.at("steps"));
+  EXPECT_EQ(implicit.at("rejected_substeps"), 0);
+  EXPECT_EQ(adaptive.at("friction_velocity"), 0.05);
+  expect_error(run({"simulate", scene, "--integrator", "rk5"}), {"--integrator", "'dormand_prince'", "'rk5'"});
+  expect_error(run({"simulate", scene, "--rtol", "0"}), {"--rtol must be > 0"});
+}
+
 // Before: 1.0005 s at 1 ms ran 1000 steps (t = 1.0000000000000007); dt 1e-300 ran 0
 // steps; both exit 0.
 TEST_F(CliSimulateRuns, DurationsThatAreNotAWholeNumberOfStepsAreErrors) {
