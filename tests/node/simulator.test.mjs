@@ -12,7 +12,7 @@ const SCENES = join(repo, 'robots/scenes');
 // Scene values are JS values; scene keys are JS keys in camelCase.
 const camelCase = (name) => name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase());
 // Scene fields -> createSimulator options (the rest are handled in startScene).
-const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping'];
+const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping', 'rtol', 'atol'];
 const HANDLED = ['description', 'urdf', 'root', 'tip', 'q0', 'qd0', 'effects', 'directions', 'integrator',
   'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', ...OPTIONS];
 
