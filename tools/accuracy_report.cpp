@@ -1,6 +1,8 @@
 // Tables and plot of an accuracy study.
 #include "accuracy_report.hpp"
 
+#include "achd/names.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -9,8 +11,10 @@
 namespace achd::cli {
 namespace {
 
-const char* const kIntegrators[] = {"explicit_euler", "semi_implicit_euler", "rk4"};
-const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c"};
+// One colour per achd::kIntegrators entry (names.hpp), in its order.
+const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e"};
+static_assert(sizeof kColors / sizeof kColors[0] == sizeof kIntegrators / sizeof kIntegrators[0],
+              "a colour per integrator");
 
 // 17 significant digits, empty for NaN/Inf (CSV).
 std::string cell(double v) {
@@ -118,13 +122,15 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
   plot.x_marker_label = "real time";
   // Runs not plotted, by status: "explicit_euler 10, 5 ms; rk4 10 ms".
   std::map<std::string, std::string> left_out;
-  for (int k = 0; k < 3; ++k) {
+  for (std::size_t k = 0; k < sizeof kColors / sizeof kColors[0]; ++k) {
     std::map<std::string, std::string> steps;
     PlotSeries s;
-    s.name = kIntegrators[k];
+    s.name = integrator_name(kIntegrators[k]);
     s.color = kColors[k];
+    bool any = false;
     for (const StudyRun& r : study.runs) {
-      if (r.kind != "integrator" || r.integrator != kIntegrators[k]) continue;
+      if (r.kind != "integrator" || r.integrator != s.name) continue;
+      any = true;
       const bool resolved = r.error_q >= 1e3 * study.reference.self_error_q;
       const std::string label = short_number(r.dt * 1e3) + (resolved ? "" : "*");
       if (r.stable && r.error_q > 0) s.points.push_back({r.cpu_s_per_sim_s, r.error_q, label, r.pareto});
@@ -132,7 +138,7 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
     }
     for (const auto& [status, list] : steps)
       left_out[status] += (left_out[status].empty() ? "" : "; ") + s.name + " " + list + " ms";
-    plot.series.push_back(s);
+    if (any) plot.series.push_back(s);  // the study's integrators only
   }
   const Reference& ref = study.reference;
   plot.notes.push_back("Labels: time step in ms. Scene " + study.scene + ", " + short_number(study.config.duration) +

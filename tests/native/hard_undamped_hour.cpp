@@ -3,8 +3,10 @@
 // turning at up to about 100 rad/s). Issue 14: RK4 at the page's 1 ms lost 6e-2 J in 10 s,
 // drifted 1.6 mm by 600 s and failed at 612.5 s. With the defaults (Dormand-Prince, rtol
 // 1e-9, atol 1e-11) the run completes, the energy stays within 1e-6 of the largest kinetic
-// energy and every held residual within 1e-6 at every output step. Release stage only:
-// about 2 minutes (3.6e6 output steps, about 1.1e7 substeps).
+// energy and every held residual within 1e-6 at every output step (measured: energy drift
+// 2.7e-8, held residual 2.4e-10, the wrist up to 531 rad/s). Release stage only: 3.6e6
+// output steps, 1.07e7 substeps, 2.4e5 rejected; 163 s wall with achd simulate on a
+// shared 2-core machine, 334 s while a wasm build ran beside it.
 #include <gtest/gtest.h>
 
 #include <chrono>
