@@ -169,6 +169,32 @@ TEST(SceneSteps, CheckedWhenParsedIn64Bits) {
   }
 }
 
+// The study runs the simulator as configured: implicit Euler in the ladder beside the
+// other fixed-step integrators, Dormand-Prince once per tolerance with its error not rising
+// as the tolerance tightens (and falling over the ladder), every run with a cost. Before:
+// three integrators, no adaptive runs.
+TEST(AccuracyStudy, AdaptiveRunsPerToleranceAndImplicitEulerInTheLadder) {
+  const cli::Scene scene = cli::load_scene((kRoot / "robots/scenes/planar2_damped_swing.json").string());
+  const cli::StudyConfig config = cli::default_config(scene, true);
+  const cli::Study study = cli::run_study(scene, config);
+  std::vector<double> adaptive;
+  int implicit = 0;
+  for (const cli::StudyRun& r : study.runs) {
+    EXPECT_GT(r.ns_per_step, 0) << r.kind << " " << r.integrator << " " << r.setting;
+    if (r.kind != "integrator") continue;
+    if (r.integrator == "implicit_euler") ++implicit;
+    if (r.integrator == "dormand_prince") {
+      ASSERT_TRUE(r.stable) << r.setting;
+      adaptive.push_back(r.error_q);
+    }
+  }
+  EXPECT_EQ(implicit, static_cast<int>(config.dts.size()));
+  ASSERT_EQ(adaptive.size(), config.rtols.size());
+  for (std::size_t i = 1; i < adaptive.size(); ++i)
+    EXPECT_LE(adaptive[i], adaptive[i - 1]) << "rtol " << config.rtols[i];
+  EXPECT_LT(adaptive.back(), 1e-2 * adaptive.front());
+}
+
 // The accuracy study's step count, which its guard (kMaxStudySteps) and the CLI's
 // progress use, is the number of steps it takes: on the damped swing every run is
 // stable, so it is exact.
