@@ -63,8 +63,8 @@ test('substeps and rejectedSubsteps count the adaptive work; reset() clears them
 });
 
 test('rtol and atol must be finite and > 0; stabilisationFrequency > 0 (0 no longer means "from dt")', () => {
-  for (const [options, pattern] of [[{ rtol: 0 }, /^options\.rtol must be/], [{ atol: -1 }, /^options\.atol must be/],
-    [{ rtol: NaN }, /^options\.rtol must be/], [{ stabilisationFrequency: 0 }, /^options\.stabilisationFrequency must be/]])
+  for (const [options, pattern] of [[{ rtol: 0 }, /options\.rtol must be/], [{ atol: -1 }, /options\.atol must be/],
+    [{ rtol: NaN }, /options\.rtol must be/], [{ stabilisationFrequency: 0 }, /options\.stabilisationFrequency must be/]])
     assert.throws(() => kuka.createSimulator(options), pattern);
 });
 
