@@ -510,7 +510,7 @@ TEST(Scenes, RepositoryScenesDoWhatTheirDescriptionsSay) {
       EXPECT_GT(run.max_T, 1e-3) << name;
     } else if (name == "kuka_lwr4_undamped_hold_z_rx") {
       // Undamped, holding z and rx with the simulator's defaults: energy and held
-      // directions within 1e-6 while the arm swings (10 s here; an hour in
+      // directions within 1e-6 while the arm swings (0.5 s here; an hour in
       // hard_undamped_hour.cpp).
       EXPECT_TRUE(scene.conserves_energy());
       EXPECT_EQ(scene.options.integrator, SimulatorOptions().integrator);

@@ -46,7 +46,7 @@ function startScene(scene, robot) {
 // 1.4e-7 rad, docs/accuracy/chain50): the last-bit differences of glibc's and musl's
 // sin/cos grow exponentially along it, so it is compared after 1 s of its 2 s.
 // The undamped LWR's wrist spins up to hundreds of rad/s and its motion is as sensitive:
-// it is compared after 0.5 s of its 10 s (at 1 s the last-bit differences of glibc's and
+// it is compared after 0.5 s, all of it (at 1 s the last-bit differences of glibc's and
 // musl's sin/cos have grown to 1.5e-9 in qd).
 const HORIZON = { 'chain50_fall.json': 1.0, 'kuka_lwr4_undamped_hold_z_rx.json': 0.5 };
 
