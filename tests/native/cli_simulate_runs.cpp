@@ -272,7 +272,7 @@ TEST_F(CliSimulateRuns, IntegerOptionsOutOfRangeAreErrors) {
 // Before: a 1e9 s scene ran for ever, silently.
 TEST_F(CliSimulateRuns, AccuracyRefusesAStudyBeyondTheLimit) {
   expect_error(run({"accuracy", planar2_scene("huge.json", "0.001", "1e9")}, ""),
-               {"huge.json", "3.664e+14 steps", "more than the limit of 1e+08", "--quick"});
+               {"huge.json", "4.057e+14 steps", "more than the limit of 1e+08", "--quick"});
 }
 
 // A long study shows progress; Ctrl-C stops it with exit 130 and writes no file.
