@@ -8,7 +8,6 @@
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
 #include "held_directions.hpp"
-#include "joint.hpp"
 #include "tip_kinematics.hpp"
 
 namespace achd {
@@ -129,7 +128,6 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
     const Matrix3 mc = b.inertia.block<3, 3>(3, 0);  // m [c]x
     mass_.push_back(m);
     com_.push_back(m > 0 ? Vector3(Vector3(mc(2, 1), mc(0, 2), mc(1, 0)) / m) : Vector3::Zero());
-    axial_inertia_.push_back(subspace_dot(b, inertia_times_subspace(b, b.inertia)));
   }
 }
 

@@ -180,7 +180,6 @@ class Simulator {
   std::vector<int> limit_hits_;
   std::vector<double> mass_;   // per body, from the spatial inertia
   std::vector<Vector3> com_;   // per body, body frame
-  std::vector<double> axial_inertia_;  // S^T I S of each body alone
   // Workspace of step() (sized once): body poses and velocities, integrator stages.
   std::vector<Transform> X0_;
   std::vector<Vector3> r_;
