@@ -5,8 +5,8 @@
 // 1e-9, atol 1e-11) the run completes, the energy stays within 1e-6 of the largest kinetic
 // energy and every held residual within 1e-6 at every output step (measured: energy drift
 // 2.7e-8, held residual 2.4e-10, the wrist up to 531 rad/s). Release stage only: 3.6e6
-// output steps, 1.07e7 substeps, 2.4e5 rejected; 163 s wall with achd simulate on a
-// shared 2-core machine, 334 s while a wasm build ran beside it.
+// output steps, 1.07e7 substeps, 2.4e5 rejected; 87 s of CPU (324 s wall on the shared
+// 2-core machine at a load of 6).
 #include <gtest/gtest.h>
 
 #include <chrono>
