@@ -1,6 +1,8 @@
 // Tables and plot of an accuracy study.
 #include "accuracy_report.hpp"
 
+#include "achd/names.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -9,8 +11,10 @@
 namespace achd::cli {
 namespace {
 
-const char* const kIntegrators[] = {"explicit_euler", "semi_implicit_euler", "rk4"};
-const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c"};
+// One colour per achd::kIntegrators entry (names.hpp), in its order.
+const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e"};
+static_assert(sizeof kColors / sizeof kColors[0] == sizeof kIntegrators / sizeof kIntegrators[0],
+              "a colour per integrator");
 
 // 17 significant digits, empty for NaN/Inf (CSV).
 std::string cell(double v) {
@@ -54,9 +58,10 @@ nlohmann::ordered_json study_json(const Study& study) {
   j["scene"] = study.scene;
   j["duration_s"] = study.config.duration;
   j["error_measure"] = "max_i |q_i(T) - q_ref,i(T)| (rad); error_qd: max_i |qd_i(T) - qd_ref,i(T)| (rad/s)";
-  j["cost_measure"] = "CPU time of the simulating thread per step, median of " +
-                      std::to_string(study.config.timing_repeats) + " runs of up to " +
-                      std::to_string(study.config.timing_steps) + " steps from the scene's start";
+  j["cost_measure"] = "CPU time of the simulating thread per output step, median of " +
+                      std::to_string(study.config.timing_repeats) + " interleaved rounds (each runs every " +
+                      "configuration in turn) of up to " + std::to_string(study.config.timing_steps) +
+                      " steps from the scene's start";
   j["unstable_when"] = "status unstable: the state became NaN/Inf or the solver refused it; "
                       "status diverged: finite but error_q > 1 rad";
   j["friction_velocity"] = study.friction_velocity;
@@ -118,32 +123,36 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
   plot.x_marker_label = "real time";
   // Runs not plotted, by status: "explicit_euler 10, 5 ms; rk4 10 ms".
   std::map<std::string, std::string> left_out;
-  for (int k = 0; k < 3; ++k) {
+  for (std::size_t k = 0; k < sizeof kColors / sizeof kColors[0]; ++k) {
     std::map<std::string, std::string> steps;
     PlotSeries s;
-    s.name = kIntegrators[k];
+    s.name = integrator_name(kIntegrators[k]);
     s.color = kColors[k];
+    bool any = false;
     for (const StudyRun& r : study.runs) {
-      if (r.kind != "integrator" || r.integrator != kIntegrators[k]) continue;
+      if (r.kind != "integrator" || r.integrator != s.name) continue;
+      any = true;
       const bool resolved = r.error_q >= 1e3 * study.reference.self_error_q;
-      const std::string label = short_number(r.dt * 1e3) + (resolved ? "" : "*");
+      // Fixed steps: dt in ms; Dormand-Prince: its rtol.
+      const std::string label =
+          (r.setting.empty() ? short_number(r.dt * 1e3) : r.setting) + (resolved ? "" : "*");
       if (r.stable && r.error_q > 0) s.points.push_back({r.cpu_s_per_sim_s, r.error_q, label, r.pareto});
       else if (!r.stable) steps[r.status] += (steps[r.status].empty() ? "" : ", ") + short_number(r.dt * 1e3);
     }
     for (const auto& [status, list] : steps)
       left_out[status] += (left_out[status].empty() ? "" : "; ") + s.name + " " + list + " ms";
-    plot.series.push_back(s);
+    if (any) plot.series.push_back(s);  // the study's integrators only
   }
   const Reference& ref = study.reference;
-  plot.notes.push_back("Labels: time step in ms. Scene " + study.scene + ", " + short_number(study.config.duration) +
+  plot.notes.push_back("Labels: time step in ms (dormand_prince: its rtol, output step the largest). Scene " + study.scene + ", " + short_number(study.config.duration) +
                        " s simulated; reference RK4 at " + short_number(ref.dt * 1e3) + " ms.");
   plot.notes.push_back("Reference self-check: halving its step changes q(T) by " + short_number(ref.self_error_q) +
                        " rad (* marks errors below 1000 x that).");
   plot.notes.push_back("Cost: CPU time of the simulating thread, median of " +
-                       std::to_string(study.config.timing_repeats) + " short runs.");
+                       std::to_string(study.config.timing_repeats) + " interleaved rounds.");
   plot.notes.push_back("Every run: friction smoothing " + short_number(study.friction_velocity) +
                        " rad/s, Baumgarte frequency " + short_number(study.stabilisation_frequency) +
-                       " rad/s (the simulator's choices at the largest step).");
+                       " rad/s (the scene's, at every step).");
   if (left_out.count("unstable"))
     plot.notes.push_back("Unstable (NaN/Inf), not plotted: " + left_out["unstable"] + ".");
   if (left_out.count("diverged"))

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <map>
+#include <memory>
 
 #include "achd/error.hpp"
 #include "pareto_front.hpp"
@@ -13,6 +15,10 @@
 
 namespace achd::cli {
 namespace {
+
+// The fixed-step integrators of the ladder (Dormand-Prince runs per tolerance instead).
+constexpr Integrator kLadderIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler,
+                                             Integrator::ImplicitEuler, Integrator::RK4};
 
 std::string number_text(double x) {
   char buf[32];
@@ -53,10 +59,46 @@ StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt
   return r;
 }
 
-void time_run(const Scene& scene, const SimulatorOptions& options, const StudyConfig& config, StudyRun& r,
-              const StepObserver& observe) {
-  r.ns_per_step = ns_per_step(scene, options, r.dt, r.steps, config.timing_steps, config.timing_repeats, observe);
-  r.cpu_s_per_sim_s = r.ns_per_step * 1e-9 / r.dt;
+// A run whose cost is still to be timed: its options and output step, and its row.
+struct TimedRun {
+  SimulatorOptions options;
+  double dt = 0;
+  std::int64_t steps = 0;
+  std::size_t row = 0;  // index into Study::runs
+};
+
+// The cost of every queued run, timed in interleaved rounds: each round runs every
+// configuration once, in turn, for min(steps, timing_steps) output steps from the scene's
+// start (round 0 warms the caches and is discarded), so that a change in the machine's
+// speed hits all configurations alike; the cost is the median over the rounds of the
+// thread CPU time per output step.
+void time_interleaved(const Scene& scene, const std::vector<TimedRun>& queue, const StudyConfig& config,
+                      std::vector<StudyRun>& runs, const StepObserver& observe) {
+  std::vector<std::unique_ptr<Simulator>> sims;
+  for (const TimedRun& t : queue) sims.push_back(std::make_unique<Simulator>(scene.model, t.options));
+  std::vector<std::vector<double>> samples(queue.size());
+  for (int round = 0; round <= config.timing_repeats; ++round)
+    for (std::size_t i = 0; i < queue.size(); ++i) {
+      Simulator& sim = *sims[i];
+      const std::int64_t n = std::max<std::int64_t>(1, std::min(queue[i].steps, config.timing_steps));
+      start_scene(scene, sim);
+      const double t0 = now_ns();
+      try {
+        sim.run(n, queue[i].dt);
+      } catch (const Error&) {
+        // An unstable run may stop early; its cost is still the time per step taken.
+      }
+      const double ns = now_ns() - t0;
+      if (round > 0) samples[i].push_back(ns / static_cast<double>(std::max<std::int64_t>(1, sim.steps_taken())));
+      if (observe) observe(sim.steps_taken());
+    }
+  for (std::size_t i = 0; i < queue.size(); ++i) {
+    std::vector<double>& s = samples[i];
+    std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
+    StudyRun& r = runs[queue[i].row];
+    r.ns_per_step = s[s.size() / 2];
+    r.cpu_s_per_sim_s = r.ns_per_step * 1e-9 / r.dt;
+  }
 }
 
 // The step the knobs run at: the scene's, unless the scene's integrator is unstable there
@@ -78,7 +120,8 @@ double knob_step(const Scene& scene, const std::vector<StudyRun>& ladder) {
 // the default.
 // Keep knob_runs() below in step with the runs added here.
 void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConfig& config,
-               const Reference& ref, std::vector<StudyRun>& runs, const StepObserver& observe) {
+               const Reference& ref, std::vector<StudyRun>& runs, std::vector<TimedRun>& queue,
+               const StepObserver& observe) {
   const double dt = knob_step(scene, runs);
   if (!(dt > 0)) return;
   // The default solve of each integrator, computed when a knob first needs it.
@@ -95,7 +138,7 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
     r.setting = setting;
     const EndState& d = standard[o.integrator];
     r.change_q = end.finite && d.finite ? max_abs_difference(end.q, d.q) : INFINITY;
-    time_run(scene, o, config, r, observe);
+    queue.push_back({o, dt, r.steps, runs.size()});
     runs.push_back(r);
   };
   add("default", "", base);
@@ -115,11 +158,8 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
     add("damped_policy", number_text(damping), o);
   }
   if (uses_friction(scene)) {
-    // The scene's own smoothing velocity as the simulator floors it at this step, then
-    // smoother than the study's.
+    // Smoother friction than the scene's (other physics: change_q is the model's change).
     o = base;
-    o.solver.friction_velocity = scene.options.solver.friction_velocity;
-    add("friction_velocity", number_text(Simulator(scene.model, o).friction_velocity(dt)), o);
     for (double factor : {2.0, 8.0}) {
       o.solver.friction_velocity = base.solver.friction_velocity * factor;
       add("friction_velocity", number_text(o.solver.friction_velocity), o);
@@ -127,17 +167,16 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
   }
   if (holds_directions(scene)) {
     o = base;
-    o.stabilisation_frequency = 0;  // the simulator's default, kBaumgarteStepFraction / dt
-    add("stabilisation_frequency", number_text(kBaumgarteStepFraction / dt), o);
+    o.stabilisation_frequency = 10;
+    add("stabilisation_frequency", "10", o);
     o.stabilisation_frequency = 1000;
     add("stabilisation_frequency", "1000", o);
-    // The held drift the other integrators show with the simulator's default frequency.
+    // The held drift the other integrators show with the scene's frequency.
     for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
       if (integrator == base.integrator) continue;
       o = base;
       o.integrator = integrator;
-      o.stabilisation_frequency = 0;
-      add("stabilisation_frequency", number_text(kBaumgarteStepFraction / dt), o);
+      add("stabilisation_frequency", number_text(base.stabilisation_frequency), o);
     }
   }
 }
@@ -149,9 +188,9 @@ struct KnobRuns {
 };
 KnobRuns knob_runs(const Scene& scene) {
   const bool friction = uses_friction(scene), held = holds_directions(scene);
-  // default, velocity products, 3 tolerances, 4 dampings; 3 friction velocities; 2
+  // default, velocity products, 3 tolerances, 4 dampings; 2 friction velocities; 2
   // Baumgarte frequencies and the 2 other integrators at the default one.
-  return {9 + (friction ? 3 : 0) + (held ? 4 : 0), 1 + (held ? 2 : 0)};
+  return {9 + (friction ? 2 : 0) + (held ? 4 : 0), 1 + (held ? 2 : 0)};
 }
 
 }  // namespace
@@ -161,7 +200,9 @@ double planned_steps(const Scene& scene, const StudyConfig& config) {
   const double timed = static_cast<double>(config.timing_repeats + 1);  // + the warm-up round
   const auto timing = [&](double steps) { return timed * std::max(1.0, std::min(steps, double(config.timing_steps))); };
   double total = D / config.reference_dt + D / (config.reference_dt / 2);
-  for (double dt : config.dts) total += 3 * (D / dt + timing(D / dt));  // three integrators
+  for (double dt : config.dts) total += std::size(kLadderIntegrators) * (D / dt + timing(D / dt));
+  const double adaptive_dt = *std::max_element(config.dts.begin(), config.dts.end());
+  total += static_cast<double>(config.rtols.size()) * (D / adaptive_dt + timing(D / adaptive_dt));
   if (config.knobs) {
     const KnobRuns k = knob_runs(scene);
     total += (k.knobs + k.standards) * (D / scene.dt) + k.knobs * timing(D / scene.dt);
@@ -210,27 +251,6 @@ EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double 
   return end;
 }
 
-double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, std::int64_t steps,
-                   std::int64_t max_steps, int repeats, const StepObserver& observe) {
-  const std::int64_t n = std::max<std::int64_t>(1, std::min(steps, max_steps));
-  Simulator sim(scene.model, options);
-  std::vector<double> samples;
-  for (int r = 0; r <= repeats; ++r) {  // round 0 warms caches and is discarded
-    start_scene(scene, sim);
-    const double t0 = now_ns();
-    try {
-      sim.run(n, dt);
-    } catch (const Error&) {
-      // An unstable run may stop early; its cost is still the time per step taken.
-    }
-    const double ns = now_ns() - t0;
-    if (r > 0) samples.push_back(ns / static_cast<double>(std::max<std::int64_t>(1, sim.steps_taken())));
-    if (observe) observe(sim.steps_taken());
-  }
-  std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
-  return samples[samples.size() / 2];
-}
-
 Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
                         const StepObserver& observe) {
   SimulatorOptions o = options;
@@ -268,40 +288,57 @@ Study run_study(const Scene& scene, const StudyConfig& config, const StepObserve
   Study study;
   study.scene = scene.source;
   study.config = config;
-  // One set of equations for every run (see the header): friction smoothing and the
-  // Baumgarte frequency as the simulator would choose them at the largest step.
-  SimulatorOptions base = scene.options;
-  const double largest = *std::max_element(config.dts.begin(), config.dts.end());
-  study.friction_velocity = Simulator(scene.model, scene.options).friction_velocity(largest);
-  base.solver.friction_velocity = study.friction_velocity;
-  if (!(base.stabilisation_frequency > 0)) base.stabilisation_frequency = kBaumgarteStepFraction / largest;
+  // The scene's equations, the same at every step (the simulator derives nothing from dt).
+  const SimulatorOptions base = scene.options;
+  study.friction_velocity = base.solver.friction_velocity;
   study.stabilisation_frequency = base.stabilisation_frequency;
 
   study.reference = reference_run(scene, base, config.reference_dt, config.duration, observe);
-  std::vector<CostError> points;
-  std::vector<std::size_t> stable_runs;
-  for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
+  std::vector<TimedRun> queue;
+  for (Integrator integrator : kLadderIntegrators) {
     SimulatorOptions o = base;
     o.integrator = integrator;
     for (std::size_t i = 0; i < config.dts.size(); ++i) {
       const double dt = config.dts[i];
       StudyRun r = measure(run_to_end(scene, o, dt, config.duration, observe), o, dt, config.duration, study.reference);
       r.kind = "integrator";
-      time_run(scene, o, config, r, observe);
       // Observed order p from e ~ C dt^p between this step and the previous one.
       const StudyRun* previous = i > 0 ? &study.runs.back() : nullptr;
       if (previous && previous->stable && r.stable)
         r.order = std::log(previous->error_q / r.error_q) / std::log(previous->dt / r.dt);
+      queue.push_back({o, dt, r.steps, study.runs.size()});
       study.runs.push_back(r);
-      if (r.stable) {
-        points.push_back({r.cpu_s_per_sim_s, r.error_q});
-        stable_runs.push_back(study.runs.size() - 1);
-      }
     }
+  }
+  // The adaptive integrator, one run per tolerance (atol = rtol / 100), at the ladder's
+  // largest output step: a substep never spans more than one output step, so at a small
+  // one the output step rather than the tolerance would set the substeps.
+  const double adaptive_dt = *std::max_element(config.dts.begin(), config.dts.end());
+  for (double rtol : config.rtols) {
+    SimulatorOptions o = base;
+    o.integrator = Integrator::DormandPrince;
+    o.rtol = rtol;
+    o.atol = rtol / 100;
+    StudyRun r = measure(run_to_end(scene, o, adaptive_dt, config.duration, observe), o, adaptive_dt,
+                         config.duration, study.reference);
+    r.kind = "integrator";
+    r.setting = "rtol " + number_text(rtol);
+    queue.push_back({o, adaptive_dt, r.steps, study.runs.size()});
+    study.runs.push_back(r);
+  }
+  if (config.knobs) run_knobs(scene, base, config, study.reference, study.runs, queue, observe);
+  time_interleaved(scene, queue, config, study.runs, observe);
+  // The error-cost front of the integrator runs (fixed steps and tolerances together).
+  std::vector<CostError> points;
+  std::vector<std::size_t> stable_runs;
+  for (std::size_t i = 0; i < study.runs.size(); ++i) {
+    const StudyRun& r = study.runs[i];
+    if (r.kind != "integrator" || !r.stable) continue;
+    points.push_back({r.cpu_s_per_sim_s, r.error_q});
+    stable_runs.push_back(i);
   }
   const std::vector<bool> front = pareto_front(points);
   for (std::size_t i = 0; i < front.size(); ++i) study.runs[stable_runs[i]].pareto = front[i];
-  if (config.knobs) run_knobs(scene, base, config, study.reference, study.runs, observe);
   study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return study;
 }

@@ -1,20 +1,22 @@
 #pragma once
-// The accuracy-versus-time study of a scene (`achd accuracy`): each integrator at a
-// ladder of time steps, and the solver knobs at the scene's step, each run measured by
+// The accuracy-versus-time study of a scene (`achd accuracy`): each fixed-step integrator
+// (explicit, semi-implicit and implicit Euler, RK4) at a ladder of time steps, the adaptive
+// Dormand-Prince for a ladder of tolerances (at the largest output step), and the solver
+// knobs at the scene's step, each run measured by
 //   error  = max_i |q_i(T) - q_ref,i(T)| in rad (the end-state joint positions; the
 //            velocities' max|qd - qd_ref| in rad/s is reported beside it),
-//   cost   = CPU time of the simulating thread per step, median of repeated short runs
-//            (equals wall time on an idle core; on a shared machine it leaves out the
-//            time spent descheduled), and per simulated second: ns_per_step / dt.
+//   cost   = CPU time of the simulating thread per output step, the median over rounds
+//            that each run every configuration in turn (interleaved: a change in the
+//            machine's speed hits them alike; on an idle core CPU time equals wall time,
+//            on a shared machine it leaves out the time spent descheduled), and per
+//            simulated second: ns_per_step / dt.
 // The reference is RK4 at dt_ref; its own error is estimated as max|q(dt_ref) -
 // q(dt_ref / 2)| (the change when its step is halved).
 //
-// Every run of one study integrates the same equations, so that the differences are the
-// integrators': friction's smoothing velocity and the Baumgarte frequency of held
-// directions, which the simulator otherwise derives from each step, are fixed for all
-// runs at the values it derives for the largest step (Simulator::friction_velocity,
-// kBaumgarteStepFraction / dt), unless the scene sets a larger one. The knobs show what
-// the simulator's own per-step choices change.
+// Every run is the simulator as a user configures it with the scene: the same equations
+// at every dt (friction's smoothing velocity and the Baumgarte frequency are the scene's
+// parameters, not derived from the step), so the differences are the integrators'. The
+// knobs show what changing a parameter or the solver's policy changes.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -48,11 +50,6 @@ using StepObserver = std::function<void(std::int64_t)>;
 // different times).
 EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
                     const StepObserver& observe = {});
-
-// Median over `repeats` runs of min(steps, max_steps) steps from the scene's start of
-// the thread CPU time per step, in ns.
-double ns_per_step(const Scene& scene, const SimulatorOptions& options, double dt, std::int64_t steps,
-                   std::int64_t max_steps, int repeats, const StepObserver& observe = {});
 
 // max_i |a_i - b_i|.
 double max_abs_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
@@ -92,6 +89,8 @@ struct StudyRun {
 struct StudyConfig {
   double duration = 0;                 // simulated seconds of each run
   std::vector<double> dts;             // the ladder, largest first
+  // Dormand-Prince's tolerances (rtol; atol = rtol / 100), each run at the largest of dts.
+  std::vector<double> rtols{1e-3, 1e-5, 1e-7, 1e-9, 1e-11};
   double reference_dt = 0;             // RK4 reference step
   int timing_repeats = 5;
   std::int64_t timing_steps = 400;     // steps of each timed run (at most the run's)

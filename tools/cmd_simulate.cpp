@@ -56,9 +56,17 @@ std::string seconds(double x) {
 }  // namespace
 
 int cmd_simulate(int argc, char** argv) {
-  const Args args(argc, argv, {"--out"}, {});
+  const Args args(argc, argv, {"--out", "--integrator", "--rtol", "--atol"}, {});
   if (args.positional().size() != 1) throw Error("simulate: expected one scene file, see `achd help`");
-  const Scene scene = load_scene(args.positional()[0]);
+  Scene scene = load_scene(args.positional()[0]);
+  // The integrator and its tolerances, over the scene's.
+  if (args.has("--integrator")) scene.options.integrator = integrator_from_name(args.get("--integrator"), "--integrator");
+  for (const auto& [name, value] : {std::pair<const char*, double*>{"--rtol", &scene.options.rtol},
+                                    {"--atol", &scene.options.atol}}) {
+    if (!args.has(name)) continue;
+    *value = args.number(name, 0);
+    if (!(*value > 0)) throw Error(std::string(name) + " must be > 0, got " + args.get(name));
+  }
   const std::int64_t steps = scene.steps();
   Simulator sim(scene.model, scene.options);
   start_scene(scene, sim);
@@ -117,7 +125,9 @@ int cmd_simulate(int argc, char** argv) {
   out["steps"] = steps;
   out["t"] = sim.t;  // = steps * dt exactly (Simulator::t)
   out["wall_ns_per_step"] = steps ? step_ns / static_cast<double>(steps) : 0.0;
-  out["friction_velocity"] = sim.friction_velocity(scene.dt);
+  out["friction_velocity"] = scene.options.solver.friction_velocity;
+  out["substeps"] = sim.substeps();
+  out["rejected_substeps"] = sim.rejected_substeps();
   if (conserves && max_kinetic > 0) out["energy_drift"] = max_energy_error / max_kinetic;
   else out["energy_drift"] = nullptr;
   out["energy"] = {{"initial", E0}, {"final", sim.energy()}, {"max_kinetic", max_kinetic}};

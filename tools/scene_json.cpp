@@ -54,12 +54,7 @@ std::uint32_t effects(const json& j) {
   return bits;
 }
 
-Integrator integrator(const json& v) {
-  const std::string s = text(v, "integrator");
-  for (Integrator i : kIntegrators)
-    if (s == integrator_name(i)) return i;
-  throw Error("integrator: expected 'explicit_euler', 'semi_implicit_euler' or 'rk4', got '" + s + "'");
-}
+Integrator integrator(const json& v) { return integrator_from_name(text(v, "integrator"), "integrator"); }
 
 LimitPolicy limits(const json& v) {
   const std::string s = text(v, "limits");
@@ -109,6 +104,14 @@ const json& required(const json& j, const char* field) {
 
 }  // namespace
 
+Integrator integrator_from_name(const std::string& name, const std::string& field) {
+  for (Integrator i : kIntegrators)
+    if (name == integrator_name(i)) return i;
+  std::string names;
+  for (Integrator i : kIntegrators) names += std::string(names.empty() ? "'" : ", '") + integrator_name(i) + "'";
+  throw Error(field + ": expected one of " + names + ", got '" + name + "'");
+}
+
 std::int64_t Scene::steps() const { return steps_for_duration(duration, dt); }
 
 bool Scene::conserves_energy() const {
@@ -151,7 +154,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions",
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
-                       "rotor_inertia", "mimic"});
+                       "rotor_inertia", "mimic", "rtol", "atol"});
     if (j.contains("description")) text(j["description"], "description");
     s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
     s.root = text(required(j, "root"), "root");
@@ -183,12 +186,12 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     s.steps();  // a whole number of steps that can be run, else an error naming it
     if (j.contains("friction_velocity"))
       s.options.solver.friction_velocity = positive(j["friction_velocity"], "friction_velocity");
-    if (j.contains("stabilisation_frequency")) {
-      s.options.stabilisation_frequency = number(j["stabilisation_frequency"], "stabilisation_frequency");
-      if (s.options.stabilisation_frequency < 0) throw Error("stabilisation_frequency must be >= 0");
-    }
+    if (j.contains("stabilisation_frequency"))
+      s.options.stabilisation_frequency = positive(j["stabilisation_frequency"], "stabilisation_frequency");
     if (j.contains("stabilisation_damping"))
       s.options.stabilisation_damping = positive(j["stabilisation_damping"], "stabilisation_damping");
+    if (j.contains("rtol")) s.options.rtol = positive(j["rtol"], "rtol");
+    if (j.contains("atol")) s.options.atol = positive(j["atol"], "atol");
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
   }

@@ -35,6 +35,9 @@ struct Scene {
 
 // Parses a scene; `source` is its file path, used for messages and to resolve "urdf".
 Scene parse_scene(const std::string& text, const std::string& source);
+// The Integrator named `name` (integrator_name()); an achd::Error naming `field` and the
+// names otherwise.
+Integrator integrator_from_name(const std::string& name, const std::string& field);
 Scene load_scene(const std::string& path);
 
 // A path in a scene is relative to the repository root: it is looked up against the

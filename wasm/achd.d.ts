@@ -16,7 +16,7 @@ export type EffectName = 'gravity' | 'velocity_products' | 'external_wrenches' |
   | 'rotor_inertia' | 'constraints';
 export type Convention = 'physical' | 'kdl';
 export type SingularityPolicy = 'truncate' | 'damped';
-export type Integrator = 'explicit_euler' | 'semi_implicit_euler' | 'rk4';
+export type Integrator = 'explicit_euler' | 'semi_implicit_euler' | 'rk4' | 'dormand_prince' | 'implicit_euler';
 /** @deprecated the previous release's spellings of 'explicit_euler' and 'semi_implicit_euler';
  * still accepted (with a console.warn) until the next release. */
 export type DeprecatedIntegrator = 'euler' | 'semi-implicit';
@@ -158,7 +158,7 @@ export interface Solver {
 export type Direction = 'x' | 'y' | 'z' | 'rx' | 'ry' | 'rz';
 
 export interface SimulatorOptions {
-  /** default 'rk4'. */
+  /** default 'dormand_prince' (adaptive: step(n, dt) takes error-controlled substeps). */
   integrator?: Integrator | DeprecatedIntegrator;
   /** defaults: every effect on (damping and friction included). */
   effects?: Effects | number;
@@ -168,10 +168,13 @@ export interface SimulatorOptions {
   limits?: LimitPolicy;
   /** Coulomb friction F tanh(qd / v): v in rad/s or m/s, default 0.05, raised per step for stability. */
   frictionVelocity?: number;
-  /** Baumgarte frequency of held directions in rad/s; default 0 = 0.1 / dt. */
+  /** Baumgarte frequency of held directions in rad/s, > 0; default 100 (never from dt). */
   stabilisationFrequency?: number;
   /** Baumgarte damping ratio, default 1. */
   stabilisationDamping?: number;
+  /** 'dormand_prince' tolerances, > 0: relative (default 1e-9) and absolute (1e-11). */
+  rtol?: number;
+  atol?: number;
 }
 
 /** Options of Simulator.step. */
@@ -205,6 +208,9 @@ export interface Simulator {
   readonly t: number;
   /** steps completed since createSimulator() or reset(). */
   readonly stepsTaken: number;
+  /** Integrator substeps accepted / rejected since createSimulator() or reset(). */
+  readonly substeps: number;
+  readonly rejectedSubsteps: number;
   /**
    * n steps of dt seconds (defaults 1, 1e-3); n an integer in [0, 2^53 - 1]. Returns the
    * number of steps run: n, or fewer when options.onProgress stopped the run. A step that
@@ -297,6 +303,8 @@ export interface CppSimulatorOptions {
   readonly limits: LimitPolicy;
   readonly stabilisation_frequency: number;
   readonly stabilisation_damping: number;
+  readonly rtol: number;
+  readonly atol: number;
   readonly solver: CppOptions;
 }
 

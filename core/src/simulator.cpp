@@ -8,7 +8,6 @@
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
 #include "held_directions.hpp"
-#include "joint.hpp"
 #include "tip_kinematics.hpp"
 
 namespace achd {
@@ -45,6 +44,18 @@ std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const
       if (!std::isfinite(v))
         return "joint '" + model.bodies[i].joint_name + "': " + name + " = " + number(v);
   return "";
+}
+
+// The options step() reads, each a positive finite number (rtol, atol: >= 0, one > 0).
+void check_simulator_options(const SimulatorOptions& o) {
+  const auto positive = [](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) throw Error(std::string(name) + " must be positive and finite, got " + number(v));
+  };
+  positive(o.stabilisation_frequency, "stabilisation_frequency");
+  positive(o.stabilisation_damping, "stabilisation_damping");
+  for (const auto& [v, name] : {std::pair<double, const char*>{o.rtol, "rtol"}, {o.atol, "atol"}})
+    if (!(v >= 0) || !std::isfinite(v)) throw Error(std::string(name) + " must be finite and >= 0, got " + number(v));
+  if (o.rtol == 0 && o.atol == 0) throw Error("rtol and atol are both 0: at least one must be positive");
 }
 
 }  // namespace
@@ -87,6 +98,8 @@ const char* integrator_name(Integrator integrator) {
     case Integrator::ExplicitEuler: return "explicit_euler";
     case Integrator::SemiImplicitEuler: return "semi_implicit_euler";
     case Integrator::RK4: return "rk4";
+    case Integrator::DormandPrince: return "dormand_prince";
+    case Integrator::ImplicitEuler: return "implicit_euler";
   }
   return "?";
 }
@@ -97,6 +110,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
       data_{{Data(model_), Data(model_)}},
       stage_data_(model_),
       case_(Case::zeros(model_)),
+      implicit_model_(model_),
       limit_data_(model_) {
   const int n = model_.num_joints();
   q = qd = ff_torques = Eigen::VectorXd::Zero(n);
@@ -114,7 +128,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   X0_.resize(n);
   r_.assign(n, Vector3::Zero());
   v_.assign(n, Vector6::Zero());
-  q0_ = qd0_ = q_stage_ = qd_stage_ = Eigen::VectorXd::Zero(n);
+  q0_ = qd0_ = q_stage_ = qd_stage_ = q_next_ = qd_next_ = Eigen::VectorXd::Zero(n);
   for (auto& k : k_q_) k = Eigen::VectorXd::Zero(n);
   for (auto& k : k_qd_) k = Eigen::VectorXd::Zero(n);
   // Mass and centre of mass from the spatial inertia [m 1, -m [c]x; m [c]x, I_o].
@@ -123,7 +137,6 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
     const Matrix3 mc = b.inertia.block<3, 3>(3, 0);  // m [c]x
     mass_.push_back(m);
     com_.push_back(m > 0 ? Vector3(Vector3(mc(2, 1), mc(0, 2), mc(1, 0)) / m) : Vector3::Zero());
-    axial_inertia_.push_back(subspace_dot(b, inertia_times_subspace(b, b.inertia)));
   }
 }
 
@@ -136,6 +149,8 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   else qd.setZero(n);
   t = 0;
   steps_taken_ = 0;
+  substeps_ = rejected_substeps_ = 0;
+  substep_ = 0;
   held_ = HeldDirections{};
   direction_columns(held_, case_.alpha);
   max_residual_.fill(0);
@@ -225,7 +240,7 @@ void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_
                         ? direction_axis(k).dot(tip.w) : 0.0;
   case_.q = q_at;
   case_.qd = qd_at;
-  hybrid_dynamics(model_, out, case_, solver_);
+  hybrid_dynamics(implicit_solve_ ? implicit_model_ : model_, out, case_, solver_);
 }
 
 void Simulator::step(double dt) {
@@ -237,7 +252,7 @@ void Simulator::step(double dt) {
   solver_ = options_.solver;
   solver_.effects = options_.effects;
   solver_.convention = Convention::Physical;
-  solver_.friction_velocity = friction_velocity(dt);
+  check_simulator_options(options_);
   case_.gravity = options_.gravity;
   case_.ff_torques = ff_torques;
   case_.f_ext = f_ext;
@@ -253,17 +268,20 @@ void Simulator::step(double dt) {
   for (int k = 0; k < kNumDirections; ++k)
     max_residual_[k] = std::max(max_residual_[k], std::abs(direction_error(held_, k, tip)));
 
-  const double w_n = options_.stabilisation_frequency > 0 ? options_.stabilisation_frequency
-                                                          : kBaumgarteStepFraction / dt;
+  const double w_n = options_.stabilisation_frequency;
   // The state a failed step returns to.
   q0_ = q;
   qd0_ = qd;
   angle0_ = held_.angle;
+  const std::int64_t substeps0 = substeps_, rejected0 = rejected_substeps_;
   Data& first = data_[1 - current_];
   const auto undo = [&] {
     q = q0_;
     qd = qd0_;
     held_.angle = angle0_;
+    substeps_ = substeps0;
+    rejected_substeps_ = rejected0;
+    implicit_solve_ = false;
   };
   try {
     update_limit_stops(w_n);
@@ -271,7 +289,10 @@ void Simulator::step(double dt) {
       case Integrator::ExplicitEuler: step_explicit_euler(dt, w_n, first); break;
       case Integrator::SemiImplicitEuler: step_semi_implicit_euler(dt, w_n, first); break;
       case Integrator::RK4: step_rk4(dt, w_n, first); break;
+      case Integrator::DormandPrince: step_dormand_prince(dt, w_n, first); break;
+      case Integrator::ImplicitEuler: step_implicit_euler(dt, w_n, first); break;
     }
+    if (options_.integrator != Integrator::DormandPrince) ++substeps_;
     stop_at_limits();
   } catch (const Error& e) {
     undo();
@@ -306,24 +327,14 @@ Error Simulator::step_failure(double dt, const std::string& cause) const {
   }
   std::string where = integrator_name(options_.integrator);
   if (options_.integrator == Integrator::RK4 && stage_ >= 0) where += " stage " + std::to_string(stage_ + 1) + " of 4";
+  if (options_.integrator == Integrator::DormandPrince)
+    where += (stage_ >= 0 ? " stage " + std::to_string(stage_ + 1) + " of 7," : "") + " substep of " +
+             number(substep_) + " s";
   if (!held.empty()) where += "; held: " + held;
   if (!accelerated.empty()) where += "; accelerated: " + accelerated;
   const double t_next = t_origin_ + static_cast<double>(t_steps_ + 1) * dt;
   return Error("step " + std::to_string(steps_taken_ + 1) + " from t = " + number(t) + " s to " + number(t_next) +
                " s (" + where + ") failed: " + cause + "; the state stays at t = " + number(t) + " s");
-}
-
-// v_f >= F_i dt / (kFrictionRateLimit I_i), from F_i / v_f dt / I_i <= kFrictionRateLimit.
-double Simulator::friction_velocity(double dt) const {
-  double v_f = options_.solver.friction_velocity;
-  if (!(options_.effects & kFriction)) return v_f;
-  const bool rotor = options_.effects & kRotorInertia;
-  for (int i = 0; i < model_.num_joints(); ++i) {
-    const Body& b = model_.bodies[i];
-    const double inertia = axial_inertia_[i] + (rotor ? b.rotor_inertia : 0.0);
-    v_f = std::max(v_f, b.friction * dt / (kFrictionRateLimit * inertia));
-  }
-  return v_f;
 }
 
 void Simulator::run(std::int64_t steps, double dt) {

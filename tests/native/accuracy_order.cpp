@@ -74,5 +74,30 @@ TEST_F(AccuracyOrder, SemiImplicitEulerIsFirstOrder) {
   expect_order(Integrator::SemiImplicitEuler, {2e-3, 1e-3, 0.5e-3, 0.25e-3}, 1.0);
 }
 
+// Implicit in the swing's joint damping, still first order.
+TEST_F(AccuracyOrder, ImplicitEulerIsFirstOrder) {
+  expect_order(Integrator::ImplicitEuler, {2e-3, 1e-3, 0.5e-3, 0.25e-3}, 1.0);
+}
+
+// The adaptive integrator over one output step of the whole run (so that the tolerance,
+// not the output step, sets its substeps): its error falls with its tolerance, by at least
+// 10 per factor 100 of rtol (atol = rtol / 100), and stays within 100 rtol.
+TEST_F(AccuracyOrder, DormandPrinceErrorFallsWithTheTolerance) {
+  SimulatorOptions o = scene_.options;
+  o.integrator = Integrator::DormandPrince;
+  double previous = INFINITY;
+  for (double rtol : {1e-4, 1e-6, 1e-8}) {
+    o.rtol = rtol;
+    o.atol = rtol / 100;
+    const EndState end = run_to_end(scene_, o, kDuration, kDuration);
+    ASSERT_TRUE(end.finite) << end.failure;
+    const double e = max_abs_difference(end.q, ref_.end.q);
+    EXPECT_LT(e, previous / 10) << "rtol " << rtol;
+    EXPECT_LT(e, 100 * rtol) << "rtol " << rtol;
+    EXPECT_LT(ref_.self_error_q, 1e-2 * e) << "rtol " << rtol;
+    previous = e;
+  }
+}
+
 }  // namespace
 }  // namespace achd::cli

@@ -145,6 +145,31 @@ TEST_F(CliSimulateRuns, SummaryStepsTimesDtIsT) {
   }
 }
 
+// The summary counts the integrator's substeps; --integrator, --rtol and --atol replace
+// the scene's (before: unknown options, exit 2, and no "substeps" in the summary).
+TEST_F(CliSimulateRuns, IntegratorAndTolerancesFromTheCommandLineAndSubstepsInTheSummary) {
+  const std::string scene = ACHD_SOURCE_DIR "/robots/scenes/kuka_lwr4_hold_z_rx.json";
+  const auto summary = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"simulate", scene};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliRun r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json adaptive = summary({}), loose = summary({"--rtol", "1e-5", "--atol", "1e-7"}),
+                       implicit = summary({"--integrator", "implicit_euler"});
+  EXPECT_EQ(adaptive.at("integrator"), "dormand_prince");
+  EXPECT_GT(adaptive.at("substeps").get<std::int64_t>(), adaptive.at("steps").get<std::int64_t>());
+  EXPECT_GT(adaptive.at("rejected_substeps").get<std::int64_t>(), 0);
+  EXPECT_LT(loose.at("substeps").get<std::int64_t>(), adaptive.at("substeps").get<std::int64_t>());
+  EXPECT_EQ(implicit.at("integrator"), "implicit_euler");
+  EXPECT_EQ(implicit.at("substeps"), implicit.at("steps"));
+  EXPECT_EQ(implicit.at("rejected_substeps"), 0);
+  EXPECT_EQ(adaptive.at("friction_velocity"), 0.05);
+  expect_error(run({"simulate", scene, "--integrator", "rk5"}), {"--integrator", "'dormand_prince'", "'rk5'"});
+  expect_error(run({"simulate", scene, "--rtol", "0"}), {"--rtol must be > 0"});
+}
+
 // Before: 1.0005 s at 1 ms ran 1000 steps (t = 1.0000000000000007); dt 1e-300 ran 0
 // steps; both exit 0.
 TEST_F(CliSimulateRuns, DurationsThatAreNotAWholeNumberOfStepsAreErrors) {
@@ -207,7 +232,7 @@ TEST_F(CliSimulateRuns, TrajectoryIsWrittenWhole) {
 }
 
 // The UR5 holding z and rx while its tip accelerates along y at 0.5 m/s^2 blows up at
-// t = 2.183 s. Before: "achd: error: beta[0] is not finite" and a partial traj.csv in
+// t = 2.184 s (RK4, 1 ms; 2.183 s while friction smoothing was raised with dt). Before: "achd: error: beta[0] is not finite" and a partial traj.csv in
 // place of the previous file.
 TEST_F(CliSimulateRuns, FailedRunNamesStepTimeAndDirectionsAndLeavesNoFile) {
   const std::string scene = write("ur5_y.json", R"({"urdf": ")" ACHD_SOURCE_DIR R"(/robots/ur5.urdf",
@@ -215,8 +240,8 @@ TEST_F(CliSimulateRuns, FailedRunNamesStepTimeAndDirectionsAndLeavesNoFile) {
     "directions": {"z": "hold", "rx": "hold", "y": 0.5}, "integrator": "rk4", "dt": 0.001, "duration": 5})");
   const std::string csv = write("traj.csv", "the previous trajectory\n");
   const CliRun r = run({"simulate", scene, "--out", csv});
-  expect_error(r, {scene + ": step 2184 from t = 2.183 s", "held: z, rx", "accelerated: y = 0.5 m/s^2",
-                   "stopped after 2183 of 5000 steps", "no file written to " + csv});
+  expect_error(r, {scene + ": step 2185 from t = 2.184 s", "held: z, rx", "accelerated: y = 0.5 m/s^2",
+                   "stopped after 2184 of 5000 steps", "no file written to " + csv});
   EXPECT_EQ(r.err.find("beta["), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(read_text(csv), "the previous trajectory\n");
@@ -247,7 +272,7 @@ TEST_F(CliSimulateRuns, IntegerOptionsOutOfRangeAreErrors) {
 // Before: a 1e9 s scene ran for ever, silently.
 TEST_F(CliSimulateRuns, AccuracyRefusesAStudyBeyondTheLimit) {
   expect_error(run({"accuracy", planar2_scene("huge.json", "0.001", "1e9")}, ""),
-               {"huge.json", "3.664e+14 steps", "more than the limit of 1e+08", "--quick"});
+               {"huge.json", "4.057e+14 steps", "more than the limit of 1e+08", "--quick"});
 }
 
 // A long study shows progress; Ctrl-C stops it with exit 130 and writes no file.

@@ -10,6 +10,7 @@
 
 #include "accuracy_study.hpp"
 #include "achd/achd.hpp"
+#include "achd/names.hpp"
 #include "achd/simulator.hpp"
 #include "scene_json.hpp"
 
@@ -81,11 +82,14 @@ TEST(SimulatorTime, IsStepsTimesDt) {
 }
 
 // The UR5 holding z and rx while accelerating its tip along y at 0.5 m/s^2 (RK4, 1 ms)
-// is driven into a singular pose and blows up at t = 2.183 s. Before: the error read
-// "beta[0] is not finite" and nothing else.
+// is driven into a singular pose and blows up at t = 2.184 s (2.183 s while the friction
+// smoothing velocity was raised with dt). Before: the error read "beta[0] is not finite"
+// and nothing else.
 TEST(SimulatorFailure, NamesStepTimeDirectionsAndCauseAndKeepsTheLastGoodState) {
   const Model m = load_urdf_file((kRoot / "robots/ur5.urdf").string(), "base_link", "wrist_3_link");
-  Simulator sim(m);
+  SimulatorOptions o;
+  o.integrator = Integrator::RK4;
+  Simulator sim(m, o);
   Eigen::VectorXd q0(6);
   q0 << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
   sim.reset(q0, {});
@@ -98,11 +102,11 @@ TEST(SimulatorFailure, NamesStepTimeDirectionsAndCauseAndKeepsTheLastGoodState) 
   } catch (const Error& e) {
     what = e.what();
   }
-  expect_contains(what, {"step 2184", "t = 2.183 s", "held: z, rx", "accelerated: y = 0.5 m/s^2", "rk4",
-                         "the state stays at t = 2.183 s"});
+  expect_contains(what, {"step 2185", "t = 2.184 s", "held: z, rx", "accelerated: y = 0.5 m/s^2", "rk4",
+                         "the state stays at t = 2.184 s"});
   EXPECT_EQ(what.find("beta["), std::string::npos) << what;  // a field the user never wrote
-  EXPECT_EQ(sim.steps_taken(), 2183);
-  EXPECT_EQ(sim.t, 2183 * 1e-3);
+  EXPECT_EQ(sim.steps_taken(), 2184);
+  EXPECT_EQ(sim.t, 2184 * 1e-3);
   EXPECT_TRUE(sim.q.allFinite() && sim.qd.allFinite());
   EXPECT_TRUE(sim.data().qdd.allFinite() && sim.data().nu.allFinite());
   // The same step fails again from the same state, with the same message.
@@ -119,7 +123,7 @@ TEST(SimulatorFailure, NamesStepTimeDirectionsAndCauseAndKeepsTheLastGoodState) 
 // qd = inf, and the next step failed on "qd[0] is not finite".
 TEST(SimulatorFailure, NonFiniteStepIsUndone) {
   const Model m = load_urdf_file((kRoot / "robots/planar2.urdf").string(), "base_link", "link2");
-  for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
+  for (Integrator integrator : kIntegrators) {
     SimulatorOptions o;
     o.integrator = integrator;
     Simulator sim(m, o);
@@ -163,6 +167,32 @@ TEST(SceneSteps, CheckedWhenParsedIn64Bits) {
       expect_contains(e.what(), {"bad.json", needle});
     }
   }
+}
+
+// The study runs the simulator as configured: implicit Euler in the ladder beside the
+// other fixed-step integrators, Dormand-Prince once per tolerance with its error not rising
+// as the tolerance tightens (and falling over the ladder), every run with a cost. Before:
+// three integrators, no adaptive runs.
+TEST(AccuracyStudy, AdaptiveRunsPerToleranceAndImplicitEulerInTheLadder) {
+  const cli::Scene scene = cli::load_scene((kRoot / "robots/scenes/planar2_damped_swing.json").string());
+  const cli::StudyConfig config = cli::default_config(scene, true);
+  const cli::Study study = cli::run_study(scene, config);
+  std::vector<double> adaptive;
+  int implicit = 0;
+  for (const cli::StudyRun& r : study.runs) {
+    EXPECT_GT(r.ns_per_step, 0) << r.kind << " " << r.integrator << " " << r.setting;
+    if (r.kind != "integrator") continue;
+    if (r.integrator == "implicit_euler") ++implicit;
+    if (r.integrator == "dormand_prince") {
+      ASSERT_TRUE(r.stable) << r.setting;
+      adaptive.push_back(r.error_q);
+    }
+  }
+  EXPECT_EQ(implicit, static_cast<int>(config.dts.size()));
+  ASSERT_EQ(adaptive.size(), config.rtols.size());
+  for (std::size_t i = 1; i < adaptive.size(); ++i)
+    EXPECT_LE(adaptive[i], adaptive[i - 1]) << "rtol " << config.rtols[i];
+  EXPECT_LT(adaptive.back(), 1e-2 * adaptive.front());
 }
 
 // The accuracy study's step count, which its guard (kMaxStudySteps) and the CLI's

@@ -37,7 +37,7 @@ test('achd.constants is the C++ declarations (effect bits, enum names, defaults)
   assert.equal(c.default_effects, 1 | 2 | 4 | 32 | 64);
   assert.equal(c.all_effects, 127);
   assert.equal(c.max_constraints, 6);
-  assert.deepEqual(c.integrators, ['explicit_euler', 'semi_implicit_euler', 'rk4']);
+  assert.deepEqual(c.integrators, ['explicit_euler', 'semi_implicit_euler', 'rk4', 'dormand_prince', 'implicit_euler']);
   assert.deepEqual(c.options, { convention: 'physical', effects: c.default_effects, policy: 'truncate',
     tolerance: 1e-12, absolute_tolerance: false, damping: 1e-6, friction_velocity: 0.05 });
   assert.deepEqual(c.case_gravity, [0, 0, -9.81]);

@@ -62,7 +62,7 @@ test('the old integrator spellings run the same integrator, with one deprecation
     assert.deepEqual(warnings(() => run(old)), [], `${old}: warned once only`);
   }
   throwsMessage(() => kuka.createSimulator({ integrator: 'toString' }),
-    /^options\.integrator: expected 'explicit_euler' or 'semi_implicit_euler' or 'rk4', got 'toString'$/);
+    /^options\.integrator: expected 'explicit_euler' or 'semi_implicit_euler' or 'rk4' or 'dormand_prince' or 'implicit_euler', got 'toString'$/);
 });
 
 test('Simulator.joint_torques() is the result; jointTorques() is its deprecated alias', () => {

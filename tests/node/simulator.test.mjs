@@ -12,7 +12,7 @@ const SCENES = join(repo, 'robots/scenes');
 // Scene values are JS values; scene keys are JS keys in camelCase.
 const camelCase = (name) => name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase());
 // Scene fields -> createSimulator options (the rest are handled in startScene).
-const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping'];
+const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping', 'rtol', 'atol'];
 const HANDLED = ['description', 'urdf', 'root', 'tip', 'q0', 'qd0', 'effects', 'directions', 'integrator',
   'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', ...OPTIONS];
 
@@ -45,7 +45,10 @@ function startScene(scene, robot) {
 // The 50-link chain falling is chaotic (halving RK4's step changes its state at 2 s by
 // 1.4e-7 rad, docs/accuracy/chain50): the last-bit differences of glibc's and musl's
 // sin/cos grow exponentially along it, so it is compared after 1 s of its 2 s.
-const HORIZON = { 'chain50_fall.json': 1.0 };
+// The undamped LWR's wrist spins up to hundreds of rad/s and its motion is as sensitive:
+// it is compared after 0.5 s, all of it (at 1 s the last-bit differences of glibc's and
+// musl's sin/cos have grown to 1.5e-9 in qd).
+const HORIZON = { 'chain50_fall.json': 1.0, 'kuka_lwr4_undamped_hold_z_rx.json': 0.5 };
 
 // The row of `achd simulate --out` at step `steps` (t, q, qd, tip pose; 17 significant
 // digits, so the doubles round-trip exactly).

@@ -1,7 +1,7 @@
 // A loaded robot (achd.loadURDF): its description, solves and algorithms.
 import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeprecated } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
-import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdEffectBits, achdIsArrayLike, achdNonNegative, achdPositive, achdSolverOptions, achdWriteSpatialList, achdWriteVector } from './validation.mjs';
+import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdEffectBits, achdIsArrayLike, achdPositive, achdSolverOptions, achdWriteSpatialList, achdWriteVector } from './validation.mjs';
 import { achdChunks, achdWithScratch } from './memory.mjs';
 import { AchdHandle } from './handle.mjs';
 import { Solver } from './solver.mjs';
@@ -157,7 +157,7 @@ export class Robot extends AchdHandle {
     const ptr = this._live();
     if (options === undefined || options === null) options = {};
     achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
-      'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping']);
+      'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping', 'rtol', 'atol']);
     // Defaults are achd::SimulatorOptions' (core/include/achd/simulator.hpp).
     const k = achdConstants(), d = k.simulator_options;
     let integratorName = options.integrator;
@@ -169,10 +169,12 @@ export class Robot extends AchdHandle {
     const effects = achdEffectBits(options.effects, d.effects, 'options.effects');
     const limits = achdChoice(options.limits, k.limit_policies, d.limits, 'options.limits');
     const frictionVelocity = achdPositive(options.frictionVelocity, d.solver.friction_velocity, 'options.frictionVelocity');
-    const frequency = achdNonNegative(options.stabilisationFrequency, d.stabilisation_frequency, 'options.stabilisationFrequency');
+    const frequency = achdPositive(options.stabilisationFrequency, d.stabilisation_frequency, 'options.stabilisationFrequency');
     const damping = achdPositive(options.stabilisationDamping, d.stabilisation_damping, 'options.stabilisationDamping');
+    const rtol = achdPositive(options.rtol, d.rtol, 'options.rtol');
+    const atol = achdPositive(options.atol, d.atol, 'options.atol');
     const create = (gravity) => achdWasm.module._achd_sim_create(ptr, integrator, effects, gravity, limits, frictionVelocity,
-      frequency, damping);
+      frequency, damping, rtol, atol);
     const sim = options.gravity === undefined ? create(0) : achdWithScratch(3, (p) => {
       achdWriteVector(options.gravity, 'gravity', 3, p);
       return create(8 * p);

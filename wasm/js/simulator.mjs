@@ -59,6 +59,10 @@ export class Simulator extends AchdHandle {
   }
   // Steps completed since createSimulator() or reset().
   get stepsTaken() { return achdWasm.module._achd_sim_steps_taken(this._live()); }
+  // The integrator's substeps accepted and rejected since createSimulator() or reset()
+  // (a fixed-step integrator: one per step, none rejected).
+  get substeps() { return achdWasm.module._achd_sim_substeps(this._live()); }
+  get rejectedSubsteps() { return achdWasm.module._achd_sim_rejected_substeps(this._live()); }
   reset(q, qd) {
     const ptr = this._live(), n = this.numJoints;
     achdWithScratch(2 * n, (p) => {

@@ -80,6 +80,7 @@ std::string describe(const SimulatorOptions& o) {
          ",\"limits\":" + quoted(kLimitPolicyNames[static_cast<int>(o.limits)]) +
          ",\"stabilisation_frequency\":" + number(o.stabilisation_frequency) +
          ",\"stabilisation_damping\":" + number(o.stabilisation_damping) +
+         ",\"rtol\":" + number(o.rtol) + ",\"atol\":" + number(o.atol) +
          ",\"solver\":" + describe(o.solver) + "}";
 }
 

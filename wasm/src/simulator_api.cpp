@@ -12,12 +12,12 @@ using achd::wasm::Robot;
 
 // integrator, limits: enum values (indices into the integrators and limit_policies of
 // achd_constants()); gravity: 3 doubles, or null for SimulatorOptions' default. The rest
-// are the scene file's friction_velocity, stabilisation_frequency (0 = from dt),
-// stabilisation_damping.
+// are the scene file's friction_velocity, stabilisation_frequency, stabilisation_damping,
+// rtol and atol.
 ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, unsigned effects,
                                              const double* gravity, int limits,
                                              double friction_velocity, double stabilisation_frequency,
-                                             double stabilisation_damping) {
+                                             double stabilisation_damping, double rtol, double atol) {
   achd::Simulator* sim = nullptr;
   achd::wasm::guarded([&] {
     achd::SimulatorOptions o;
@@ -28,6 +28,8 @@ ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, uns
     o.solver.friction_velocity = friction_velocity;
     o.stabilisation_frequency = stabilisation_frequency;
     o.stabilisation_damping = stabilisation_damping;
+    o.rtol = rtol;
+    o.atol = atol;
     sim = new achd::Simulator(*r->model, o);
     if (sim->f_ext.empty()) sim->f_ext.assign(r->model->num_links(), achd::Vector6::Zero());
   });
@@ -56,6 +58,12 @@ ACHD_EXPORT int achd_sim_run(achd::Simulator* sim, int steps, double dt) {
 // Steps completed since construction or reset(), as a double (exact below 2^53).
 ACHD_EXPORT double achd_sim_steps_taken(const achd::Simulator* sim) {
   return static_cast<double>(sim->steps_taken());
+}
+
+// The integrator's substeps accepted and rejected since construction or reset(), as doubles.
+ACHD_EXPORT double achd_sim_substeps(const achd::Simulator* sim) { return static_cast<double>(sim->substeps()); }
+ACHD_EXPORT double achd_sim_rejected_substeps(const achd::Simulator* sim) {
+  return static_cast<double>(sim->rejected_substeps());
 }
 
 ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const double* qd) {

@@ -57,6 +57,7 @@ static_assert(static_cast<int>(DirectionMode::Free) == 0 && static_cast<int>(Dir
               "kDirectionModeNames follows DirectionMode");
 // Every Integrator, in enum order (names: integrator_name()).
 inline constexpr Integrator kIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler,
-                                              Integrator::RK4};
+                                              Integrator::RK4, Integrator::DormandPrince,
+                                              Integrator::ImplicitEuler};
 
 }  // namespace achd

@@ -21,7 +21,13 @@
 
 namespace achd {
 
-enum class Integrator { ExplicitEuler, SemiImplicitEuler, RK4 };
+// ExplicitEuler, SemiImplicitEuler, RK4: one fixed step of dt per step(dt).
+// DormandPrince: the adaptive Dormand-Prince 5(4) pair (dormand_prince.cpp); step(dt)
+//   takes as many error-controlled substeps as rtol/atol need to reach t + dt.
+// ImplicitEuler: semi-implicit Euler that is implicit in joint damping and friction
+//   (implicit_euler.cpp): stable for any dt on stiff passive terms, first order.
+// New values go at the end: the enum value is the index of the name (names.hpp).
+enum class Integrator { ExplicitEuler, SemiImplicitEuler, RK4, DormandPrince, ImplicitEuler };
 enum class DirectionMode { Free, Hold, Accelerate };
 enum class LimitPolicy { Ignore, Report, Clamp };
 
@@ -51,29 +57,36 @@ struct HeldDirections {
   int count() const;
 };
 
-// Baumgarte frequency used when SimulatorOptions::stabilisation_frequency is 0:
-// w_n = kBaumgarteStepFraction / dt (100 rad/s at dt = 1 ms), so w_n dt stays far
-// inside the stability region of every integrator (explicit Euler: w_n dt < 2 at
-// zeta = 1) and a held error decays by e^-0.1 per step.
-constexpr double kBaumgarteStepFraction = 0.1;
+// The physics of a scene does not depend on the step: friction's smoothing velocity
+// (Options::friction_velocity, 0.05 by default) and the Baumgarte stabilisation of held
+// directions are model parameters with fixed defaults. The default frequency, 100 rad/s
+// at zeta = 1 (a held error decays as (1 + w t) e^-w t: to 1e-6 of itself within 0.2 s),
+// keeps w dt inside the real-axis stability limit of every fixed-step integrator up to
+// dt = 10 ms (explicit Euler: w dt < 2 at zeta = 1; RK4 2.785) and is the value the
+// simulator used at its 1 ms default step when the frequency was derived from dt.
+constexpr double kDefaultStabilisationFrequency = 100;
 
-// Friction is F tanh(qd / v_f): near qd = 0 it acts as a damper of F / v_f, stiff for
-// a light distal joint (KUKA LWR joint 7 at v_f = 0.05: 8300 1/s). The simulator raises
-// v_f, per step, so that friction adds at most kFrictionRateLimit / dt to any joint's
-// linearised decay rate (b_i + F_i / v_f) / I_i, I_i being the joint's own body inertia
-// about its axis (+ rotor): v_f >= F_i dt / (kFrictionRateLimit I_i). Damping's share
-// b_i dt / I_i is the caller's choice of dt; the sum must stay inside the real-axis
-// stability limit of the integrator (explicit and semi-implicit Euler 2, RK4 2.785).
-constexpr double kFrictionRateLimit = 1.0;
+// The adaptive integrator's control (dormand_prince.cpp): a substep of h is accepted when
+// the RMS over q, qd and the held angles of err_i / (atol + rtol max(|x_i|, |x_i'|)) is
+// at most 1; the next h is h min(5, max(0.2, 0.9 err^-1/5)) (not grown after a rejection).
+// A step fails when h falls below kMinSubstepFraction dt or after kMaxRejections
+// rejections in a row.
+constexpr double kDefaultRtol = 1e-9;
+constexpr double kDefaultAtol = 1e-11;
+constexpr double kMinSubstepFraction = 1e-10;
+constexpr int kMaxRejections = 40;
 
 struct SimulatorOptions {
-  Integrator integrator = Integrator::RK4;
+  Integrator integrator = Integrator::DormandPrince;
   std::uint32_t effects = kAllEffects;       // achd::Effect bits
   Vector3 gravity = Vector3(0, 0, -9.81);
   LimitPolicy limits = LimitPolicy::Report;
   // Baumgarte stabilisation of held directions: beta = -2 zeta w e_dot - w^2 e.
-  double stabilisation_frequency = 0;        // w in rad/s; 0 = chosen from dt
+  double stabilisation_frequency = kDefaultStabilisationFrequency;  // w, rad/s, > 0
   double stabilisation_damping = 1.0;        // zeta
+  // Tolerances of Integrator::DormandPrince (relative, absolute in rad, rad/s, m, m/s).
+  double rtol = kDefaultRtol;
+  double atol = kDefaultAtol;
   Options solver;                            // policy, tolerances (effects are above)
 };
 
@@ -105,6 +118,10 @@ class Simulator {
   void run(std::int64_t steps, double dt);
   // Steps completed since construction or reset().
   std::int64_t steps_taken() const { return steps_taken_; }
+  // Integrator substeps accepted and rejected since construction or reset(): a fixed-step
+  // integrator takes one substep per step and rejects none.
+  std::int64_t substeps() const { return substeps_; }
+  std::int64_t rejected_substeps() const { return rejected_substeps_; }
 
   // The queries below (residuals to energy) compute from q and qd into scratch storage
   // of the calling thread and write nothing in the simulator: two threads may call them
@@ -124,9 +141,6 @@ class Simulator {
   double energy() const;  // kinetic_energy() + potential_energy(), from one sweep
   // The solve at the start of the last completed step (nu, joint torques, ...).
   const Data& data() const { return data_[current_]; }
-  // The friction smoothing velocity a step of dt uses: max(options().solver.friction_velocity,
-  // the stability floor above).
-  double friction_velocity(double dt) const;
   const Model& model() const { return model_; }
   const SimulatorOptions& options() const { return options_; }
   SimulatorOptions& options() { return options_; }
@@ -144,6 +158,8 @@ class Simulator {
   void step_explicit_euler(double dt, double w_n, Data& first);
   void step_semi_implicit_euler(double dt, double w_n, Data& first);
   void step_rk4(double dt, double w_n, Data& first);
+  void step_dormand_prince(double dt, double w_n, Data& first);
+  void step_implicit_euler(double dt, double w_n, Data& first);
   void apply_limits();
   // LimitPolicy::Clamp (joint_limits.cpp): before a step, the joints that the solve pulls
   // off their stops are freed (one solve when a joint rests on a stop); after it, the
@@ -173,13 +189,23 @@ class Simulator {
   std::vector<int> limit_hits_;
   std::vector<double> mass_;   // per body, from the spatial inertia
   std::vector<Vector3> com_;   // per body, body frame
-  std::vector<double> axial_inertia_;  // S^T I S of each body alone
   // Workspace of step() (sized once): body poses and velocities, integrator stages.
   std::vector<Transform> X0_;
   std::vector<Vector3> r_;
   std::vector<Vector6> v_;
-  Eigen::VectorXd q0_, qd0_, q_stage_, qd_stage_, k_q_[4], k_qd_[4];
-  std::array<double, kNumDirections> angle0_{}, angle_stage_{}, k_angle_[4]{};
+  // Stage derivatives k_s of (q, qd, held angles): RK4 uses 4, Dormand-Prince 7.
+  static constexpr int kMaxStages = 7;
+  Eigen::VectorXd q0_, qd0_, q_stage_, qd_stage_, k_q_[kMaxStages], k_qd_[kMaxStages];
+  Eigen::VectorXd q_next_, qd_next_;  // Dormand-Prince: the 5th-order solution of a substep
+  std::array<double, kNumDirections> angle_next_{};
+  std::array<double, kNumDirections> angle0_{}, angle_stage_{}, k_angle_[kMaxStages]{};
+  // Dormand-Prince: the substep size proposed for the next substep (0: none yet).
+  double substep_ = 0;
+  std::int64_t substeps_ = 0, rejected_substeps_ = 0;
+  // Implicit Euler: a copy of model_ whose rotor inertias carry dt times each joint's
+  // passive-torque derivative, and whether evaluate() solves with it.
+  Model implicit_model_;
+  bool implicit_solve_ = false;
   // LimitPolicy::Clamp: the stop each joint rests on (limit_stop()), the joints that
   // reached a limit in this step, and the impact solve's case and result (sized once).
   std::vector<signed char> limit_stop_, limit_reached_;
