@@ -91,11 +91,16 @@ export class Simulation {
     for (const name of DIRECTIONS) this.applyDirection(name);
   }
 
+  // Whether the module's simulator reports direction events: not before issue 14's merge
+  // (then delete this, the guard below and EventsNotice.setAvailable).
+  get reportsEvents() {
+    return typeof this.sim.events === 'function';
+  }
+
   // Every direction event of this simulator (since it was built or reset), t on the page's
-  // clock; [] while the module's simulator has no events() (before issue 14's merge; then
-  // drop the typeof guard).
+  // clock; [] while the module's simulator has no events().
   events() {
-    if (typeof this.sim.events !== 'function') return [];
+    if (!this.reportsEvents) return [];
     return this.sim.events().map((e) => ({ ...e, t: this.tOffset + e.t }));
   }
 
