@@ -117,7 +117,11 @@ const controls = new Controls({
   playPause: () => setPlaying(!page.playing),
   step: () => {
     setPlaying(false);
-    if (page.sim) stepSimulation(1);
+    try {
+      if (page.sim) stepSimulation(1);
+    } catch {
+      // A failed step is on the page already (stepSimulation shows it).
+    }
   },
   reset: () => resetSimulation(),
   integrator: (v) => changeSetting(() => (page.settings.integrator = v), true),

@@ -76,6 +76,13 @@ test('the page recovers: Reset after a failure, a new robot, plot axes', async (
       assert.equal(failed.playing, false);
       assert.ok(await page.locator('#page-error').isVisible());
       assert.ok(failed.plots.energy.hi > 1e20, `the run to the failure is on the energy plot: ${JSON.stringify(failed.plots.energy)}`);
+      // The Step button from the last good state fails the same step again: shown on the
+      // page, nothing thrown into the console.
+      await page.locator('#btn-step').click();
+      const again = await state(page);
+      assert.equal(again.t, failed.t);
+      assert.equal(again.error, failed.error);
+      assert.deepEqual(consoleErrors, []);
       await page.waitForTimeout(300);
       assert.equal((await state(page)).t, failed.t, 'time advanced after the failure');
 
