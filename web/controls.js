@@ -11,8 +11,8 @@ const INTEGRATOR_LABELS = {
   rk4: 'RK4',
   semi_implicit_euler: 'semi-implicit Euler',
   explicit_euler: 'explicit Euler',
-  dormand_prince: 'Dormand-Prince 5(4), adaptive',
-  implicit_euler: 'implicit Euler (damping, friction)',
+  dormand_prince: 'Dormand-Prince (adaptive)',
+  implicit_euler: 'implicit Euler',
 };
 const POLICY_LABELS = {
   variable_damping: 'variable damping',

@@ -122,8 +122,9 @@ test('the demo page in Chromium', async (t) => {
         return (steps * 0.001) / ((performance.now() - start) / 1000);
       });
       const s = await state(page);
+      const integrator = await page.locator('#integrator').inputValue();
       console.log(`# real-time factor: ${factor.toFixed(1)} simulated s per wall s ` +
-        `(kuka_lwr4, all effects, 6 held, RK4, dt = 1 ms); page shows ${s.stepMicros.toFixed(1)} µs per step`);
+        `(kuka_lwr4, all effects, 6 held, ${integrator}, dt = 1 ms); page shows ${s.stepMicros.toFixed(1)} µs per step`);
       assert.ok(factor >= 1, `only ${factor} simulated s per wall s`);
       for (const d of ['x', 'y', 'z', 'rx', 'ry', 'rz']) assert.ok(Math.abs(s.residuals[d]) < 1e-6, `${d}: ${s.residuals[d]}`);
     });
