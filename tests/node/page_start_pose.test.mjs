@@ -48,6 +48,18 @@ test('every robot starts inside its limits, away from a singularity', () => {
   }
 });
 
+// The listed robots start from their q0 on the page: those must be good start poses too.
+test('every q0 of robots/index.json is inside the limits and away from a singularity', () => {
+  for (const entry of robots()) {
+    const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
+    robot.limits.forEach((l, j) => assert.ok(entry.q0[j] > l.lower && entry.q0[j] < l.upper,
+      `${entry.name} ${robot.jointNames[j]}: ${entry.q0[j]} outside (${l.lower}, ${l.upper})`));
+    const s = sigmas(robot, entry.q0);
+    assert.ok(s.at(-1) >= MIN_SCORE * s[0], `${entry.name}: sigma ${s}`);
+    robot.delete();
+  }
+});
+
 test('the LWR and the UR5, whose plain pose is singular, are moved away from it', () => {
   for (const name of ['kuka_lwr4', 'ur5']) {
     const entry = robots().find((r) => r.name === name);
