@@ -1,15 +1,32 @@
-// The control panel: play/pause/step/reset, integrator and dt, the six tip-direction
-// toggles (free / hold / acceleration setpoint) and the effect switches. It reports the
-// user's changes through `on` callbacks and shows whatever settings it is given.
-import { DIRECTIONS, EFFECTS } from './settings.js';
+// The control panel: play/pause/step/reset, integrator, its relative tolerance (adaptive
+// integrators), dt and the singularity policy, the six tip-direction toggles (free /
+// hold / acceleration setpoint; a direction the simulator released is marked lost) and
+// the effect switches. It reports the user's changes through `on` callbacks and shows
+// whatever settings it is given.
+import { DIRECTIONS, EFFECTS, RELATIVE_TOLERANCES, isAdaptive } from './settings.js';
 import { DIRECTION_COLORS } from './chain_view.js';
+
+// Names the page knows how to say; any other name the module offers is shown as it is.
+const INTEGRATOR_LABELS = {
+  rk4: 'RK4',
+  semi_implicit_euler: 'semi-implicit Euler',
+  explicit_euler: 'explicit Euler',
+  dormand_prince: 'Dormand-Prince (adaptive)',
+  implicit_euler: 'implicit Euler',
+};
+const POLICY_LABELS = {
+  variable_damping: 'variable damping',
+  damped: 'damped',
+  truncate: 'truncate',
+};
 
 const DIRECTION_TITLES = {
   x: 'linear x', y: 'linear y', z: 'linear z', rx: 'angular x', ry: 'angular y', rz: 'angular z',
 };
 
 export class Controls {
-  // on: {playPause(), step(), reset(), integrator(v), dt(v), direction(name, mode), effect(key, on)}
+  // on: {playPause(), step(), reset(), integrator(v), rtol(v), dt(v), policy(v),
+  //      direction(name, mode), effect(key, on)}
   constructor(on) {
     this.playButton = document.getElementById('btn-play');
     this.playButton.addEventListener('click', () => on.playPause());
@@ -17,8 +34,12 @@ export class Controls {
     document.getElementById('btn-reset').addEventListener('click', () => on.reset());
     this.integrator = document.getElementById('integrator');
     this.integrator.addEventListener('change', () => on.integrator(this.integrator.value));
+    this.rtol = document.getElementById('rtol');
+    this.rtol.addEventListener('change', () => on.rtol(Number(this.rtol.value)));
     this.dt = document.getElementById('dt');
     this.dt.addEventListener('change', () => on.dt(Number(this.dt.value)));
+    this.policy = document.getElementById('policy');
+    this.policy.addEventListener('change', () => on.policy(this.policy.value));
 
     this.rows = {};
     const table = document.getElementById('directions');
@@ -30,7 +51,11 @@ export class Controls {
       const swatch = document.createElement('span');
       swatch.className = 'swatch';
       swatch.style.background = DIRECTION_COLORS[name];
-      label.append(swatch, name);
+      const lostTag = document.createElement('span');
+      lostTag.className = 'lost-tag';
+      lostTag.textContent = 'lost';
+      lostTag.hidden = true;
+      label.append(swatch, name, lostTag);
 
       const modes = document.createElement('div');
       modes.className = 'modes';
@@ -57,7 +82,7 @@ export class Controls {
         if (input.value !== '' && Number.isFinite(v)) on.direction(name, v);
       });
       tr.insertCell().append(input);
-      this.rows[name] = { buttons, input };
+      this.rows[name] = { row: tr, label, lostTag, buttons, input };
     }
 
     this.effectBoxes = {};
@@ -74,10 +99,28 @@ export class Controls {
     }
   }
 
+  // Fills the integrator and policy lists with what the module offers (web/module_offer.js);
+  // a control the module does not offer stays hidden.
+  offer(offer) {
+    this.integrator.replaceChildren(...offer.integrators.map((n) => new Option(INTEGRATOR_LABELS[n] ?? n, n)));
+    this.policy.replaceChildren(...offer.policies.map((n) => new Option(POLICY_LABELS[n] ?? n, n)));
+    this.policy.closest('label').hidden = !offer.policies.length;
+    this.rtolOffered = offer.defaults.rtol !== null;
+    this.rtol.replaceChildren(...RELATIVE_TOLERANCES.map((v) => new Option(v.toExponential(0), String(v))));
+  }
+
   show(settings, playing) {
     this.playButton.textContent = playing ? 'Pause' : 'Play';
     this.integrator.value = settings.integrator;
     this.dt.value = String(settings.dt);
+    if (settings.policy !== null) this.policy.value = settings.policy;
+    this.rtol.closest('label').hidden = !this.rtolOffered || !isAdaptive(settings.integrator);
+    if (settings.rtol !== null) {
+      // A tolerance from a hash that the list lacks gets an entry of its own.
+      const value = String(settings.rtol);
+      if (![...this.rtol.options].some((o) => o.value === value)) this.rtol.add(new Option(settings.rtol.toExponential(1), value));
+      this.rtol.value = value;
+    }
     for (const name of DIRECTIONS) {
       const mode = settings.directions[name];
       const row = this.rows[name];
@@ -87,5 +130,17 @@ export class Controls {
       if (key === 'accel' && Number(row.input.value) !== mode) row.input.value = String(mode);
     }
     for (const e of EFFECTS) this.effectBoxes[e.key].checked = settings.effects[e.key];
+  }
+
+  // lost: the directions the simulator has released (a 'released' event not yet followed
+  // by 'resumed'); their rows are marked until the robot leaves the singular region.
+  showLost(lost) {
+    for (const name of DIRECTIONS) {
+      const { row, label, lostTag } = this.rows[name];
+      const isLost = lost.has(name);
+      row.classList.toggle('lost', isLost);
+      lostTag.hidden = !isLost;
+      label.title = DIRECTION_TITLES[name] + (isLost ? ': lost (released by the simulator at a singular pose)' : '');
+    }
   }
 }

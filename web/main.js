@@ -1,11 +1,19 @@
 // The page's first module: assigns window.achdDemo before anything waits, then loads the
 // wasm module, the robot index and the robot from the URL hash (or the default), and
 // simulates in real time: each animation frame steps as many dt as wall time elapsed.
+//
+// Recovery: a failed step pauses the page and shows the error (the state stays at the
+// last good step); Reset clears the error, the events and the plots, restores the start
+// pose with the toggles kept, and plays again if the page was playing when the step
+// failed. Loading a robot (the list, an own URDF) frees every direction, clears the
+// events and the plots, and plays.
 import { ChainView } from './chain_view.js';
 import { Controls } from './controls.js';
+import { EventsNotice } from './events_notice.js';
+import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
-import { checkDirection, defaultSettings, formatHash, parseHash } from './settings.js';
+import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, parseHash } from './settings.js';
 import { Simulation } from './simulation.js';
 import { UrdfUpload } from './urdf_upload.js';
 import './accuracy_panel.js';
@@ -20,6 +28,7 @@ const CUSTOM = 'custom';
 
 const page = {
   achd: null,
+  offer: null,
   index: null,
   sim: null,
   links: null,
@@ -32,6 +41,8 @@ const page = {
   rate: { wall: 0, sim: 0, shown: null },
   pushedLink: null,
   writtenHash: '',
+  // The last failed step: {message, wasPlaying}, until Reset or a new robot.
+  failure: null,
 };
 
 let markReady;
@@ -52,7 +63,14 @@ window.achdDemo = {
   ready,
   state() {
     if (!page.sim) throw new Error('achdDemo.state: no robot loaded yet (await achdDemo.ready)');
-    return page.sim.snapshot();
+    return {
+      ...page.sim.snapshot(),
+      playing: page.playing,
+      error: page.failure?.message ?? null,
+      events: notice.recent.map((e) => ({ ...e })),
+      lost: [...notice.lost],
+      plots: readouts.plotRanges(),
+    };
   },
   setDirection(name, mode) {
     checkDirection(name, mode);
@@ -87,6 +105,7 @@ function showError(message) {
 }
 
 const view = new ChainView(document.getElementById('view'));
+const notice = new EventsNotice(document.getElementById('sim-events-list'), document.getElementById('sim-events-none'));
 const readouts = new Readouts(document.getElementById('numbers'), document.getElementById('plots'));
 const push = new PushDrag(view, {
   canPush: (link) => Boolean(page.sim) && link > 0 && page.settings.effects.externalWrenches,
@@ -98,15 +117,17 @@ const controls = new Controls({
   playPause: () => setPlaying(!page.playing),
   step: () => {
     setPlaying(false);
-    if (page.sim) stepSimulation(1);
+    try {
+      if (page.sim) stepSimulation(1);
+    } catch {
+      // A failed step is on the page already (stepSimulation shows it).
+    }
   },
-  reset: () => {
-    if (!page.sim) return;
-    page.sim.reset();
-    page.owed = 0;
-  },
+  reset: () => resetSimulation(),
   integrator: (v) => changeSetting(() => (page.settings.integrator = v), true),
+  rtol: (v) => changeSetting(() => (page.settings.rtol = v), true),
   dt: (v) => changeSetting(() => (page.settings.dt = v), false),
+  policy: (v) => changeSetting(() => (page.settings.policy = v), true),
   direction: (name, mode) => setDirection(name, mode),
   effect: (key, on) => changeSetting(() => (page.settings.effects[key] = on), true),
 });
@@ -134,8 +155,32 @@ function setPlaying(on) {
 function setDirection(name, mode) {
   page.settings.directions[name] = mode;
   if (page.sim) page.sim.applyDirection(name);
+  notice.forget(name);
+  controls.showLost(notice.lost);
   controls.show(page.settings, page.playing);
   writeHash();
+}
+
+// Back to the start pose, toggles kept (a held direction holds where the tip is then);
+// after a failure, also out of it: the error goes, and the page plays again if it was
+// playing when the step failed.
+function resetSimulation() {
+  if (!page.sim) return;
+  push.release();
+  page.pushedLink = null;
+  page.sim.reset();
+  const resume = page.failure?.wasPlaying ?? page.playing;
+  clearRun();
+  setPlaying(resume);
+}
+
+// Forgets what the previous run showed: the failure, the events and the plots.
+function clearRun() {
+  page.failure = null;
+  errorBox.hidden = true;
+  notice.clear();
+  controls.showLost(notice.lost);
+  readouts.clear();
 }
 
 // Effects and the integrator are fixed in a simulator: changing them rebuilds it from
@@ -157,8 +202,10 @@ function writeHash() {
 }
 
 // Replaces the robot; on failure the previous one keeps running and the Error (with
-// what urdfdom printed) propagates to the caller, which shows it.
-function loadRobot(source) {
+// what urdfdom printed) propagates to the caller, which shows it. The new robot starts
+// with every direction free, unless keepDirections (a robot named by the URL hash, whose
+// directions come with it).
+function loadRobot(source, { keepDirections = false } = {}) {
   moduleLog.length = 0;
   let sim;
   try {
@@ -174,6 +221,15 @@ function loadRobot(source) {
   page.sim?.delete();
   page.sim = sim;
   page.settings.robot = source.name;
+  if (!keepDirections) {
+    for (const name of DIRECTIONS) {
+      page.settings.directions[name] = 'free';
+      sim.applyDirection(name);
+    }
+  }
+  clearRun();
+  notice.setAvailable(sim.reportsEvents);
+  setPlaying(true);
   page.links = sim.links();
   page.owed = 0;
   // Real time starts one step ago, so that the next frame already steps.
@@ -196,12 +252,12 @@ async function fetchText(path) {
   return response.text();
 }
 
-async function selectRobot(name) {
+async function selectRobot(name, options) {
   const entry = page.index.robots.find((r) => r.name === name);
   if (!entry) return;
   try {
     const text = await fetchText(entry.urdf);
-    loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 });
+    loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 }, options);
   } catch (err) {
     robotSelect.value = page.settings.robot;
     showError(`${entry.name}: ${err.message}`);
@@ -217,13 +273,30 @@ function stepSimulation(n) {
     page.sim.setPush(page.pushedLink, null);
     page.pushedLink = null;
   }
-  page.sim.step(n);
+  try {
+    page.sim.step(n);
+  } catch (err) {
+    // The simulator kept the last good step; the page pauses there and says why.
+    page.failure = { message: `the simulation stopped: ${err.message}`, wasPlaying: page.playing };
+    setPlaying(false);
+    showError(`${page.failure.message}\nReset starts again from the start pose.`);
+    throw err;
+  } finally {
+    showEvents();
+  }
   if (!isReady) {
     isReady = true;
     // The moment the page started stepping, for anyone timing the page's start-up.
     performance.mark('achd:stepping');
     markReady();
   }
+}
+
+function showEvents() {
+  const fresh = page.sim.newEvents();
+  if (!fresh.length) return;
+  notice.add(fresh);
+  controls.showLost(notice.lost);
 }
 
 // Frames read performance.now(), not rAF's frame start time, which can precede the
@@ -273,22 +346,25 @@ function frame() {
         : page.rate.shown === null ? '' : `running at ${page.rate.shown.toFixed(2)}× real time`;
     }
   } catch (err) {
-    setPlaying(false);
-    showError(`the simulation stopped: ${err.message}`);
+    // A failed step is already shown (stepSimulation); anything else stops the page too.
+    if (!page.failure) {
+      setPlaying(false);
+      showError(`the page stopped: ${err.message}`);
+    }
   }
 }
 
 // A shared link edited by hand (or the back button) applies without a reload.
 window.addEventListener('hashchange', () => {
   if (!page.index || location.hash === page.writtenHash) return;
-  const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default));
+  const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default, page.offer), page.offer);
   const robot = settings.robot;
   settings.robot = page.settings.robot;
   Object.assign(page.settings, settings);
   page.sim?.rebuild();
   controls.show(page.settings, page.playing);
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
-  if (robot !== page.settings.robot) selectRobot(robot);
+  if (robot !== page.settings.robot) selectRobot(robot, { keepDirections: true });
   else writeHash();
 });
 
@@ -306,23 +382,28 @@ async function loadModule() {
 // The index and the first robot's URDF load while the wasm module compiles.
 async function readIndexAndRobot() {
   const index = JSON.parse(await fetchText('robots/index.json'));
-  const { settings, problems } = parseHash(location.hash, defaultSettings(index.default));
-  if (!index.robots.some((r) => r.name === settings.robot)) {
-    problems.push(`robot "${settings.robot}" is not in robots/index.json (an own URDF cannot be shared by link)`);
-    settings.robot = index.default;
+  const problems = [];
+  let robot = hashRobot(location.hash, index.default);
+  if (!index.robots.some((r) => r.name === robot)) {
+    problems.push(`robot "${robot}" is not in robots/index.json (an own URDF cannot be shared by link)`);
+    robot = index.default;
   }
-  const entry = index.robots.find((r) => r.name === settings.robot);
-  return { index, settings, problems, entry, text: await fetchText(entry.urdf) };
+  const entry = index.robots.find((r) => r.name === robot);
+  return { index, problems, entry, text: await fetchText(entry.urdf) };
 }
 
 async function start() {
-  const [achd, { index, settings, problems, entry, text }] = await Promise.all([loadModule(), readIndexAndRobot()]);
+  const [achd, { index, problems, entry, text }] = await Promise.all([loadModule(), readIndexAndRobot()]);
   page.achd = achd;
+  page.offer = moduleOffer(achd);
   page.index = index;
   for (const r of index.robots) robotSelect.add(new Option(r.title, r.name));
-  page.settings = settings;
-  controls.show(settings, page.playing);
-  loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 });
+  const parsed = parseHash(location.hash, defaultSettings(entry.name, page.offer), page.offer);
+  page.settings = { ...parsed.settings, robot: entry.name };
+  problems.push(...parsed.problems);
+  controls.offer(page.offer);
+  controls.show(page.settings, page.playing);
+  loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 }, { keepDirections: true });
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
   requestAnimationFrame(frame);
 }

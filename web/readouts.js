@@ -37,6 +37,15 @@ export class Readouts {
       { label: 'solve', color: '#2e9e4f' },
     ]);
     this.signature = '';
+    this.sampledAt = null;
+  }
+
+  // Empties every plot and the numbers (a reset, a new robot): nothing of the previous
+  // run stays on an axis.
+  clear() {
+    for (const chart of Object.values(this.charts)) chart.clear();
+    this.sampledAt = null;
+    this.last = null;
   }
 
   // Series follow the robot and the constrained directions; a change restarts them.
@@ -55,9 +64,13 @@ export class Readouts {
     this.charts.torques.setSeries(joints.map((j, i) => ({ label: i === joints.length - 1 && more ? `${j} (+${more} not plotted)` : j, color: JOINT_COLORS[i] })));
   }
 
-  // One sample per animation frame.
+  // One sample per animation frame in which the simulation moved: while it is paused (or
+  // stopped by a failure) the plots keep the run up to that moment instead of filling
+  // with copies of its last state.
   sample(sim) {
     this.configure(sim);
+    if (this.last?.sim === sim && this.sampledAt === sim.t) return;
+    this.sampledAt = sim.t;
     const residuals = sim.sim.residuals();
     const nu = sim.sim.nu();
     const torques = sim.sim.joint_torques();
@@ -73,6 +86,12 @@ export class Readouts {
 
   drawCharts() {
     for (const chart of Object.values(this.charts)) chart.draw();
+  }
+
+  // Per plot, the span of the samples it shows and their number ({lo, hi, samples}; lo
+  // and hi in log10 for the residuals), or null when it shows none.
+  plotRanges() {
+    return Object.fromEntries(Object.entries(this.charts).map(([name, chart]) => [name, chart.drawn && { ...chart.drawn }]));
   }
 
   showNumbers() {

@@ -1,8 +1,11 @@
-// What the user chose on the page (robot, directions, effects, integrator, dt), its
-// defaults, and its round trip through the URL hash so that a view can be shared, e.g.
+// What the user chose on the page (robot, directions, effects, integrator, dt, and where
+// the module offers them, the singularity policy and the adaptive integrator's relative
+// tolerance), its defaults, and its round trip through the URL hash so that a view can be
+// shared, e.g.
 // #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping&dirs=z:hold,rx:0.5
 // Values are the scene files' words (achd.constants); the simulator's option keys are
-// the same words in camelCase.
+// the same words in camelCase. Which integrators and policies exist, and the defaults,
+// are the module's (`offer`, web/module_offer.js): this file keeps no list of its own.
 
 export const DIRECTIONS = ['x', 'y', 'z', 'rx', 'ry', 'rz'];
 
@@ -15,7 +18,9 @@ export const EFFECTS = [
   { key: 'externalWrenches', hash: 'external_wrenches', label: 'external push' },
 ];
 
-export const INTEGRATORS = ['rk4', 'semi_implicit_euler', 'explicit_euler'];
+// The integrators that take a relative tolerance (rtol): the error-controlled ones.
+export const ADAPTIVE_INTEGRATORS = ['dormand_prince'];
+export const GRAVITY = [0, 0, -9.81];
 
 // Hash words of the previous release, still read (links already shared), never written.
 const OLD_HASH_WORDS = {
@@ -24,15 +29,34 @@ const OLD_HASH_WORDS = {
 };
 const current = (kind, word) => (Object.hasOwn(OLD_HASH_WORDS[kind], word) ? OLD_HASH_WORDS[kind][word] : word);
 export const TIME_STEPS = [0.00025, 0.0005, 0.001, 0.002, 0.005, 0.01];
+export const RELATIVE_TOLERANCES = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 
-export function defaultSettings(robot) {
+// offer: {integrators, policies, defaults: {integrator, policy, rtol}} (web/module_offer.js).
+// policy and rtol are null when the module's simulator does not take them.
+export function defaultSettings(robot, offer) {
   return {
     robot,
-    integrator: 'rk4',
+    integrator: offer.defaults.integrator,
     dt: 0.001,
+    policy: offer.defaults.policy,
+    rtol: offer.defaults.rtol,
     effects: Object.fromEntries(EFFECTS.map((e) => [e.key, true])),
     directions: Object.fromEntries(DIRECTIONS.map((d) => [d, 'free'])),
   };
+}
+
+export const isAdaptive = (integrator) => ADAPTIVE_INTEGRATORS.includes(integrator);
+
+// The options of robot.createSimulator for these settings, as the page creates it.
+export function simulatorOptions(s) {
+  const options = {
+    integrator: s.integrator,
+    effects: { ...s.effects, rotorInertia: true, constraints: true },
+    gravity: GRAVITY,
+  };
+  if (s.policy !== null) options.policy = s.policy;
+  if (s.rtol !== null && isAdaptive(s.integrator)) options.rtol = s.rtol;
+  return options;
 }
 
 // A direction mode is 'free', 'hold' or a finite number (classical acceleration setpoint).
@@ -49,7 +73,9 @@ export function formatHash(s) {
   const params = new URLSearchParams();
   params.set('robot', s.robot);
   params.set('integrator', s.integrator);
+  if (s.rtol !== null && isAdaptive(s.integrator)) params.set('rtol', String(s.rtol));
   params.set('dt', String(s.dt));
+  if (s.policy !== null) params.set('policy', s.policy);
   params.set('effects', EFFECTS.filter((e) => s.effects[e.key]).map((e) => e.hash).join(','));
   const dirs = DIRECTIONS.filter((d) => s.directions[d] !== 'free').map((d) => `${d}:${s.directions[d]}`);
   if (dirs.length) params.set('dirs', dirs.join(','));
@@ -57,22 +83,40 @@ export function formatHash(s) {
   return '#' + params.toString().replaceAll('%3A', ':').replaceAll('%2C', ',');
 }
 
-// Reads a hash over the defaults; returns the settings and the complaints about parts
-// it ignored, so the page can say why a shared link did not fully apply.
-export function parseHash(hash, defaults) {
+// The robot a hash names, or the fallback: the page fetches its URDF while the module
+// that the rest of the hash is checked against still loads.
+export function hashRobot(hash, fallback) {
+  return new URLSearchParams(hash.replace(/^#/, '')).get('robot') ?? fallback;
+}
+
+// Reads a hash over the defaults, taking only names the module offers; returns the
+// settings and the complaints about parts it ignored, so the page can say why a shared
+// link did not fully apply.
+export function parseHash(hash, defaults, offer) {
   const s = structuredClone(defaults);
   const problems = [];
   const params = new URLSearchParams(hash.replace(/^#/, ''));
   if (params.has('robot')) s.robot = params.get('robot');
   if (params.has('integrator')) {
     const v = current('integrator', params.get('integrator'));
-    if (INTEGRATORS.includes(v)) s.integrator = v;
+    if (offer.integrators.includes(v)) s.integrator = v;
     else problems.push(`unknown integrator "${v}"`);
+  }
+  if (params.has('rtol')) {
+    const v = Number(params.get('rtol'));
+    if (s.rtol === null) problems.push('rtol: this build of the module has no adaptive integrator');
+    else if (Number.isFinite(v) && v > 0 && v < 1) s.rtol = v;
+    else problems.push(`rtol must be a number in (0, 1), got "${params.get('rtol')}"`);
   }
   if (params.has('dt')) {
     const v = Number(params.get('dt'));
     if (TIME_STEPS.includes(v)) s.dt = v;
     else problems.push(`dt must be one of ${TIME_STEPS.join(', ')} s`);
+  }
+  if (params.has('policy')) {
+    const v = params.get('policy');
+    if (offer.policies.includes(v)) s.policy = v;
+    else problems.push(`unknown policy "${v}"`);
   }
   if (params.has('effects')) {
     const on = new Set(params.get('effects').split(',').filter(Boolean).map((w) => current('effects', w)));

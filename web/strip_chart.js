@@ -1,5 +1,7 @@
-// A small scrolling line chart on a canvas: the last `capacity` samples of a few series,
-// y range fitted to what is visible, optionally on a log10 scale (residuals span decades).
+// A small scrolling line chart on a canvas: the last SAMPLES samples of a few series,
+// y range fitted to the samples visible now (so it follows the data: a past spike leaves
+// the axis once it scrolls out), optionally on a log10 scale (residuals span decades).
+// A value that is not finite is a gap, never an axis bound.
 
 const SAMPLES = 300;
 const LOG_FLOOR = 1e-18;
@@ -24,6 +26,7 @@ export class StripChart {
   setSeries(series) {
     this.series = series.map((s) => ({ ...s, data: new Float64Array(SAMPLES).fill(NaN) }));
     this.head = 0;
+    this.drawn = null;
     this.legend.replaceChildren(
       ...series.map((s) => {
         const span = document.createElement('span');
@@ -35,11 +38,18 @@ export class StripChart {
     if (!series.length) this.legend.textContent = 'nothing to show';
   }
 
-  // One value per series (NaN leaves a gap).
+  // Keeps the series, forgets their history.
+  clear() {
+    for (const s of this.series) s.data.fill(NaN);
+    this.head = 0;
+    this.drawn = null;
+  }
+
+  // One value per series (NaN or an infinity leaves a gap).
   push(values) {
     for (let i = 0; i < this.series.length; i++) {
       const v = values[i];
-      this.series[i].data[this.head] = this.log ? Math.log10(Math.max(Math.abs(v), LOG_FLOOR)) : v;
+      this.series[i].data[this.head] = !Number.isFinite(v) ? NaN : this.log ? Math.log10(Math.max(Math.abs(v), LOG_FLOOR)) : v;
     }
     this.head = (this.head + 1) % SAMPLES;
   }
@@ -56,24 +66,34 @@ export class StripChart {
     }
     const ctx = canvas.getContext('2d');
     ctx.clearRect(0, 0, width, height);
+    this.drawn = null;
 
     let lo = Infinity;
     let hi = -Infinity;
+    let samples = 0;
     for (const s of this.series) {
+      let n = 0;
       for (const v of s.data) {
         if (v < lo) lo = v;
         if (v > hi) hi = v;
+        if (!Number.isNaN(v)) n++;
       }
+      samples = Math.max(samples, n);
     }
     if (!(lo <= hi)) return;
-    // A flat line still needs a visible band around it.
-    const pad = hi > lo ? 0.08 * (hi - lo) : Math.max(Math.abs(hi) * 0.1, this.log ? 0.5 : 1e-9);
+    // What the axis spans and how many samples it shows (achdDemo.state().plots).
+    this.drawn = { lo, hi, samples };
+    // A flat line still needs a visible band around it. Halves keep hi - lo finite for
+    // values near the largest doubles.
+    const half = hi / 2 - lo / 2;
+    const pad = half > 0 ? 0.16 * half : Math.max(Math.abs(hi) * 0.1, this.log ? 0.5 : 1e-9);
     lo -= pad;
     hi += pad;
+    const range = hi / 2 - lo / 2;
 
     const left = 58 * ratio;
     const plotW = width - left - 4 * ratio;
-    const y = (v) => 4 * ratio + (1 - (v - lo) / (hi - lo)) * (height - 8 * ratio);
+    const y = (v) => 4 * ratio + (1 - (v / 2 - lo / 2) / range) * (height - 8 * ratio);
     ctx.font = `${10 * ratio}px ui-monospace, monospace`;
     ctx.fillStyle = '#5d6677';
     ctx.textBaseline = 'middle';

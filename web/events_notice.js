@@ -1,0 +1,64 @@
+// The page's notice of simulation events: each time the simulator limited, released or
+// resumed a held or accelerated direction near a configuration where the robot cannot
+// follow it (sim.events(): {t, step, link, direction, kind, sigma_min}), newest last, and
+// which directions are lost now (released and not yet resumed), for the toggles.
+
+// The list (and `recent`, for achdDemo.state()) keeps the newest events; a chattering
+// boundary must not grow the page.
+const MAX_SHOWN = 100;
+
+const WHAT = {
+  limited: 'limited (damped: the robot can only partly follow it here)',
+  released: 'released (lost: the robot cannot follow it here)',
+  resumed: 'resumed (followed again)',
+};
+
+export class EventsNotice {
+  constructor(list, none) {
+    this.list = list;
+    this.none = none;
+    this.clear();
+  }
+
+  clear() {
+    this.recent = [];
+    this.lost = new Set();
+    this.list.replaceChildren();
+    this.none.hidden = false;
+  }
+
+  // events: new events in time order, t on the page's clock.
+  add(events) {
+    for (const e of events) {
+      if (e.kind === 'released') this.lost.add(e.direction);
+      else if (e.kind === 'resumed') this.lost.delete(e.direction);
+      const item = document.createElement('li');
+      item.className = e.kind;
+      item.dataset.direction = e.direction;
+      item.dataset.kind = e.kind;
+      const sigma = Number.isFinite(e.sigma_min) ? `, σmin ${e.sigma_min.toExponential(1)}` : '';
+      item.textContent = `t = ${e.t.toFixed(3)} s (step ${e.step}): ${e.direction} ${WHAT[e.kind] ?? e.kind}` +
+        ` at ${e.link}${sigma}`;
+      this.list.append(item);
+      this.recent.push(e);
+    }
+    while (this.list.children.length > MAX_SHOWN) this.list.firstElementChild.remove();
+    if (this.recent.length > MAX_SHOWN) this.recent.splice(0, this.recent.length - MAX_SHOWN);
+    if (events.length) {
+      this.none.hidden = true;
+      this.list.scrollTop = this.list.scrollHeight;
+    }
+  }
+
+  // Until issue 14's merge a module's simulator may have no events(): the notice then
+  // says so instead of "no event". (Delete with the guard in Simulation.events().)
+  setAvailable(available) {
+    this.none.textContent = available ? 'No event since the start or the last Reset.'
+      : 'This build of the module reports no direction events (sim.events()).';
+  }
+
+  // A direction the user sets anew is no longer the simulator's lost one.
+  forget(direction) {
+    this.lost.delete(direction);
+  }
+}
