@@ -61,6 +61,13 @@ Integrator integrator(const json& v) {
   throw Error("integrator: expected 'explicit_euler', 'semi_implicit_euler' or 'rk4', got '" + s + "'");
 }
 
+SingularityPolicy policy(const json& v) {
+  const std::string s = text(v, "policy");
+  for (int k = 0; k < 3; ++k)
+    if (s == kSingularityPolicyNames[k]) return static_cast<SingularityPolicy>(k);
+  throw Error("policy: expected 'truncate', 'damped' or 'variable_damping', got '" + s + "'");
+}
+
 LimitPolicy limits(const json& v) {
   const std::string s = text(v, "limits");
   for (int k = 0; k < 3; ++k)
@@ -151,7 +158,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions",
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
-                       "rotor_inertia", "mimic"});
+                       "rotor_inertia", "mimic", "policy", "singular_region", "max_damping"});
     if (j.contains("description")) text(j["description"], "description");
     s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
     s.root = text(required(j, "root"), "root");
@@ -187,6 +194,10 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
       s.options.stabilisation_frequency = number(j["stabilisation_frequency"], "stabilisation_frequency");
       if (s.options.stabilisation_frequency < 0) throw Error("stabilisation_frequency must be >= 0");
     }
+    if (j.contains("policy")) s.options.solver.policy = policy(j["policy"]);
+    if (j.contains("singular_region"))
+      s.options.solver.singular_region = positive(j["singular_region"], "singular_region");
+    if (j.contains("max_damping")) s.options.solver.max_damping = positive(j["max_damping"], "max_damping");
     if (j.contains("stabilisation_damping"))
       s.options.stabilisation_damping = positive(j["stabilisation_damping"], "stabilisation_damping");
   } catch (const Error& e) {

@@ -212,7 +212,8 @@ TEST_F(CliSimulateRuns, TrajectoryIsWrittenWhole) {
 TEST_F(CliSimulateRuns, FailedRunNamesStepTimeAndDirectionsAndLeavesNoFile) {
   const std::string scene = write("ur5_y.json", R"({"urdf": ")" ACHD_SOURCE_DIR R"(/robots/ur5.urdf",
     "root": "base_link", "tip": "wrist_3_link", "q0": [0.2, -1.0, 1.2, -1.5, -1.4, 0.3],
-    "directions": {"z": "hold", "rx": "hold", "y": 0.5}, "integrator": "rk4", "dt": 0.001, "duration": 5})");
+    "directions": {"z": "hold", "rx": "hold", "y": 0.5}, "integrator": "rk4", "policy": "truncate",
+    "dt": 0.001, "duration": 5})");
   const std::string csv = write("traj.csv", "the previous trajectory\n");
   const CliRun r = run({"simulate", scene, "--out", csv});
   expect_error(r, {scene + ": step 2184 from t = 2.183 s", "held: z, rx", "accelerated: y = 0.5 m/s^2",

@@ -10,6 +10,7 @@
 // the velocity-product term that separates spatial from classical acceleration.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@
 #include "achd/options.hpp"
 
 namespace achd {
+
+class DirectionEventLog;
 
 enum class Integrator { ExplicitEuler, SemiImplicitEuler, RK4 };
 enum class DirectionMode { Free, Hold, Accelerate };
@@ -66,6 +69,26 @@ constexpr double kBaumgarteStepFraction = 0.1;
 // stability limit of the integrator (explicit and semi-implicit Euler 2, RK4 2.785).
 constexpr double kFrictionRateLimit = 1.0;
 
+// What became of an active direction, from the solve at the start of a step under the
+// variable_damping policy (direction_events.cpp has the thresholds):
+//   Limited:  damping acts on it (its eigen-direction of K is in the singular region);
+//   Released: damping dominates (sigma <= lambda): the direction is no longer followed;
+//   Resumed:  it has left the singular region. A released Hold direction resumes from
+//             where the tip is: its target (linear: e . p_tip) or held angle (0) is reset
+//             then, so the stabilisation does not pull the tip back to the old target.
+enum class DirectionEventKind { Limited, Released, Resumed };
+struct DirectionEvent {
+  double t;            // time of the state whose solve showed the change (s)
+  std::int64_t step;   // steps completed at that state (t = t0 + step dt)
+  int link;            // index in Model::links of the link whose direction it is (the tip)
+  int direction;       // 0..5: x y z rx ry rz
+  DirectionEventKind kind;
+  double sigma_min;    // the coupling matrix's smallest singular value in that solve
+};
+// The events a Simulator keeps (reserved at construction; later ones are counted in
+// Simulator::events_not_kept()).
+constexpr std::size_t kMaxDirectionEvents = 10000;
+
 struct SimulatorOptions {
   Integrator integrator = Integrator::RK4;
   std::uint32_t effects = kAllEffects;       // achd::Effect bits
@@ -74,12 +97,23 @@ struct SimulatorOptions {
   // Baumgarte stabilisation of held directions: beta = -2 zeta w e_dot - w^2 e.
   double stabilisation_frequency = 0;        // w in rad/s; 0 = chosen from dt
   double stabilisation_damping = 1.0;        // zeta
-  Options solver;                            // policy, tolerances (effects are above)
+  Options solver = robust_solver();          // policy, tolerances (effects are above)
+
+  // The simulator's solver options: Options' defaults with the variable_damping policy, so
+  // that a direction the robot cannot follow is damped, not solved to a force without bound.
+  static Options robust_solver() {
+    Options o;
+    o.policy = SingularityPolicy::VariableDamping;
+    return o;
+  }
 };
 
 class Simulator {
  public:
   Simulator(const Model& model, const SimulatorOptions& options = {});
+  ~Simulator();
+  Simulator(Simulator&&) noexcept;
+  Simulator& operator=(Simulator&&) noexcept;
 
   // State, root to tip. Setting them directly is allowed; reset() also restarts t,
   // releases every direction and clears the drift and limit records.
@@ -132,6 +166,10 @@ class Simulator {
   SimulatorOptions& options() { return options_; }
   // Joints that were at or past a limit in the last step (LimitPolicy Report/Clamp).
   const std::vector<int>& limit_hits() const { return limit_hits_; }
+  // Direction events since construction or reset(), oldest first (at most
+  // kMaxDirectionEvents), and how many more happened but were not kept.
+  const std::vector<DirectionEvent>& events() const;
+  std::int64_t events_not_kept() const;
 
  private:
   // Joint accelerations (into `out`) and held-angle rates at one state.
@@ -143,6 +181,7 @@ class Simulator {
   void step_semi_implicit_euler(double dt, double w_n, Data& first);
   void step_rk4(double dt, double w_n, Data& first);
   void apply_limits();
+  void resume_from_tip(unsigned directions);  // bit k: direction k
   // The error of a failed step, `cause` put in context (step, t, directions).
   Error step_failure(double dt, const std::string& cause) const;
 
@@ -162,6 +201,7 @@ class Simulator {
   HeldDirections held_, stage_held_;
   std::array<double, kNumDirections> max_residual_{};
   std::vector<int> limit_hits_;
+  std::unique_ptr<DirectionEventLog> events_;  // direction_events.hpp
   std::vector<double> mass_;   // per body, from the spatial inertia
   std::vector<Vector3> com_;   // per body, body frame
   std::vector<double> axial_inertia_;  // S^T I S of each body alone
