@@ -8,14 +8,13 @@
 namespace achd {
 namespace {
 
-// A direction is limited once the damping of its eigen-direction reaches half its
-// singular value (lambda >= sigma / 2: sigma below 0.89 of the singular region), released
-// when the damping dominates (lambda >= sigma), and resumed only when no eigen-direction
-// attributed to it is damped at all (sigma back above the region). The gap between
-// entering at 0.89 and leaving at 1 of the region is the hysteresis that keeps a robot
-// sitting on the boundary from producing an event per step.
-constexpr double kLimitedRatio = 0.5;
+// A direction is limited as soon as the damping acts on one of its eigen-directions
+// (lambda > 0: sigma below the singular region), released when the damping dominates
+// (lambda >= sigma: sigma below 0.71 of the region), and resumed once none of its
+// eigen-directions has been damped for kResumeAfter seconds: the hysteresis that keeps a
+// robot sitting on the edge of the region from producing an event per step.
 constexpr double kReleasedRatio = 1.0;
+constexpr double kResumeAfter = 0.05;
 
 }  // namespace
 
@@ -60,10 +59,11 @@ unsigned DirectionEventLog::update(const HeldDirections& held, const Data& first
       state_[k] = State::Ok;
       continue;
     }
+    if (damped[k]) last_damped_[k] = t;
     State next = state_[k];
     if (ratio[k] >= kReleasedRatio) next = State::Released;
-    else if (state_[k] == State::Ok && ratio[k] >= kLimitedRatio) next = State::Limited;
-    else if (state_[k] != State::Ok && !damped[k]) next = State::Ok;
+    else if (state_[k] == State::Ok && damped[k]) next = State::Limited;
+    else if (state_[k] != State::Ok && !damped[k] && t - last_damped_[k] >= kResumeAfter) next = State::Ok;
     if (next == state_[k]) continue;
     if (!any) e.sigma_min = sigma_min(first);  // computed once, only when something changed
     any = true;

@@ -38,6 +38,7 @@ class DirectionEventLog {
   void record(const DirectionEvent& e);
 
   std::array<State, kNumDirections> state_{};
+  std::array<double, kNumDirections> last_damped_{};  // t of the last solve that damped it
   std::vector<DirectionEvent> events_;
   std::size_t capacity_;
   std::int64_t not_kept_ = 0;
