@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "achd/error.hpp"
@@ -272,6 +273,69 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
 // dependence on the other kind is seen, not its own loss.) The solve is K' nu' = S rhs,
 // nu = S nu': without damping, nu = K^-1 rhs as before. The damped directions are
 // reported in the scaled columns.
+// The variable-damping gain of a singular value sigma (region eps, damping lambda_max).
+double variable_damping_gain(double sigma, double eps, double lambda_max) {
+  if (sigma > eps) return 1.0 / sigma;
+  const double ratio = sigma / eps, lambda2 = lambda_max * lambda_max * (1 - ratio * ratio);
+  const double den = sigma * sigma + lambda2;
+  return den > 0 ? sigma / den : 0.0;
+}
+
+// After solve_by_eigen_decomposition has damped some eigen-directions of K (data.K,
+// data.workspace.rhs: the scaled K' and rhs): the columns L those directions belong to
+// (each one's largest component) give way, and the others H are solved exactly, so that
+// a lost direction does not take the accuracy of the held ones with it. With K in
+// blocks, nu_H = K_HH^-1 (rhs_H - K_HL nu_L), and nu_L solves the Schur complement
+// S = K_LL - K_LH K_HH^-1 K_HL (the coupling of L once H is enforced) with the same
+// variable damping. False (nothing written) when every column gives way, when two
+// damped directions fall on one column, or when K_HH is not clearly positive definite:
+// then the plain variable damping stands.
+bool solve_held_first(Data& data, const Options& options) {
+  const int nc = static_cast<int>(data.K.rows()), ndamped = static_cast<int>(data.damped.cols());
+  bool gives_way[kMaxConstraints] = {false};
+  int nl = 0;
+  for (int j = 0; j < ndamped; ++j) {
+    Eigen::Index column = 0;
+    data.damped.col(j).cwiseAbs().maxCoeff(&column);
+    nl += !gives_way[column];
+    gives_way[column] = true;
+  }
+  const int nh = nc - nl;
+  if (nl != ndamped || nh == 0) return false;
+  int h[kMaxConstraints], l[kMaxConstraints];
+  for (int i = 0, a = 0, b = 0; i < nc; ++i) (gives_way[i] ? l[b++] : h[a++]) = i;
+  const CouplingMatrix& K = data.K;
+  const ConstraintVector& rhs = data.workspace.rhs;
+  CouplingMatrix Khh(nh, nh), Khl(nh, nl), S(nl, nl);
+  ConstraintVector rh(nh), b(nl);
+  for (int i = 0; i < nh; ++i) {
+    rh[i] = rhs[h[i]];
+    for (int j = 0; j < nh; ++j) Khh(i, j) = K(h[i], h[j]);
+    for (int j = 0; j < nl; ++j) Khl(i, j) = K(h[i], l[j]);
+  }
+  const Eigen::LLT<CouplingMatrix> llt(Khh);
+  if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0)) return false;
+  const CouplingMatrix X = llt.solve(Khl);  // K_HH^-1 K_HL
+  const ConstraintVector y = llt.solve(rh);  // K_HH^-1 rhs_H
+  for (int i = 0; i < nl; ++i) {
+    b[i] = rhs[l[i]] - Khl.col(i).dot(y);
+    for (int j = 0; j < nl; ++j) S(i, j) = K(l[i], l[j]) - Khl.col(i).dot(X.col(j));
+  }
+  S = (S + S.transpose()) / 2;  // symmetric to round-off
+  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(S);
+  const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  const double eps = options.singular_region * sigma_max, lambda_max = options.max_damping * sigma_max;
+  ConstraintVector nu_l = ConstraintVector::Zero(nl);
+  for (int k = 0; k < nl; ++k) {
+    const double w = variable_damping_gain(std::max(eig.eigenvalues()[k], 0.0), eps, lambda_max);
+    if (w != 0.0) nu_l.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(b));
+  }
+  const ConstraintVector nu_h = y - X * nu_l;
+  for (int i = 0; i < nh; ++i) data.nu[h[i]] = nu_h[i];
+  for (int i = 0; i < nl; ++i) data.nu[l[i]] = nu_l[i];
+  return true;
+}
+
 void solve_variable_damping(Data& data, const Options& options, const ConstraintMatrix& alpha) {
   const int nc = static_cast<int>(data.K.rows());
   const CouplingMatrix K = data.K;
@@ -288,7 +352,10 @@ void solve_variable_damping(Data& data, const Options& options, const Constraint
     for (int j = 0; j < nc; ++j) data.K(i, j) = K(i, j) * scale[i] * scale[j];
     data.workspace.rhs[i] = rhs[i] * scale[i];
   }
-  if (!solve_by_ldlt(data, options)) solve_by_eigen_decomposition(data, options);
+  if (!solve_by_ldlt(data, options)) {
+    solve_by_eigen_decomposition(data, options);
+    if (data.damped.cols()) solve_held_first(data, options);
+  }
   for (int i = 0; i < nc; ++i) data.nu[i] *= scale[i];
   data.K = K;  // sigma_min() and the caller read K as it was
   data.workspace.rhs = rhs;

@@ -5,12 +5,16 @@
 // loss as an event naming the pushed direction. Before variable_damping (truncate): the
 // UR5 with z, rx held and y pushed failed at t = 2.183 s ("the acceleration to enforce
 // along direction y is not finite"), the LWR at 1.976 s.
-// Not yet met, and so printed rather than asserted: the issue's bound of 1e-6 on the
-// other held directions from 0.5 s to the first event and after the last (measured
-// 4e-9..1.9e-6 before, 2e-5..1e-3 after: the runs end at the boundary with the pushed
-// direction damped, and its eigen-direction has components on the held columns), and on
-// the mixed chain the loss is attributed to the held z (x, y pushed) or not reached in
-// 60 s (z pushed).
+// The other held directions stay within 1e-6 (m or rad) at every step from 0.5 s (the
+// stabilisation transient) to the first event and after the last (measured 4e-9..1.1e-7
+// before, 2e-12..2e-10 after; before the held-first solve of coupling_solve.cpp, 1e-5..1e-3
+// after). Not yet met, and so printed rather than asserted: the UR5 pushed along x reaches
+// 1.9e-6 just before its first event (no damping yet: the exact solve near the
+// singularity). The mixed chain has no workspace boundary under the default limits
+// ('report': its prismatic joint j2 extends without bound, to 1000 m in 60 s): pushed
+// along z it loses nothing; pushed along x or y it passes a configuration where the held
+// z is lost (released, attributed to z: the held-first solve then keeps the pushed
+// direction exact) and z does not come back.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,16 +34,19 @@ struct BoundaryCase {
   std::string robot;
   int pushed;
   std::vector<int> held;
-  bool names_pushed;  // the events name the pushed direction (not yet on the mixed chain)
+  bool names_pushed;  // the events name the pushed direction, and the held bound is asserted
+  bool held_before;   // the held bound before the first event is asserted (not yet on the UR5's x)
 };
 
 // z and rx held where possible; a pushed z holds y instead of z (the singular region
 // is measured against the other held positions, so a position column needs a partner:
 // coupling_solve.cpp). The mixed chain (4 DoF) holds one position.
 std::vector<BoundaryCase> cases() {
-  return {{"kuka_lwr4", 0, {2, 3}, true}, {"kuka_lwr4", 1, {2, 3}, true}, {"kuka_lwr4", 2, {1, 3}, true},
-          {"ur5", 0, {2, 3}, true},       {"ur5", 1, {2, 3}, true},       {"ur5", 2, {1, 3}, true},
-          {"mixed_chain", 0, {2}, false}, {"mixed_chain", 1, {2}, false}, {"mixed_chain", 2, {0}, false}};
+  return {{"kuka_lwr4", 0, {2, 3}, true, true},   {"kuka_lwr4", 1, {2, 3}, true, true},
+          {"kuka_lwr4", 2, {1, 3}, true, true},   {"ur5", 0, {2, 3}, true, false},
+          {"ur5", 1, {2, 3}, true, true},         {"ur5", 2, {1, 3}, true, true},
+          {"mixed_chain", 0, {2}, false, false},  {"mixed_chain", 1, {2}, false, false},
+          {"mixed_chain", 2, {0}, false, false}};
 }
 
 std::string name_of(const BoundaryCase& c) {
@@ -85,15 +92,18 @@ TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirectio
     EXPECT_TRUE(pushed_reported) << name_of(bc) << ": " << events.size() << " events, none names the pushed direction";
   if (events.empty()) return;
 
-  // The held residuals (not yet within the issue's 1e-6, see the top): after step s the
-  // state is the one after s + 1 steps; an event at `step` describes the state after
-  // `step` steps.
+  // The held residuals: after step s the state is the one after s + 1 steps; an event at
+  // `step` describes the state after `step` steps.
   const std::int64_t from = steps_for_duration(0.5, dt), first = events.front().step, last = events.back().step;
   double before = 0, after = 0;
   for (std::int64_t s = from; s < steps; ++s) {
     const std::int64_t state = s + 1;
     if (state < first) before = std::max(before, worst[s]);
     if (state > last) after = std::max(after, worst[s]);
+  }
+  if (bc.names_pushed) {
+    if (bc.held_before) EXPECT_LE(before, 1e-6) << name_of(bc) << ": before the first event, t = " << events.front().t;
+    EXPECT_LE(after, 1e-6) << name_of(bc) << ": after the last event, t = " << events.back().t;
   }
   std::cout << name_of(bc) << ": " << events.size() << " events, first t = " << events.front().t
             << ", last t = " << events.back().t << "; worst other held residual before " << before << ", after "
