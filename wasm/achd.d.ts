@@ -178,9 +178,9 @@ export interface SimulatorOptions {
   /** singular coupling matrix: default 'variable_damping' (a plain solve's default is 'truncate'). */
   policy?: SingularityPolicy;
   /** variable_damping: the singular region eps, relative to sigma_max of the coupling matrix
-   * scaled by kind (dimensionless); finite and > 0, default 1e-2. */
+   * scaled by kind (dimensionless); finite and > 0, default 5e-3. */
   singularRegion?: number;
-  /** variable_damping: the damping at sigma = 0, relative the same way; finite and > 0, default 1e-2. */
+  /** variable_damping: the damping at sigma = 0, relative the same way; finite and > 0, default 2e-2. */
   maxDamping?: number;
 }
 

@@ -288,8 +288,8 @@ double variable_damping_gain(double sigma, double eps, double lambda_max) {
 // blocks, nu_H = K_HH^-1 (rhs_H - K_HL nu_L), and nu_L solves the Schur complement
 // S = K_LL - K_LH K_HH^-1 K_HL (the coupling of L once H is enforced) with the same
 // variable damping. False (nothing written) when every column gives way, when two
-// damped directions fall on one column, or when K_HH is not clearly positive definite:
-// then the plain variable damping stands.
+// damped directions fall on one column, or when K_HH has an eigenvalue in the singular
+// region itself: then the plain variable damping stands.
 bool solve_held_first(Data& data, const Options& options) {
   const int nc = static_cast<int>(data.K.rows()), ndamped = static_cast<int>(data.damped.cols());
   bool gives_way[kMaxConstraints] = {false};
@@ -313,8 +313,13 @@ bool solve_held_first(Data& data, const Options& options) {
     for (int j = 0; j < nh; ++j) Khh(i, j) = K(h[i], h[j]);
     for (int j = 0; j < nl; ++j) Khl(i, j) = K(h[i], l[j]);
   }
+  const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  const double eps = options.singular_region * sigma_max, lambda_max = options.max_damping * sigma_max;
+  // H must itself be clear of the singular region, or its exact solve is unbounded.
+  const double khh_min = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(Khh, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  if (!(khh_min > eps)) return false;
   const Eigen::LLT<CouplingMatrix> llt(Khh);
-  if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0)) return false;
+  if (llt.info() != Eigen::Success) return false;
   const CouplingMatrix X = llt.solve(Khl);  // K_HH^-1 K_HL
   const ConstraintVector y = llt.solve(rh);  // K_HH^-1 rhs_H
   for (int i = 0; i < nl; ++i) {
@@ -323,8 +328,6 @@ bool solve_held_first(Data& data, const Options& options) {
   }
   S = (S + S.transpose()) / 2;  // symmetric to round-off
   const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(S);
-  const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-  const double eps = options.singular_region * sigma_max, lambda_max = options.max_damping * sigma_max;
   ConstraintVector nu_l = ConstraintVector::Zero(nl);
   for (int k = 0; k < nl; ++k) {
     const double w = variable_damping_gain(std::max(eig.eigenvalues()[k], 0.0), eps, lambda_max);

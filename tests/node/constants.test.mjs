@@ -39,7 +39,7 @@ test('achd.constants is the C++ declarations (effect bits, enum names, defaults)
   assert.equal(c.max_constraints, 6);
   assert.deepEqual(c.integrators, ['explicit_euler', 'semi_implicit_euler', 'rk4']);
   assert.deepEqual(c.options, { convention: 'physical', effects: c.default_effects, policy: 'truncate',
-    tolerance: 1e-12, absolute_tolerance: false, damping: 1e-6, singular_region: 1e-2, max_damping: 1e-2,
+    tolerance: 1e-12, absolute_tolerance: false, damping: 1e-6, singular_region: 5e-3, max_damping: 2e-2,
     friction_velocity: 0.05 });
   assert.equal(c.simulator_options.solver.policy, 'variable_damping');  // a plain solve keeps 'truncate'
   assert.deepEqual(c.direction_event_kinds, ['limited', 'released', 'resumed']);
