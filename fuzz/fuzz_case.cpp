@@ -51,5 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   solve_and_check(model, data, c, options);
   options.policy = achd::SingularityPolicy::Damped;
   solve_and_check(model, data, c, options);
+  options.policy = achd::SingularityPolicy::VariableDamping;
+  solve_and_check(model, data, c, options);
   return 0;
 }

@@ -8,7 +8,8 @@
 
 namespace achd::cli {
 
-const std::set<std::string> kSolverValued = {"--convention", "--policy", "--tolerance", "--damping"};
+const std::set<std::string> kSolverValued = {"--convention", "--policy",          "--tolerance",
+                                             "--damping",    "--singular-region", "--max-damping"};
 const std::set<std::string> kSolverFlags = {"--absolute-tolerance"};
 
 Args::Args(int argc, char** argv, const std::set<std::string>& valued,
@@ -90,6 +91,10 @@ Options solver_options(const Args& args) {
   o.damping = args.number("--damping", o.damping);
   if (o.tolerance < 0) throw Error("option --tolerance must be >= 0");
   if (o.damping < 0) throw Error("option --damping must be >= 0");
+  o.singular_region = args.number("--singular-region", o.singular_region);
+  o.max_damping = args.number("--max-damping", o.max_damping);
+  if (!(o.singular_region > 0)) throw Error("option --singular-region must be > 0");
+  if (!(o.max_damping > 0)) throw Error("option --max-damping must be > 0");
   o.absolute_tolerance = args.has("--absolute-tolerance");
   return o;
 }

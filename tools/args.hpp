@@ -30,7 +30,8 @@ class Args {
   std::map<std::string, std::string> values_;
 };
 
-// --convention, --policy, --tolerance, --absolute-tolerance, --damping into Options.
+// --convention, --policy, --tolerance, --absolute-tolerance, --damping, --singular-region,
+// --max-damping into Options.
 Options solver_options(const Args& args);
 // The option names solver_options() reads.
 extern const std::set<std::string> kSolverValued;

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "achd/names.hpp"
 #include "args.hpp"
 #include "commands.hpp"
 #include "output_file.hpp"
@@ -140,6 +141,13 @@ int cmd_simulate(int argc, char** argv) {
   for (int i = 0; i < scene.model.num_joints(); ++i)
     if (hits[i]) limit[scene.model.bodies[i].joint_name] = hits[i];
   out["limit_hits"] = limit;  // joint -> number of steps that ended at or past a limit
+  nlohmann::ordered_json events = nlohmann::ordered_json::array();
+  for (const DirectionEvent& e : sim.events())
+    events.push_back({{"t", e.t}, {"step", e.step}, {"link", scene.model.links[e.link].name},
+                      {"direction", direction_name(e.direction)},
+                      {"kind", kDirectionEventKindNames[static_cast<int>(e.kind)]}, {"sigma_min", e.sigma_min}});
+  out["events"] = events;  // direction events (Simulator::events())
+  if (sim.events_not_kept()) out["events_not_kept"] = sim.events_not_kept();
   if (csv) csv->commit();
   if (!csv || csv->path() != "-") std::cout << out.dump(2) << "\n";
   return 0;

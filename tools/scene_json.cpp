@@ -56,6 +56,13 @@ std::uint32_t effects(const json& j) {
 
 Integrator integrator(const json& v) { return integrator_from_name(text(v, "integrator"), "integrator"); }
 
+SingularityPolicy policy(const json& v) {
+  const std::string s = text(v, "policy");
+  for (int k = 0; k < 3; ++k)
+    if (s == kSingularityPolicyNames[k]) return static_cast<SingularityPolicy>(k);
+  throw Error("policy: expected 'truncate', 'damped' or 'variable_damping', got '" + s + "'");
+}
+
 LimitPolicy limits(const json& v) {
   const std::string s = text(v, "limits");
   for (int k = 0; k < 3; ++k)
@@ -154,7 +161,8 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions",
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
-                       "rotor_inertia", "mimic", "rtol", "atol"});
+                       "rotor_inertia", "mimic", "rtol", "atol", "policy",
+                       "singular_region", "max_damping"});
     if (j.contains("description")) text(j["description"], "description");
     s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
     s.root = text(required(j, "root"), "root");
@@ -188,6 +196,10 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
       s.options.solver.friction_velocity = positive(j["friction_velocity"], "friction_velocity");
     if (j.contains("stabilisation_frequency"))
       s.options.stabilisation_frequency = positive(j["stabilisation_frequency"], "stabilisation_frequency");
+    if (j.contains("policy")) s.options.solver.policy = policy(j["policy"]);
+    if (j.contains("singular_region"))
+      s.options.solver.singular_region = positive(j["singular_region"], "singular_region");
+    if (j.contains("max_damping")) s.options.solver.max_damping = positive(j["max_damping"], "max_damping");
     if (j.contains("stabilisation_damping"))
       s.options.stabilisation_damping = positive(j["stabilisation_damping"], "stabilisation_damping");
     if (j.contains("rtol")) s.options.rtol = positive(j["rtol"], "rtol");

@@ -15,7 +15,9 @@ export type Vector6 = [number, number, number, number, number, number];
 export type EffectName = 'gravity' | 'velocity_products' | 'external_wrenches' | 'damping' | 'friction'
   | 'rotor_inertia' | 'constraints';
 export type Convention = 'physical' | 'kdl';
-export type SingularityPolicy = 'truncate' | 'damped';
+export type SingularityPolicy = 'truncate' | 'damped' | 'variable_damping';
+/** What became of a held or accelerated direction (Simulator.events()). */
+export type DirectionEventKind = 'limited' | 'released' | 'resumed';
 export type Integrator = 'explicit_euler' | 'semi_implicit_euler' | 'rk4' | 'dormand_prince' | 'implicit_euler';
 /** @deprecated the previous release's spellings of 'explicit_euler' and 'semi_implicit_euler';
  * still accepted (with a console.warn) until the next release. */
@@ -38,7 +40,8 @@ export interface Effects {
 export interface SolveOptions {
   /** 'physical' (default): real accelerations; 'kdl': KDL's beta and link accelerations. */
   convention?: Convention;
-  /** singular coupling matrix: 'truncate' (pseudo-inverse, default) or 'damped'. */
+  /** singular coupling matrix: 'truncate' (pseudo-inverse, default), 'damped', or 'variable_damping'
+   * (damping only in the singular region; the simulator's default). */
   policy?: SingularityPolicy;
   /** truncate: singular values below tolerance * sigma_max (or absolute) are dropped. Default 1e-12. */
   tolerance?: number;
@@ -175,6 +178,29 @@ export interface SimulatorOptions {
   /** 'dormand_prince' tolerances, > 0: relative (default 1e-9) and absolute (1e-11). */
   rtol?: number;
   atol?: number;
+  /** singular coupling matrix: default 'variable_damping' (a plain solve's default is 'truncate'). */
+  policy?: SingularityPolicy;
+  /** variable_damping: the singular region eps, relative to sigma_max of the coupling matrix
+   * scaled by kind (dimensionless); finite and > 0, default 5e-3. */
+  singularRegion?: number;
+  /** variable_damping: the damping at sigma = 0, relative the same way; finite and > 0, default 2e-2. */
+  maxDamping?: number;
+}
+
+/** A change of a direction's state under variable_damping (the CLI summary's "events"). */
+export interface DirectionEvent {
+  /** s, of the state whose solve showed the change. */
+  t: number;
+  /** steps completed at that state. */
+  step: number;
+  /** the link whose direction it is (the tip). */
+  link: string;
+  direction: Direction;
+  /** limited: damped; released: damping dominates, not followed; resumed: out of the singular
+   * region (a released held direction then holds where the tip is). */
+  kind: DirectionEventKind;
+  /** the coupling matrix's smallest singular value in that solve. */
+  sigma_min: number;
 }
 
 /** Options of Simulator.step. */
@@ -229,6 +255,10 @@ export interface Simulator {
   energy(): { kinetic: number; potential: number; total: number };
   /** names of the joints at or past a limit after the last step (a copy; [] under limits 'ignore'). */
   limitHits(): string[];
+  /** direction events since createSimulator() or reset(), oldest first (copies). */
+  events(): DirectionEvent[];
+  /** events that happened beyond the simulator's capacity (10000) and were not kept. */
+  readonly eventsNotKept: number;
   /** of the solve at the start of the last completed step (copies). */
   nu(): number[];
   joint_torques(): number[];
@@ -294,6 +324,8 @@ export interface CppOptions {
   readonly tolerance: number;
   readonly absolute_tolerance: boolean;
   readonly damping: number;
+  readonly singular_region: number;
+  readonly max_damping: number;
   readonly friction_velocity: number;
 }
 export interface CppSimulatorOptions {
@@ -324,6 +356,7 @@ export interface Constants {
   readonly limit_policies: readonly LimitPolicy[];
   readonly conventions: readonly Convention[];
   readonly singularity_policies: readonly SingularityPolicy[];
+  readonly direction_event_kinds: readonly DirectionEventKind[];
   /** achd::Case's default gravity: the solver's and rnea's. */
   readonly case_gravity: readonly [number, number, number];
   /** achd::Options{}: the solver's defaults. */

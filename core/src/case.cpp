@@ -114,6 +114,11 @@ void validate(const Options& o) {
   // Truncate policy with tolerance 0.
   if (!std::isfinite(o.damping) || o.damping <= 0)
     throw Error("options: damping must be finite and > 0, got " + std::to_string(o.damping));
+  if (!std::isfinite(o.singular_region) || o.singular_region <= 0)
+    throw Error("options: singular_region must be finite and > 0, got " + std::to_string(o.singular_region));
+  // max_damping 0 would divide 0 by 0 for a zero singular value, as damping above.
+  if (!std::isfinite(o.max_damping) || o.max_damping <= 0)
+    throw Error("options: max_damping must be finite and > 0, got " + std::to_string(o.max_damping));
   if (!std::isfinite(o.friction_velocity) || o.friction_velocity <= 0)
     throw Error("options: friction_velocity must be finite and > 0, got " +
                 std::to_string(o.friction_velocity));

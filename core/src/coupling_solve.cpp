@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "achd/error.hpp"
@@ -154,10 +155,12 @@ double lower_bound_of_lambda_min(const Ldlt<n>& f) {
   return (1 - 16 * n * std::numeric_limits<double>::epsilon()) / f.inverse_trace();
 }
 
-// The truncate policy's fast path for an n x n K: when the lower bound of its smallest
-// eigenvalue is above both the truncation threshold and kFactorMinRatio * trace(K) >=
-// kFactorMinRatio * sigma_max, nothing is truncated, and nu = K^-1 rhs is accurate by
-// LDL^T. False (nothing written) when K needs the eigen-decomposition.
+// The fast path of truncate and variable_damping for an n x n K: when the lower bound of
+// its smallest eigenvalue is above the truncation threshold, above
+// kFactorMinRatio * trace(K) >= kFactorMinRatio * sigma_max and (variable_damping) above
+// the singular region singular_region * trace(K) >= singular_region * sigma_max, nothing
+// is truncated or damped, and nu = K^-1 rhs is accurate by LDL^T. False (nothing written)
+// when K needs the eigen-decomposition.
 template <int n>
 bool solve_by_ldlt_n(Data& data, const Options& options) {
   const CouplingMatrix& K = data.K;
@@ -165,11 +168,16 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
   if (!f.factor(K)) return false;
   const double below = lower_bound_of_lambda_min(f);
   const double trace = K.trace();
-  const double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
+  double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
+  if (options.policy == SingularityPolicy::VariableDamping)
+    threshold = std::max(threshold, options.singular_region * trace);
   if (!(below > threshold && below >= kFactorMinRatio * trace)) return false;
   f.solve(data.workspace.rhs, data.nu);
   data.rank = n;
   data.dropped.resize(n, 0);
+  data.damped.resize(n, 0);
+  data.damped_sigma.resize(0);
+  data.damped_lambda.resize(0);
   return true;
 }
 
@@ -203,24 +211,40 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
   const double threshold =
       options.absolute_tolerance ? options.tolerance : options.tolerance * sigma_max;
   const double lambda = options.damping * sigma_max;
+  // variable_damping: the singular region sigma < eps and the damping at sigma = 0
+  const double eps = options.singular_region * sigma_max;
+  const double lambda_max = options.max_damping * sigma_max;
 
   // nu = sum_k v_k w_k (v_k^T rhs) with w_k = 1/sigma_k above the threshold and 0 below
-  // it (truncate), or w_k = sigma_k / (sigma_k^2 + lambda^2) (damped least squares).
+  // it (truncate), w_k = sigma_k / (sigma_k^2 + lambda^2) (damped least squares), or the
+  // same with lambda_k^2 = lambda_max^2 (1 - (sigma_k / eps)^2) in the singular region and
+  // w_k = 1/sigma_k outside it (variable damping).
   data.nu.setZero(nc);
   data.rank = 0;
-  bool dropped[kMaxConstraints];
-  int ndropped = 0;
+  bool dropped[kMaxConstraints], damped[kMaxConstraints];
+  double damping[kMaxConstraints];
+  int ndropped = 0, ndamped = 0;
   for (int k = 0; k < nc; ++k) {
     const bool kept = sigma[k] > threshold;
     data.rank += kept;
     double w;
+    damped[k] = false;
     if (options.policy == SingularityPolicy::Truncate) {
       w = kept ? 1.0 / sigma[k] : 0.0;
       dropped[k] = !kept;
-    } else {
+    } else if (options.policy == SingularityPolicy::Damped) {
       // (0, not 0 / 0, when K = 0: then lambda = 0 too, and no direction has a force)
       w = sigma[k] > 0 ? sigma[k] / (sigma[k] * sigma[k] + lambda * lambda) : 0.0;
       dropped[k] = sigma[k] <= lambda;  // damping dominates this direction
+    } else {
+      damped[k] = !(sigma[k] > eps);
+      const double ratio = sigma[k] / eps;
+      damping[k] = damped[k] ? lambda_max * std::sqrt(1 - ratio * ratio) : 0.0;
+      const double den = sigma[k] * sigma[k] + damping[k] * damping[k];
+      if (!damped[k]) w = 1.0 / sigma[k];   // the exact solve, as truncate's
+      else w = den > 0 ? sigma[k] / den : 0.0;  // den = 0 only for K = 0: nothing to solve
+      dropped[k] = damped[k] && sigma[k] <= damping[k];
+      ndamped += damped[k];
     }
     if (w != 0.0) data.nu.noalias() += V.col(k) * (w * V.col(k).dot(data.workspace.rhs));
     ndropped += dropped[k];
@@ -228,11 +252,123 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
   data.dropped.resize(nc, ndropped);
   for (int k = 0, j = 0; k < nc; ++k)
     if (dropped[k]) data.dropped.col(j++) = V.col(k);
+  data.damped.resize(nc, ndamped);
+  data.damped_sigma.resize(ndamped);
+  data.damped_lambda.resize(ndamped);
+  for (int k = 0, j = 0; k < nc; ++k) {
+    if (!damped[k]) continue;
+    data.damped.col(j) = V.col(k);
+    data.damped_sigma[j] = sigma[k];
+    data.damped_lambda[j++] = damping[k];
+  }
+}
+
+// variable_damping measures the singular region on K with its columns scaled by kind:
+// K' = S K S, S_i = (max K_jj over the columns j of column i's kind)^-1/2, the kinds being
+// columns with a force part (positions: K_ii in 1/kg) and pure moments (angles: 1/kg m^2).
+// K's own eigenvalues mix the two (at a wrist a held angle's K_ii is 1e3 times a held
+// position's), so a region relative to its sigma_max would call a regular position
+// column singular; in K' both kinds have their largest diagonal 1, and a column whose
+// mobility falls (K_ii -> 0) or that becomes dependent on others has a small eigenvalue.
+// (A column that is the only one of its kind is measured against itself: only its
+// dependence on the other kind is seen, not its own loss.) The solve is K' nu' = S rhs,
+// nu = S nu': without damping, nu = K^-1 rhs as before. The damped directions are
+// reported in the scaled columns.
+// The variable-damping gain of a singular value sigma (region eps, damping lambda_max).
+double variable_damping_gain(double sigma, double eps, double lambda_max) {
+  if (sigma > eps) return 1.0 / sigma;
+  const double ratio = sigma / eps, lambda2 = lambda_max * lambda_max * (1 - ratio * ratio);
+  const double den = sigma * sigma + lambda2;
+  return den > 0 ? sigma / den : 0.0;
+}
+
+// After solve_by_eigen_decomposition has damped some eigen-directions of K (data.K,
+// data.workspace.rhs: the scaled K' and rhs): the columns L those directions belong to
+// (each one's largest component) give way, and the others H are solved exactly, so that
+// a lost direction does not take the accuracy of the held ones with it. With K in
+// blocks, nu_H = K_HH^-1 (rhs_H - K_HL nu_L), and nu_L solves the Schur complement
+// S = K_LL - K_LH K_HH^-1 K_HL (the coupling of L once H is enforced) with the same
+// variable damping. False (nothing written) when every column gives way, when two
+// damped directions fall on one column, or when K_HH has an eigenvalue in the singular
+// region itself: then the plain variable damping stands.
+bool solve_held_first(Data& data, const Options& options) {
+  const int nc = static_cast<int>(data.K.rows()), ndamped = static_cast<int>(data.damped.cols());
+  bool gives_way[kMaxConstraints] = {false};
+  int nl = 0;
+  for (int j = 0; j < ndamped; ++j) {
+    Eigen::Index column = 0;
+    data.damped.col(j).cwiseAbs().maxCoeff(&column);
+    nl += !gives_way[column];
+    gives_way[column] = true;
+  }
+  const int nh = nc - nl;
+  if (nl != ndamped || nh == 0) return false;
+  int h[kMaxConstraints], l[kMaxConstraints];
+  for (int i = 0, a = 0, b = 0; i < nc; ++i) (gives_way[i] ? l[b++] : h[a++]) = i;
+  const CouplingMatrix& K = data.K;
+  const ConstraintVector& rhs = data.workspace.rhs;
+  CouplingMatrix Khh(nh, nh), Khl(nh, nl), S(nl, nl);
+  ConstraintVector rh(nh), b(nl);
+  for (int i = 0; i < nh; ++i) {
+    rh[i] = rhs[h[i]];
+    for (int j = 0; j < nh; ++j) Khh(i, j) = K(h[i], h[j]);
+    for (int j = 0; j < nl; ++j) Khl(i, j) = K(h[i], l[j]);
+  }
+  const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  const double eps = options.singular_region * sigma_max, lambda_max = options.max_damping * sigma_max;
+  // H must itself be clear of the singular region, or its exact solve is unbounded.
+  const double khh_min = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(Khh, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  if (!(khh_min > eps)) return false;
+  const Eigen::LLT<CouplingMatrix> llt(Khh);
+  if (llt.info() != Eigen::Success) return false;
+  const CouplingMatrix X = llt.solve(Khl);  // K_HH^-1 K_HL
+  const ConstraintVector y = llt.solve(rh);  // K_HH^-1 rhs_H
+  for (int i = 0; i < nl; ++i) {
+    b[i] = rhs[l[i]] - Khl.col(i).dot(y);
+    for (int j = 0; j < nl; ++j) S(i, j) = K(l[i], l[j]) - Khl.col(i).dot(X.col(j));
+  }
+  S = (S + S.transpose()) / 2;  // symmetric to round-off
+  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(S);
+  ConstraintVector nu_l = ConstraintVector::Zero(nl);
+  for (int k = 0; k < nl; ++k) {
+    const double w = variable_damping_gain(std::max(eig.eigenvalues()[k], 0.0), eps, lambda_max);
+    if (w != 0.0) nu_l.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(b));
+  }
+  const ConstraintVector nu_h = y - X * nu_l;
+  for (int i = 0; i < nh; ++i) data.nu[h[i]] = nu_h[i];
+  for (int i = 0; i < nl; ++i) data.nu[l[i]] = nu_l[i];
+  return true;
+}
+
+void solve_variable_damping(Data& data, const Options& options, const ConstraintMatrix& alpha) {
+  const int nc = static_cast<int>(data.K.rows());
+  const CouplingMatrix K = data.K;
+  const ConstraintVector rhs = data.workspace.rhs;
+  double largest[2] = {0, 0};  // per kind: 0 force, 1 pure moment
+  int kind[kMaxConstraints];
+  for (int i = 0; i < nc; ++i) {
+    kind[i] = alpha.col(i).head<3>().squaredNorm() == 0;
+    largest[kind[i]] = std::max(largest[kind[i]], K(i, i));
+  }
+  ConstraintVector scale(nc);
+  for (int i = 0; i < nc; ++i) scale[i] = largest[kind[i]] > 0 ? 1 / std::sqrt(largest[kind[i]]) : 1.0;
+  for (int i = 0; i < nc; ++i) {
+    for (int j = 0; j < nc; ++j) data.K(i, j) = K(i, j) * scale[i] * scale[j];
+    data.workspace.rhs[i] = rhs[i] * scale[i];
+  }
+  if (!solve_by_ldlt(data, options)) {
+    solve_by_eigen_decomposition(data, options);
+    if (data.damped.cols()) solve_held_first(data, options);
+  }
+  for (int i = 0; i < nc; ++i) data.nu[i] *= scale[i];
+  data.K = K;  // sigma_min() and the caller read K as it was
+  data.workspace.rhs = rhs;
 }
 
 }  // namespace
 
-void solve_coupling(Data& data, const Options& options) {
+void solve_coupling(Data& data, const Options& options, const ConstraintMatrix& alpha) {
+  if (options.policy == SingularityPolicy::VariableDamping) return solve_variable_damping(data, options, alpha);
   if (options.policy == SingularityPolicy::Truncate && solve_by_ldlt(data, options)) return;
   solve_by_eigen_decomposition(data, options);
 }

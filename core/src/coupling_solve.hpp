@@ -6,8 +6,9 @@
 
 namespace achd {
 
-// Writes data.nu, data.rank and data.dropped from data.K
-// and data.workspace.rhs. No allocation: every matrix has at most kMaxConstraints rows.
-void solve_coupling(Data& data, const Options& options);
+// Writes data.nu, data.rank, data.dropped (and for variable_damping data.damped*) from
+// data.K and data.workspace.rhs; alpha (the case's columns) tells variable_damping which
+// columns have a force part. No allocation: every matrix has at most kMaxConstraints rows.
+void solve_coupling(Data& data, const Options& options, const ConstraintMatrix& alpha);
 
 }  // namespace achd

@@ -9,6 +9,9 @@ Data::Data(const Model& model) {
   constraint_wrench.setZero();
   link_accelerations.assign(model.num_links() + 1, Vector6::Zero());
   dropped.resize(0, 0);
+  damped.resize(0, 0);
+  damped_sigma.resize(0);
+  damped_lambda.resize(0);
   X0.resize(n);
   r.assign(n, Vector3::Zero());
   v.assign(n, Vector6::Zero());

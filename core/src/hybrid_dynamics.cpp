@@ -283,6 +283,10 @@ void unscale_constraint_forces(Data& d, int nc) {
     for (int k = 0; k < nc; ++k) d.dropped(k, j) *= w.alpha_scale[k];
     d.dropped.col(j).normalize();
   }
+  for (Eigen::Index j = 0; j < d.damped.cols(); ++j) {
+    for (int k = 0; k < nc; ++k) d.damped(k, j) *= w.alpha_scale[k];
+    d.damped.col(j).normalize();
+  }
 }
 
 // Step 2 for the nc = NC constraints, after the articulated-body sweep: the unit
@@ -479,11 +483,14 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
       }
       d.workspace.rhs[k] = r;
     }
-    solve_coupling(d, o);
+    solve_coupling(d, o, c.alpha);
   } else {
     d.rank = 0;
     d.K.resize(0, 0);
     d.dropped.resize(0, 0);
+    d.damped.resize(0, 0);
+    d.damped_sigma.resize(0);
+    d.damped_lambda.resize(0);
   }
   // Each step returns the finite probe of what it wrote (0, or NaN if a number is not
   // finite): checked once, at the end, and named only if it fails.

@@ -7,6 +7,7 @@
 
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
+#include "direction_events.hpp"
 #include "held_directions.hpp"
 #include "tip_kinematics.hpp"
 
@@ -110,6 +111,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
       data_{{Data(model_), Data(model_)}},
       stage_data_(model_),
       case_(Case::zeros(model_)),
+      events_(std::make_unique<DirectionEventLog>(kMaxDirectionEvents)),
       implicit_model_(model_),
       limit_data_(model_) {
   const int n = model_.num_joints();
@@ -140,6 +142,13 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   }
 }
 
+Simulator::~Simulator() = default;
+Simulator::Simulator(Simulator&&) noexcept = default;
+Simulator& Simulator::operator=(Simulator&&) noexcept = default;
+
+const std::vector<DirectionEvent>& Simulator::events() const { return events_->events(); }
+std::int64_t Simulator::events_not_kept() const { return events_->not_kept(); }
+
 void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   const int n = model_.num_joints();
   check_state(q0, n, "q0");
@@ -157,6 +166,7 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   limit_hits_.clear();
   limit_stop_.assign(n, 0);
   case_.prescribed.assign(n, false);
+  events_->clear();
 }
 
 void Simulator::set_direction(int index, DirectionMode mode, double setpoint) {
@@ -170,6 +180,7 @@ void Simulator::set_direction(int index, DirectionMode mode, double setpoint) {
   if (mode == DirectionMode::Hold && is_linear_direction(index))
     held_.target[index] = direction_axis(index).dot(tip_pose().p);
   max_residual_[index] = 0;
+  events_->forget(index);
   direction_columns(held_, case_.alpha);
 }
 
@@ -310,11 +321,26 @@ void Simulator::step(double dt) {
     throw step_failure(dt, "the new state is not finite (" + cause + ")");
   }
   current_ = 1 - current_;
+  const unsigned resumed = events_->update(held_, first, t, steps_taken_, model_.num_links() - 1);
   ++t_steps_;
   ++steps_taken_;
   t = t_origin_ + static_cast<double>(t_steps_) * dt;
   t_written_ = t;
   apply_limits();
+  if (resumed) resume_from_tip(resumed);
+}
+
+// A released Hold direction resumes where the tip is (linear: target = e . p_tip;
+// angular: held angle 0), so that the stabilisation does not yank it back to the target
+// it lost.
+void Simulator::resume_from_tip(unsigned directions) {
+  body_motion(model_, q, qd, X0_, r_, v_);
+  const Vector3 p = tip_state(model_, X0_, v_).pose.p;
+  for (int k = 0; k < kNumDirections; ++k) {
+    if (!(directions >> k & 1u) || held_.mode[k] != DirectionMode::Hold) continue;
+    if (is_linear_direction(k)) held_.target[k] = direction_axis(k).dot(p);
+    else held_.angle[k] = 0;
+  }
 }
 
 Error Simulator::step_failure(double dt, const std::string& cause) const {

@@ -237,7 +237,8 @@ TEST_F(CliSimulateRuns, TrajectoryIsWrittenWhole) {
 TEST_F(CliSimulateRuns, FailedRunNamesStepTimeAndDirectionsAndLeavesNoFile) {
   const std::string scene = write("ur5_y.json", R"({"urdf": ")" ACHD_SOURCE_DIR R"(/robots/ur5.urdf",
     "root": "base_link", "tip": "wrist_3_link", "q0": [0.2, -1.0, 1.2, -1.5, -1.4, 0.3],
-    "directions": {"z": "hold", "rx": "hold", "y": 0.5}, "integrator": "rk4", "dt": 0.001, "duration": 5})");
+    "directions": {"z": "hold", "rx": "hold", "y": 0.5}, "integrator": "rk4", "policy": "truncate",
+    "dt": 0.001, "duration": 5})");
   const std::string csv = write("traj.csv", "the previous trajectory\n");
   const CliRun r = run({"simulate", scene, "--out", csv});
   expect_error(r, {scene + ": step 2185 from t = 2.184 s", "held: z, rx", "accelerated: y = 0.5 m/s^2",
@@ -246,6 +247,34 @@ TEST_F(CliSimulateRuns, FailedRunNamesStepTimeAndDirectionsAndLeavesNoFile) {
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(read_text(csv), "the previous trajectory\n");
   EXPECT_EQ(other_files({"ur5_y.json", "traj.csv", "stdout.txt", "stderr.txt"}), std::vector<std::string>{});
+}
+
+// The same UR5 scene with the simulator's default policy (variable_damping) runs its 5 s
+// and lists the loss of y in the summary's "events"; a wrong "policy" names the field.
+// Before: the run failed at 2.183 s, and "policy" was an unknown field.
+TEST_F(CliSimulateRuns, BoundaryRunReportsDirectionEventsInTheSummary) {
+  const std::string fields = R"({"urdf": ")" ACHD_SOURCE_DIR R"(/robots/ur5.urdf",
+    "root": "base_link", "tip": "wrist_3_link", "q0": [0.2, -1.0, 1.2, -1.5, -1.4, 0.3],
+    "directions": {"z": "hold", "rx": "hold", "y": 0.5}, "dt": 0.001, "duration": 5)";
+  const CliRun r = run({"simulate", write("ur5_y.json", fields + "}")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::ordered_json summary = nlohmann::ordered_json::parse(r.out);  // keys in output order
+  EXPECT_EQ(summary["t"], 5.0);
+  ASSERT_TRUE(summary["events"].is_array());
+  bool y_released = false;
+  for (const auto& e : summary["events"]) {
+    std::vector<std::string> keys;
+    for (const auto& item : e.items()) keys.push_back(item.key());
+    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "link", "direction", "kind", "sigma_min"}));
+    EXPECT_EQ(e["link"], "wrist_3_link");
+    y_released = y_released || (e["direction"] == "y" && e["kind"] == "released");
+  }
+  EXPECT_TRUE(y_released) << summary["events"].dump();
+  EXPECT_FALSE(summary.contains("events_not_kept"));
+  expect_error(run({"simulate", write("bad.json", fields + R"(, "policy": "stiff"})")}),
+               {"bad.json: policy: expected 'truncate', 'damped' or 'variable_damping', got 'stiff'"});
+  expect_error(run({"simulate", write("bad2.json", fields + R"(, "singular_region": 0})")}),
+               {"bad2.json: singular_region must be > 0"});
 }
 
 // Before: --repeats 4294967297 ran 1 repeat (a long cast to int), exit 0.

@@ -95,14 +95,15 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
       c.alpha = achd::ConstraintMatrix::NullaryExpr(6, nc, [&] { return U(rng); });
       c.beta = achd::ConstraintVector::NullaryExpr(nc, [&] { return U(rng); });
       for (auto conv : {achd::Convention::Physical, achd::Convention::Kdl})
-        for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::Damped}) {
+        for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::Damped,
+                            achd::SingularityPolicy::VariableDamping}) {
           achd::Options o;
           o.convention = conv;
           o.policy = policy;
           o.effects = achd::kAllEffects;
           EXPECT_EQ(allocations_of_solve(m, d, c, o), 0)
               << r["name"] << " nc=" << nc << " kdl=" << (conv == achd::Convention::Kdl)
-              << " damped=" << (policy == achd::SingularityPolicy::Damped);
+              << " policy=" << static_cast<int>(policy);
           ASSERT_TRUE(d.qdd.allFinite());
           ++solves;
           // The same solve with every other joint's acceleration prescribed.
@@ -115,7 +116,7 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
         }
     }
   }
-  EXPECT_EQ(solves, static_cast<int>(index["robots"].size()) * 7 * 4);
+  EXPECT_EQ(solves, static_cast<int>(index["robots"].size()) * 7 * 6);
 }
 
 TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {

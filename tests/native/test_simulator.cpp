@@ -18,6 +18,7 @@
 #include "achd/achd.hpp"
 #include "achd/names.hpp"
 #include "achd/simulator.hpp"
+#include "hard_stretched_arm.hpp"
 #include "scene_json.hpp"
 
 namespace {
@@ -371,6 +372,63 @@ TEST(Limits, ClampStopsAtTheLimitReportLetsItPass) {
     if (policy == LimitPolicy::Clamp) EXPECT_EQ(q_max, upper);
     else EXPECT_GT(q_max, upper + 0.05);
   }
+}
+
+// The UR5 pushed into its workspace boundary (z, rx held, y at 0.5 m/s^2, the
+// simulator's default variable_damping): the step that records direction events does
+// not allocate, and the events name the pushed direction. Before: no events, and the
+// run failed at t = 2.183 s.
+TEST(Simulator, RecordingDirectionEventsDoesNotAllocate) {
+  const Model m = load_urdf_file(ACHD_SOURCE_DIR "/robots/ur5.urdf", "base_link", "wrist_3_link");
+  Simulator sim(m);
+  Eigen::VectorXd q0(6);
+  q0 << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
+  sim.reset(q0, {});
+  sim.set_direction(2, DirectionMode::Hold);
+  sim.set_direction(3, DirectionMode::Hold);
+  sim.set_direction(1, DirectionMode::Accelerate, 0.5);
+  sim.step(1e-3);
+  const long before = g_allocations;
+  sim.run(2999, 1e-3);
+  EXPECT_EQ(g_allocations - before, 0);
+  bool y = false;
+  for (const DirectionEvent& e : sim.events()) y = y || (e.direction == 1 && e.kind == DirectionEventKind::Released);
+  EXPECT_TRUE(y) << sim.events().size() << " events";
+  EXPECT_EQ(sim.events_not_kept(), 0);
+  sim.reset(q0, {});
+  EXPECT_TRUE(sim.events().empty());
+}
+
+// A released held direction resumes where the tip is: the planar arm of
+// hard_stretched_arm.hpp nearly stretched (q = 0, 0.02, 0.02) holds its radial x and its
+// rotation ry; x, almost lost, is released, the arm falls under gravity and bends, and x
+// resumes having drifted; at the resume its target is the tip's x then, so the
+// stabilisation does not pull the tip back through the drift. Before (no events): x was
+// solved exactly with a force growing as the arm straightened.
+TEST(Simulator, ReleasedHeldDirectionResumesWhereTheTipIs) {
+  Simulator sim(test::stretched_arm());
+  Eigen::VectorXd q0(3);
+  q0 << 0.0, 0.02, 0.02;
+  sim.reset(q0, {});
+  sim.set_direction(0, DirectionMode::Hold);
+  sim.set_direction(4, DirectionMode::Hold);
+  const double target = sim.directions().target[0];
+  const auto resumed_x = [&] {
+    for (const DirectionEvent& e : sim.events())
+      if (e.direction == 0 && e.kind == DirectionEventKind::Resumed) return true;
+    return false;
+  };
+  bool released = false;
+  while (!resumed_x() && sim.t < 5) {
+    sim.step(1e-3);
+    for (const DirectionEvent& e : sim.events()) released = released || (e.direction == 0 && e.kind == DirectionEventKind::Released);
+  }
+  ASSERT_TRUE(released) << sim.events().size() << " events";
+  ASSERT_TRUE(resumed_x()) << "x never resumed in 5 s";
+  const double x = sim.tip_pose().p.x();
+  EXPECT_GT(std::abs(x - target), 1e-7);         // it did drift while released (7.9e-7 m)
+  EXPECT_EQ(sim.directions().target[0], x);      // and holds from where it is
+  EXPECT_EQ(sim.residuals()[0], 0.0);
 }
 
 TEST(Simulator, StepDoesNotAllocate) {

@@ -39,7 +39,10 @@ test('achd.constants is the C++ declarations (effect bits, enum names, defaults)
   assert.equal(c.max_constraints, 6);
   assert.deepEqual(c.integrators, ['explicit_euler', 'semi_implicit_euler', 'rk4', 'dormand_prince', 'implicit_euler']);
   assert.deepEqual(c.options, { convention: 'physical', effects: c.default_effects, policy: 'truncate',
-    tolerance: 1e-12, absolute_tolerance: false, damping: 1e-6, friction_velocity: 0.05 });
+    tolerance: 1e-12, absolute_tolerance: false, damping: 1e-6, singular_region: 5e-3, max_damping: 2e-2,
+    friction_velocity: 0.05 });
+  assert.equal(c.simulator_options.solver.policy, 'variable_damping');  // a plain solve keeps 'truncate'
+  assert.deepEqual(c.direction_event_kinds, ['limited', 'released', 'resumed']);
   assert.deepEqual(c.case_gravity, [0, 0, -9.81]);
   assert.deepEqual(c.simulator_options.gravity, [0, 0, -9.81]);
   assert.ok(Object.isFrozen(c) && Object.isFrozen(c.options), 'constants are read-only');
@@ -173,6 +176,7 @@ test('achd.d.ts declares the C++ names and the fields of achd.constants', () => 
   assert.deepEqual(union('Convention'), sorted(c.conventions));
   assert.deepEqual(union('SingularityPolicy'), sorted(c.singularity_policies));
   assert.deepEqual(union('Direction'), sorted(c.directions));
+  assert.deepEqual(union('DirectionEventKind'), sorted(c.direction_event_kinds));
   assert.deepEqual(fields('Constants'), sorted(Object.keys(c)));
   assert.deepEqual(fields('CppOptions'), sorted(Object.keys(c.options)));
   assert.deepEqual(fields('CppSimulatorOptions'), sorted(Object.keys(c.simulator_options)));

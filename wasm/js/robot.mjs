@@ -157,7 +157,8 @@ export class Robot extends AchdHandle {
     const ptr = this._live();
     if (options === undefined || options === null) options = {};
     achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
-      'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping', 'rtol', 'atol']);
+      'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping', 'rtol', 'atol', 'policy',
+      'singularRegion', 'maxDamping']);
     // Defaults are achd::SimulatorOptions' (core/include/achd/simulator.hpp).
     const k = achdConstants(), d = k.simulator_options;
     let integratorName = options.integrator;
@@ -173,8 +174,11 @@ export class Robot extends AchdHandle {
     const damping = achdPositive(options.stabilisationDamping, d.stabilisation_damping, 'options.stabilisationDamping');
     const rtol = achdPositive(options.rtol, d.rtol, 'options.rtol');
     const atol = achdPositive(options.atol, d.atol, 'options.atol');
+    const policy = achdChoice(options.policy, k.singularity_policies, d.solver.policy, 'options.policy');
+    const singularRegion = achdPositive(options.singularRegion, d.solver.singular_region, 'options.singularRegion');
+    const maxDamping = achdPositive(options.maxDamping, d.solver.max_damping, 'options.maxDamping');
     const create = (gravity) => achdWasm.module._achd_sim_create(ptr, integrator, effects, gravity, limits, frictionVelocity,
-      frequency, damping, rtol, atol);
+      frequency, damping, rtol, atol, policy, singularRegion, maxDamping);
     const sim = options.gravity === undefined ? create(0) : achdWithScratch(3, (p) => {
       achdWriteVector(options.gravity, 'gravity', 3, p);
       return create(8 * p);

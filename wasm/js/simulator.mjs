@@ -112,6 +112,23 @@ export class Simulator extends AchdHandle {
       return Array.from(achdWasm.module.HEAP32.subarray(2 * p, 2 * p + n), (i) => this._jointNames[i]);
     });
   }
+  // Direction events since createSimulator() or reset() (copies), oldest first:
+  // {t, step, link, direction, kind, sigma_min} as in the CLI summary's "events".
+  events() {
+    const ptr = this._live(), n = achdWasm.module._achd_sim_events(ptr, 0);
+    const k = achdConstants();
+    return achdWithScratch(6 * n, (p) => {
+      achdWasm.module._achd_sim_events(ptr, 8 * p);
+      const h = achdWasm.module.HEAPF64;
+      return Array.from({ length: n }, (_, i) => {
+        const e = p + 6 * i;
+        return { t: h[e], step: h[e + 1], link: this._linkNames[h[e + 2]], direction: k.directions[h[e + 3]],
+          kind: k.direction_event_kinds[h[e + 4]], sigma_min: h[e + 5] };
+      });
+    });
+  }
+  // Events that happened but were not kept (beyond the simulator's capacity).
+  get eventsNotKept() { return achdWasm.module._achd_sim_events_not_kept(this._live()); }
   // Outputs of the solve at the start of the last step (copies), named as the solver's.
   _result(name, n) {
     return achdCopy(achdWasm.module._achd_sim_result(this._live(), achdConstants().simulator_results.indexOf(name)), n);

@@ -54,7 +54,8 @@ std::string constants() {
   for (int k = 0; k < kNumDirections; ++k) s += (k ? "," : "") + quoted(direction_name(k));
   s += "],\"direction_modes\":" + names(kDirectionModeNames) +
        ",\"limit_policies\":" + names(kLimitPolicyNames) + ",\"conventions\":" + names(kConventionNames) +
-       ",\"singularity_policies\":" + names(kSingularityPolicyNames);
+       ",\"singularity_policies\":" + names(kSingularityPolicyNames) +
+       ",\"direction_event_kinds\":" + names(kDirectionEventKindNames);
   s += ",\"case_gravity\":" + vector3(Case().gravity);
   s += ",\"options\":" + describe(Options()) + ",\"simulator_options\":" + describe(SimulatorOptions());
   s += ",\"solver_buffers\":" + names(kSolverBufferNames) +
@@ -71,7 +72,8 @@ std::string describe(const Options& o) {
          ",\"policy\":" + quoted(kSingularityPolicyNames[static_cast<int>(o.policy)]) +
          ",\"tolerance\":" + number(o.tolerance) +
          ",\"absolute_tolerance\":" + (o.absolute_tolerance ? "true" : "false") +
-         ",\"damping\":" + number(o.damping) + ",\"friction_velocity\":" + number(o.friction_velocity) + "}";
+         ",\"damping\":" + number(o.damping) + ",\"singular_region\":" + number(o.singular_region) +
+         ",\"max_damping\":" + number(o.max_damping) + ",\"friction_velocity\":" + number(o.friction_velocity) + "}";
 }
 
 std::string describe(const SimulatorOptions& o) {

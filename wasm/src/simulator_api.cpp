@@ -10,14 +10,16 @@
 
 using achd::wasm::Robot;
 
-// integrator, limits: enum values (indices into the integrators and limit_policies of
-// achd_constants()); gravity: 3 doubles, or null for SimulatorOptions' default. The rest
-// are the scene file's friction_velocity, stabilisation_frequency, stabilisation_damping,
-// rtol and atol.
+// integrator, limits, policy: enum values (indices into the integrators, limit_policies
+// and singularity_policies of achd_constants()); gravity: 3 doubles, or null for
+// SimulatorOptions' default. The rest are the scene file's friction_velocity,
+// stabilisation_frequency, stabilisation_damping, rtol, atol, singular_region and
+// max_damping.
 ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, unsigned effects,
                                              const double* gravity, int limits,
                                              double friction_velocity, double stabilisation_frequency,
-                                             double stabilisation_damping, double rtol, double atol) {
+                                             double stabilisation_damping, double rtol, double atol,
+                                             int policy, double singular_region, double max_damping) {
   achd::Simulator* sim = nullptr;
   achd::wasm::guarded([&] {
     achd::SimulatorOptions o;
@@ -30,6 +32,9 @@ ACHD_EXPORT achd::Simulator* achd_sim_create(const Robot* r, int integrator, uns
     o.stabilisation_damping = stabilisation_damping;
     o.rtol = rtol;
     o.atol = atol;
+    o.solver.policy = static_cast<achd::SingularityPolicy>(policy);
+    o.solver.singular_region = singular_region;
+    o.solver.max_damping = max_damping;
     sim = new achd::Simulator(*r->model, o);
     if (sim->f_ext.empty()) sim->f_ext.assign(r->model->num_links(), achd::Vector6::Zero());
   });
@@ -118,4 +123,26 @@ ACHD_EXPORT const char* achd_sim_options(const achd::Simulator* sim) {
   static std::string json;
   json = achd::wasm::describe(sim->options());
   return json.c_str();
+}
+
+// Direction events (Simulator::events()): their count, and with out != nullptr six
+// doubles each: t, step, link (index after the root), direction (0..5), kind (index into
+// direction_event_kinds of achd_constants()), sigma_min.
+ACHD_EXPORT int achd_sim_events(const achd::Simulator* sim, double* out) {
+  const std::vector<achd::DirectionEvent>& events = sim->events();
+  if (out)
+    for (const achd::DirectionEvent& e : events) {
+      *out++ = e.t;
+      *out++ = static_cast<double>(e.step);
+      *out++ = e.link;
+      *out++ = e.direction;
+      *out++ = static_cast<int>(e.kind);
+      *out++ = e.sigma_min;
+    }
+  return static_cast<int>(events.size());
+}
+
+// Events that happened beyond the kept ones (kMaxDirectionEvents).
+ACHD_EXPORT double achd_sim_events_not_kept(const achd::Simulator* sim) {
+  return static_cast<double>(sim->events_not_kept());
 }

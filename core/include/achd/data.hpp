@@ -33,6 +33,11 @@ struct Data {
   int rank = 0;                  // of the coupling matrix K (nc x nc); its
                                  // smallest singular value: sigma_min(data)
   CouplingMatrix dropped;        // nc x k: constraint-space directions truncated/damped
+  // variable_damping: the eigen-directions of K in the singular region (nc x k, unit
+  // columns; dropped holds those where sigma <= lambda), with their singular values and
+  // damping lambda (K's units, the scaled columns'); k = 0 when the solve was exact.
+  CouplingMatrix damped;
+  ConstraintVector damped_sigma, damped_lambda;
 
   // ---- the sweeps' quantities per body (Featherstone's names; index = body) ----
   // The sweeps use base axes everywhere, and express body i's vectors and inertias about

@@ -40,9 +40,10 @@ static_assert(effect_names_in_bit_order(), "kEffectNames: one entry per Effect b
 inline constexpr const char* kConventionNames[] = {"physical", "kdl"};
 static_assert(static_cast<int>(Convention::Physical) == 0 && static_cast<int>(Convention::Kdl) == 1,
               "kConventionNames follows Convention");
-inline constexpr const char* kSingularityPolicyNames[] = {"truncate", "damped"};
+inline constexpr const char* kSingularityPolicyNames[] = {"truncate", "damped", "variable_damping"};
 static_assert(static_cast<int>(SingularityPolicy::Truncate) == 0 &&
-                  static_cast<int>(SingularityPolicy::Damped) == 1,
+                  static_cast<int>(SingularityPolicy::Damped) == 1 &&
+                  static_cast<int>(SingularityPolicy::VariableDamping) == 2,
               "kSingularityPolicyNames follows SingularityPolicy");
 
 // LimitPolicy, DirectionMode: index = enum value. Scene files and JS give an accelerated
@@ -55,6 +56,12 @@ inline constexpr const char* kDirectionModeNames[] = {"free", "hold", "accelerat
 static_assert(static_cast<int>(DirectionMode::Free) == 0 && static_cast<int>(DirectionMode::Hold) == 1 &&
                   static_cast<int>(DirectionMode::Accelerate) == 2,
               "kDirectionModeNames follows DirectionMode");
+// DirectionEventKind: index = enum value.
+inline constexpr const char* kDirectionEventKindNames[] = {"limited", "released", "resumed"};
+static_assert(static_cast<int>(DirectionEventKind::Limited) == 0 &&
+                  static_cast<int>(DirectionEventKind::Released) == 1 &&
+                  static_cast<int>(DirectionEventKind::Resumed) == 2,
+              "kDirectionEventKindNames follows DirectionEventKind");
 // Every Integrator, in enum order (names: integrator_name()).
 inline constexpr Integrator kIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler,
                                               Integrator::RK4, Integrator::DormandPrince,

@@ -30,6 +30,13 @@ enum class Convention {
 enum class SingularityPolicy {
   Truncate,  // pseudo-inverse dropping singular values below the tolerance (default)
   Damped,    // damped least squares: nu = (K^2 + lambda^2)^-1 K b, lambda = damping * sigma_max
+  // Variable-damping least squares: each eigen-direction k of K = V diag(sigma) V^T gets
+  // w_k = sigma_k / (sigma_k^2 + lambda_k^2), with lambda_k = 0 outside the singular region
+  // (sigma_k > eps, eps = singular_region * sigma_max) and, inside it, lambda_k^2 =
+  // lambda_max^2 (1 - (sigma_k / eps)^2), lambda_max = max_damping * sigma_max: the
+  // damping grows smoothly as sigma_k falls, acts only on the directions being lost, and
+  // nothing changes (the exact solve) while no direction is in the region.
+  VariableDamping,
 };
 
 struct Options {
@@ -39,11 +46,14 @@ struct Options {
   double tolerance = 1e-12;         // truncate: sigma < tolerance * sigma_max is dropped
   bool absolute_tolerance = false;  // true: sigma < tolerance (KDL: 1e-14, absolute)
   double damping = 1e-6;            // damped policy: lambda relative to sigma_max
+  double singular_region = 5e-3;    // variable_damping: eps relative to sigma_max of K scaled by kind (coupling_solve.cpp)
+  double max_damping = 2e-2;        // variable_damping: lambda_max, the same way (defaults: README)
   double friction_velocity = 0.05;  // friction = F tanh(qd / friction_velocity)
 };
 
-// Throws achd::Error naming the option unless tolerance >= 0, damping > 0 and
-// friction_velocity > 0 are finite (hybrid_dynamics calls it).
+// Throws achd::Error naming the option unless tolerance >= 0, damping > 0,
+// singular_region > 0, max_damping > 0 and friction_velocity > 0 are finite
+// (hybrid_dynamics calls it).
 void validate(const Options& options);
 
 }  // namespace achd

