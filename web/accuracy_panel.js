@@ -1,21 +1,32 @@
 // The page's "accuracy" panel: on a button press, the accuracy-versus-time study of
 // `achd accuracy` (tools/accuracy_study.hpp) run live with the wasm module on the robot
-// the page shows, short: each integrator at dt = 10, 5, 2, 1, 0.5 ms over 0.5 s from the
-// robot's index pose, with the page's held directions, error = max|q(T) - q_ref(T)| (rad)
-// against RK4 at 0.125 ms (whose own error, the change when its step is halved, is shown),
-// cost = median of 3 timed runs per step. Beside it: the native figures of the README
-// (docs/accuracy/arm7). Nothing runs until the button is pressed.
+// the page shows, short: each integrator the module has (achd.constants.integrators),
+// the fixed-step ones at dt = 10, 5, 2, 1, 0.5 ms and the adaptive one at 10 ms output
+// steps once per tolerance, over 0.5 s from the robot's index pose with the page's held
+// directions and the simulator's default effects and policy; error = max|q(T) - q_ref(T)|
+// (rad) against RK4 at 0.125 ms (whose own error, the change when its step is halved, is
+// shown), cost = median of 3 timed runs per step. Beside it: the native figures of the
+// README (docs/accuracy/arm7). Nothing runs until the button is pressed.
+import { isAdaptive } from './settings.js';
+
 const DURATION = 0.5;
 const STEPS_MS = [10, 5, 2, 1, 0.5];
+const ADAPTIVE_MS = 10;
+const RTOLS = [1e-3, 1e-5, 1e-7, 1e-9];
 const REFERENCE_MS = 0.125;
 const TIMING_RUNS = 3;
 const TIMING_STEPS = 200;
 const UNSTABLE_ERROR = 1; // rad: larger errors (or NaN) are reported as unstable
-const INTEGRATORS = [
-  { name: 'explicit_euler', label: 'explicit Euler', color: '#d62728' },
-  { name: 'semi_implicit_euler', label: 'semi-implicit Euler', color: '#1f77b4' },
-  { name: 'rk4', label: 'RK4', color: '#2ca02c' },
-];
+// Names and colours the panel knows; any other integrator the module offers is plotted
+// under its own name in grey.
+const LOOKS = {
+  explicit_euler: { label: 'explicit Euler', color: '#d62728' },
+  semi_implicit_euler: { label: 'semi-implicit Euler', color: '#1f77b4' },
+  implicit_euler: { label: 'implicit Euler', color: '#9467bd' },
+  rk4: { label: 'RK4', color: '#2ca02c' },
+  dormand_prince: { label: 'Dormand-Prince', color: '#ff7f0e' },
+};
+const looks = (name) => ({ name, ...(LOOKS[name] ?? { label: name, color: '#7f7f7f' }) });
 const NATIVE = '../docs/accuracy/arm7/accuracy.json';
 const SVG_NS = 'http://www.w3.org/2000/svg';
 
@@ -25,10 +36,11 @@ if (panel) mount(panel);
 function mount(root) {
   root.innerHTML = `
     <h2>Accuracy versus time</h2>
-    <p>Each integrator at dt = ${STEPS_MS.join(', ')} ms for ${DURATION} s on the current robot,
-      error against an RK4 reference at ${REFERENCE_MS} ms, cost measured in this browser.
-      Friction is off here: the simulator derives its smoothing from dt, which would change
-      the equations with the step. <button type="button" class="accuracy-run">Run the study</button></p>
+    <p>Each fixed-step integrator at dt = ${STEPS_MS.join(', ')} ms and the adaptive one at
+      ${ADAPTIVE_MS} ms output steps for rtol = ${RTOLS.map((r) => r.toExponential(0)).join(', ')},
+      for ${DURATION} s on the current robot with every effect on (the equations do not
+      depend on the step), error against an RK4 reference at ${REFERENCE_MS} ms, cost
+      measured in this browser. <button type="button" class="accuracy-run">Run the study</button></p>
     <p class="accuracy-status" aria-live="polite"></p>
     <div class="accuracy-columns" style="display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start">
       <figure class="accuracy-live"></figure>
@@ -43,10 +55,10 @@ function mount(root) {
     status.textContent = 'running…';
     try {
       const study = await runStudy((text) => (status.textContent = text));
-      root.querySelector('.accuracy-live').replaceChildren(plot(study.runs));
+      root.querySelector('.accuracy-live').replaceChildren(plot(study.integrators, study.runs));
       status.textContent =
         `${study.robot}: reference self-check (halving its step) ${study.selfError.toExponential(1)} rad; ` +
-        `unstable: ${study.runs.filter((r) => !r.stable).map((r) => `${r.label} ${r.ms} ms`).join(', ') || 'none'}; ` +
+        `unstable: ${study.runs.filter((r) => !r.stable).map((r) => `${r.label} ${r.at}`).join(', ') || 'none'}; ` +
         `study took ${(study.wallMs / 1000).toFixed(1)} s.`;
     } catch (err) {
       status.textContent = `the study failed: ${err.message}`;
@@ -70,11 +82,20 @@ async function loadRobot() {
   const achd = await createAchd();
   const robot = achd.loadURDF(urdf, { root: entry.root, tip: entry.tip });
   const held = Object.entries(state.directions).filter(([, mode]) => mode !== 'free');
-  return { name: entry.name, robot, q0: entry.q0, held };
+  return { name: entry.name, robot, q0: entry.q0, held, integrators: achd.constants.integrators.map(looks) };
 }
 
-function endState(robot, setup, integrator, dt) {
-  const sim = robot.createSimulator({ integrator, effects: { friction: false } });
+// The runs of the study: a fixed-step integrator once per step of STEPS_MS, an adaptive
+// one once per tolerance at ADAPTIVE_MS. `options` are createSimulator's.
+function plannedRuns(integrators) {
+  return integrators.flatMap((integrator) => (isAdaptive(integrator.name)
+    ? RTOLS.map((rtol) => ({ integrator, ms: ADAPTIVE_MS, point: rtol.toExponential(0),
+      options: { integrator: integrator.name, rtol } }))
+    : STEPS_MS.map((ms) => ({ integrator, ms, point: String(ms), options: { integrator: integrator.name } }))));
+}
+
+function endState(robot, setup, options, dt) {
+  const sim = robot.createSimulator(options);
   try {
     sim.reset(setup.q0);
     for (const [direction, mode] of setup.held) sim.setDirection(direction, mode);
@@ -88,8 +109,8 @@ function endState(robot, setup, integrator, dt) {
 }
 
 // Median over TIMING_RUNS runs of TIMING_STEPS steps of ms per step.
-function msPerStep(robot, setup, integrator, dt) {
-  const sim = robot.createSimulator({ integrator, effects: { friction: false } });
+function msPerStep(robot, setup, options, dt) {
+  const sim = robot.createSimulator(options);
   const samples = [];
   try {
     for (let r = 0; r < TIMING_RUNS; ++r) {
@@ -119,24 +140,24 @@ async function runStudy(report) {
   try {
     report('reference…');
     await nextFrame();
-    const ref = endState(setup.robot, setup, 'rk4', REFERENCE_MS / 1000).q;
-    const half = endState(setup.robot, setup, 'rk4', REFERENCE_MS / 2000).q;
+    const ref = endState(setup.robot, setup, { integrator: 'rk4' }, REFERENCE_MS / 1000).q;
+    const half = endState(setup.robot, setup, { integrator: 'rk4' }, REFERENCE_MS / 2000).q;
     if (!ref || !half) throw new Error('the RK4 reference did not stay finite');
     const runs = [];
-    for (const integrator of INTEGRATORS) {
-      for (const ms of STEPS_MS) {
-        report(`${integrator.label} at ${ms} ms…`);
-        await nextFrame();
-        const dt = ms / 1000;
-        const { q } = endState(setup.robot, setup, integrator.name, dt);
-        const error = q && q.every(Number.isFinite) ? maxAbsDifference(q, ref) : Infinity;
-        const perStep = msPerStep(setup.robot, setup, integrator.name, dt);
-        runs.push({ integrator: integrator.name, label: integrator.label, color: integrator.color, ms, error,
-          stable: error <= UNSTABLE_ERROR, cost: perStep / 1000 / dt });
-      }
+    for (const { integrator, ms, point, options } of plannedRuns(setup.integrators)) {
+      const at = isAdaptive(integrator.name) ? `rtol ${point}` : `${ms} ms`;
+      report(`${integrator.label} at ${at}…`);
+      await nextFrame();
+      const dt = ms / 1000;
+      const { q } = endState(setup.robot, setup, options, dt);
+      const error = q && q.every(Number.isFinite) ? maxAbsDifference(q, ref) : Infinity;
+      const perStep = msPerStep(setup.robot, setup, options, dt);
+      runs.push({ integrator: integrator.name, label: integrator.label, color: integrator.color, ms, point, at, error,
+        stable: error <= UNSTABLE_ERROR, cost: perStep / 1000 / dt });
     }
     markPareto(runs.filter((r) => r.stable));
-    return { robot: setup.name, runs, selfError: maxAbsDifference(ref, half), wallMs: performance.now() - wall0 };
+    return { robot: setup.name, integrators: setup.integrators, runs, selfError: maxAbsDifference(ref, half),
+      wallMs: performance.now() - wall0 };
   } finally {
     setup.robot.delete();
   }
@@ -150,7 +171,7 @@ function markPareto(points) {
 }
 
 // Log-log error (rad) against cost (s per simulated s), as the native SVG.
-function plot(runs) {
+function plot(integrators, runs) {
   const W = 580, H = 320, L = 64, R = 190, T = 12, B = 44;
   const shown = runs.filter((r) => r.stable && r.error > 0);
   const decades = (values) => {
@@ -175,21 +196,23 @@ function plot(runs) {
   svg.append(text((L + W - R) / 2, H - 8, 'cost: wall time per simulated second (s/s)', { 'text-anchor': 'middle' }));
   svg.append(text(14, (T + H - B) / 2, 'error: max |q(T) − q_ref(T)| (rad)',
     { 'text-anchor': 'middle', transform: `rotate(-90 14 ${(T + H - B) / 2})` }));
-  INTEGRATORS.forEach((integrator, i) => {
+  integrators.forEach((integrator, i) => {
     const points = shown.filter((r) => r.integrator === integrator.name);
     svg.append(el('polyline', { fill: 'none', stroke: integrator.color, 'stroke-width': 2,
       points: points.map((r) => `${px(r.cost)},${py(r.error)}`).join(' ') }));
     for (const r of points) {
       svg.append(el('circle', { cx: px(r.cost), cy: py(r.error), r: 3.5, fill: integrator.color }));
       if (r.pareto) svg.append(el('circle', { cx: px(r.cost), cy: py(r.error), r: 7, fill: 'none', stroke: 'black' }));
-      svg.append(text(px(r.cost) + 5, py(r.error) - 5, String(r.ms), { 'font-size': 9, fill: '#444' }));
+      svg.append(text(px(r.cost) + 5, py(r.error) - 5, r.point, { 'font-size': 9, fill: '#444' }));
     }
     svg.append(el('circle', { cx: W - R + 20, cy: T + 10 + 16 * i, r: 4, fill: integrator.color }));
     svg.append(text(W - R + 32, T + 14 + 16 * i, integrator.label));
   });
-  svg.append(el('circle', { cx: W - R + 20, cy: T + 58, r: 7, fill: 'none', stroke: 'black' }));
-  svg.append(text(W - R + 32, T + 62, 'Pareto front'));
-  svg.append(text(W - R + 12, T + 84, 'labels: dt in ms', { fill: '#555' }));
+  const below = T + 10 + 16 * integrators.length;
+  svg.append(el('circle', { cx: W - R + 20, cy: below, r: 7, fill: 'none', stroke: 'black' }));
+  svg.append(text(W - R + 32, below + 4, 'Pareto front'));
+  svg.append(text(W - R + 12, below + 26, 'labels: dt in ms,', { fill: '#555' }));
+  svg.append(text(W - R + 12, below + 40, 'adaptive: rtol', { fill: '#555' }));
   return svg;
 }
 

@@ -99,13 +99,10 @@ export class Controls {
     }
   }
 
-  // Fills the integrator and policy lists with what the module offers (web/module_offer.js);
-  // a control the module does not offer stays hidden.
+  // Fills the integrator and policy lists with what the module offers (web/module_offer.js).
   offer(offer) {
     this.integrator.replaceChildren(...offer.integrators.map((n) => new Option(INTEGRATOR_LABELS[n] ?? n, n)));
     this.policy.replaceChildren(...offer.policies.map((n) => new Option(POLICY_LABELS[n] ?? n, n)));
-    this.policy.closest('label').hidden = !offer.policies.length;
-    this.rtolOffered = offer.defaults.rtol !== null;
     this.rtol.replaceChildren(...RELATIVE_TOLERANCES.map((v) => new Option(v.toExponential(0), String(v))));
   }
 
@@ -113,14 +110,13 @@ export class Controls {
     this.playButton.textContent = playing ? 'Pause' : 'Play';
     this.integrator.value = settings.integrator;
     this.dt.value = String(settings.dt);
-    if (settings.policy !== null) this.policy.value = settings.policy;
-    this.rtol.closest('label').hidden = !this.rtolOffered || !isAdaptive(settings.integrator);
-    if (settings.rtol !== null) {
-      // A tolerance from a hash that the list lacks gets an entry of its own.
-      const value = String(settings.rtol);
-      if (![...this.rtol.options].some((o) => o.value === value)) this.rtol.add(new Option(settings.rtol.toExponential(1), value));
-      this.rtol.value = value;
-    }
+    this.policy.value = settings.policy;
+    // The tolerance is shown only for an adaptive integrator; a tolerance from a hash that
+    // the list lacks gets an entry of its own.
+    this.rtol.closest('label').hidden = !isAdaptive(settings.integrator);
+    const rtol = String(settings.rtol);
+    if (![...this.rtol.options].some((o) => o.value === rtol)) this.rtol.add(new Option(settings.rtol.toExponential(1), rtol));
+    this.rtol.value = rtol;
     for (const name of DIRECTIONS) {
       const mode = settings.directions[name];
       const row = this.rows[name];

@@ -50,13 +50,6 @@ export class EventsNotice {
     }
   }
 
-  // Until issue 14's merge a module's simulator may have no events(): the notice then
-  // says so instead of "no event". (Delete with the guard in Simulation.events().)
-  setAvailable(available) {
-    this.none.textContent = available ? 'No event since the start or the last Reset.'
-      : 'This build of the module reports no direction events (sim.events()).';
-  }
-
   // A direction the user sets anew is no longer the simulator's lost one.
   forget(direction) {
     this.lost.delete(direction);

@@ -228,7 +228,6 @@ function loadRobot(source, { keepDirections = false } = {}) {
     }
   }
   clearRun();
-  notice.setAvailable(sim.reportsEvents);
   setPlaying(true);
   page.links = sim.links();
   page.owed = 0;

@@ -1,7 +1,6 @@
-// What the user chose on the page (robot, directions, effects, integrator, dt, and where
-// the module offers them, the singularity policy and the adaptive integrator's relative
-// tolerance), its defaults, and its round trip through the URL hash so that a view can be
-// shared, e.g.
+// What the user chose on the page (robot, directions, effects, integrator, dt, the
+// singularity policy and the adaptive integrator's relative tolerance), its defaults, and
+// its round trip through the URL hash so that a view can be shared, e.g.
 // #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping&dirs=z:hold,rx:0.5
 // Values are the scene files' words (achd.constants); the simulator's option keys are
 // the same words in camelCase. Which integrators and policies exist, and the defaults,
@@ -32,7 +31,8 @@ export const TIME_STEPS = [0.00025, 0.0005, 0.001, 0.002, 0.005, 0.01];
 export const RELATIVE_TOLERANCES = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 
 // offer: {integrators, policies, defaults: {integrator, policy, rtol}} (web/module_offer.js).
-// policy and rtol are null when the module's simulator does not take them.
+// rtol is kept whatever the integrator, so that switching back to an adaptive one restores
+// it; it reaches the simulator and the hash only with an adaptive integrator.
 export function defaultSettings(robot, offer) {
   return {
     robot,
@@ -53,9 +53,9 @@ export function simulatorOptions(s) {
     integrator: s.integrator,
     effects: { ...s.effects, rotorInertia: true, constraints: true },
     gravity: GRAVITY,
+    policy: s.policy,
   };
-  if (s.policy !== null) options.policy = s.policy;
-  if (s.rtol !== null && isAdaptive(s.integrator)) options.rtol = s.rtol;
+  if (isAdaptive(s.integrator)) options.rtol = s.rtol;
   return options;
 }
 
@@ -73,9 +73,9 @@ export function formatHash(s) {
   const params = new URLSearchParams();
   params.set('robot', s.robot);
   params.set('integrator', s.integrator);
-  if (s.rtol !== null && isAdaptive(s.integrator)) params.set('rtol', String(s.rtol));
+  if (isAdaptive(s.integrator)) params.set('rtol', String(s.rtol));
   params.set('dt', String(s.dt));
-  if (s.policy !== null) params.set('policy', s.policy);
+  params.set('policy', s.policy);
   params.set('effects', EFFECTS.filter((e) => s.effects[e.key]).map((e) => e.hash).join(','));
   const dirs = DIRECTIONS.filter((d) => s.directions[d] !== 'free').map((d) => `${d}:${s.directions[d]}`);
   if (dirs.length) params.set('dirs', dirs.join(','));
@@ -104,8 +104,7 @@ export function parseHash(hash, defaults, offer) {
   }
   if (params.has('rtol')) {
     const v = Number(params.get('rtol'));
-    if (s.rtol === null) problems.push('rtol: this build of the module has no adaptive integrator');
-    else if (Number.isFinite(v) && v > 0 && v < 1) s.rtol = v;
+    if (Number.isFinite(v) && v > 0 && v < 1) s.rtol = v;
     else problems.push(`rtol must be a number in (0, 1), got "${params.get('rtol')}"`);
   }
   if (params.has('dt')) {

@@ -91,16 +91,9 @@ export class Simulation {
     for (const name of DIRECTIONS) this.applyDirection(name);
   }
 
-  // Whether the module's simulator reports direction events: not before issue 14's merge
-  // (then delete this, the guard below and EventsNotice.setAvailable).
-  get reportsEvents() {
-    return typeof this.sim.events === 'function';
-  }
-
   // Every direction event of this simulator (since it was built or reset), t on the page's
-  // clock; [] while the module's simulator has no events().
+  // clock.
   events() {
-    if (!this.reportsEvents) return [];
     return this.sim.events().map((e) => ({ ...e, t: this.tOffset + e.t }));
   }
 

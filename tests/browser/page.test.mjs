@@ -50,8 +50,12 @@ test('the demo page in Chromium', async (t) => {
       assert.ok(loaded > 0, 'no load event');
       assert.ok(stepping - loaded < 1000, `stepping ${stepping - loaded} ms after the load event`);
       for (const d of ['x', 'y', 'z', 'rx', 'ry', 'rz']) assert.equal(s.directions[d], 'free');
-      // The page's defaults are the simulator's (RK4 before issue 14's integrators land).
-      assert.equal(await page.locator('#integrator').inputValue(), achd.constants.simulator_options.integrator);
+      // The page's defaults are the simulator's (dormand_prince at rtol 1e-9, variable_damping).
+      const defaults = achd.constants.simulator_options;
+      assert.equal(await page.locator('#integrator').inputValue(), defaults.integrator);
+      assert.ok(await page.locator('#rtol').isVisible());
+      assert.equal(Number(await page.locator('#rtol').inputValue()), defaults.rtol);
+      assert.equal(await page.locator('#policy').inputValue(), defaults.solver.policy);
       assert.equal(await page.locator('#dt').inputValue(), '0.001');
       assert.ok(await page.locator('input[data-effect="damping"]').isChecked());
       assert.deepEqual(consoleErrors, []);

@@ -3,13 +3,12 @@
 // plays with every direction free and no trace of the previous one; an own URDF starts
 // away from a singularity; the controls offer what the module has; and a direction
 // driven into the workspace boundary is reported as an event while the page keeps
-// stepping (that last test needs the simulator's variable_damping policy and sim.events()).
+// stepping (the simulator's variable_damping policy and sim.events()).
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import test from 'node:test';
 import { openPage } from './launch.mjs';
 import { loadAchd } from '../node/helpers.mjs';
-import { moduleOffer } from '../../web/module_offer.js';
 
 const achd = await loadAchd();
 const index = JSON.parse(await readFile(new URL('../../robots/index.json', import.meta.url), 'utf8'));
@@ -36,19 +35,16 @@ test('the page recovers: Reset after a failure, a new robot, plot axes', async (
   const session = await openPage();
   const { page, consoleErrors } = session;
   try {
-    await t.test('the controls offer the module\'s integrators and, where the simulator takes it, the policy', async () => {
+    await t.test('the controls offer the module\'s integrators and policies', async () => {
       const k = achd.constants;
       const offered = await page.locator('#integrator option').evaluateAll((os) => os.map((o) => o.value));
       assert.deepEqual(offered, k.integrators);
       assert.equal(await page.locator('#integrator').inputValue(), k.simulator_options.integrator);
       const policies = await page.locator('#policy option').evaluateAll((os) => os.map((o) => o.value));
-      const policyShown = await page.locator('#policy').isVisible();
-      assert.equal(policyShown, policies.length > 0);
-      if (policyShown) {
-        assert.deepEqual(policies, k.singularity_policies);
-        assert.equal(await page.locator('#policy').inputValue(), k.simulator_options.policy ?? k.simulator_options.solver.policy);
-      }
-      console.log(`# policy control ${policyShown ? `shown: ${policies}` : 'hidden (the module\'s simulator takes no policy yet)'}`);
+      assert.ok(await page.locator('#policy').isVisible());
+      assert.deepEqual(policies, k.singularity_policies);
+      assert.equal(await page.locator('#policy').inputValue(), k.simulator_options.solver.policy);
+      assert.equal(await page.locator('#sim-events-none').textContent(), 'No event since the start or the last Reset.');
     });
 
     await t.test('a failed step pauses with the error; Reset clears it, plays again from the start pose, plots start afresh', async () => {
@@ -191,9 +187,9 @@ test('the page recovers: Reset after a failure, a new robot, plot axes', async (
   }
 });
 
-// Needs issue 14's merges: the simulator's default variable_damping policy (h-robust) and
-// its fixed physics defaults (h-integrators). Before them the page stops at t = 2.183 s
-// with "the acceleration to enforce along direction y is not finite".
+// The simulator's default variable_damping policy and its fixed physics defaults (issue
+// 14) carry it: before them the page stopped at t = 2.183 s with "the acceleration to
+// enforce along direction y is not finite".
 test('a direction driven into the workspace boundary is reported and the page keeps stepping', async () => {
   const session = await openPage({ hash: BOUNDARY_HASH });
   const { page, consoleErrors } = session;
@@ -231,14 +227,7 @@ test('a direction driven into the workspace boundary is reported and the page ke
   }
 });
 
-// Needs issue 14's merges (the simulator's `policy` and `rtol` options, the
-// dormand_prince integrator); skipped, saying so, while the module lacks them.
-test('the policy and the adaptive integrator\'s rtol come from the URL hash and go back into it', async (t) => {
-  const offer = moduleOffer(achd);
-  if (!offer.policies.includes('damped') || offer.defaults.rtol === null || !offer.integrators.includes('dormand_prince')) {
-    t.skip(`the module offers policies [${offer.policies}], rtol ${offer.defaults.rtol}, integrators [${offer.integrators}]`);
-    return;
-  }
+test('the policy and the adaptive integrator\'s rtol come from the URL hash and go back into it', async () => {
   const session = await openPage({ hash: '#robot=ur5&integrator=dormand_prince&rtol=1e-6&dt=0.001&policy=damped&dirs=z:hold' });
   const { page, consoleErrors } = session;
   try {
