@@ -75,6 +75,7 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
   double h = substep_ > 0 ? substep_ : dt;  // the proposal carried over from the last call
   double done = 0;                          // of dt, covered by accepted substeps
   int rejections = 0;
+  std::int64_t accepted = 0;  // substeps accepted in this call
   for (;;) {
     const double remaining = dt - done;
     // The last substep ends on dt exactly; one within 1% of the rest takes all of it.
@@ -153,6 +154,12 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
       rejections = 0;
       if (last) return;
       done += hs;
+      if (++accepted >= kMaxSubstepsPerStep) {
+        stage_ = -1;
+        throw Error(std::to_string(kMaxSubstepsPerStep) + " adaptive substeps (the last of " + text(hs) +
+                    " s) covered only " + text(done) + " s of this step's " + text(dt) + " s (rtol " + text(rtol) +
+                    ", atol " + text(atol) + "): the motion is too fast or too stiff here for these tolerances");
+      }
     } else {
       ++rejected_substeps_;
       if (++rejections > kMaxRejections) {

@@ -174,6 +174,28 @@ TEST(DormandPrince, AStepThatCannotProgressFailsNamingItAndKeepsTheState) {
   EXPECT_EQ(sim.rejected_substeps(), 0);
 }
 
+// A step that needs more than kMaxSubstepsPerStep substeps fails, naming how far it got,
+// instead of running on for as long as its substeps take: 60 s in one step of the damped
+// LWR, whose friction keeps the substeps below 0.4 ms (150000 at least). Before, a
+// substep shrinking towards its floor could run for many minutes within one step.
+TEST(DormandPrince, AStepOfTooManySubstepsFailsNamingItAndKeepsTheState) {
+  Simulator sim(lwr(), SimulatorOptions{});
+  sim.reset(lwr_q0(), {});
+  const Eigen::VectorXd q = sim.q;
+  try {
+    sim.step(60);
+    FAIL() << "the step succeeded";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    for (const char* part : {"step 1 from t = 0 s to 60 s", "100000 adaptive substeps", "covered only",
+                             "the state stays at t = 0 s"})
+      EXPECT_NE(m.find(part), std::string::npos) << part << " in: " << m;
+  }
+  EXPECT_EQ(sim.q, q);
+  EXPECT_EQ(sim.t, 0);
+  EXPECT_EQ(sim.substeps(), 0);
+}
+
 // The UR5 with damping and friction off, holding z and rx: with the defaults it runs 20 s
 // with its energy and held directions within 1e-6; RK4 at the page's 1 ms fails at
 // t = 6.234 s (its tip speed overflows; 3.245 s under the truncate policy).

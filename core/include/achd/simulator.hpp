@@ -72,12 +72,14 @@ constexpr double kDefaultStabilisationFrequency = 100;
 // The adaptive integrator's control (dormand_prince.cpp): a substep of h is accepted when
 // the RMS over q, qd and the held angles of err_i / (atol + rtol max(|x_i|, |x_i'|)) is
 // at most 1; the next h is h min(5, max(0.2, 0.9 err^-1/5)) (not grown after a rejection).
-// A step fails when h falls below kMinSubstepFraction dt or after kMaxRejections
-// rejections in a row.
+// A step fails when h falls below kMinSubstepFraction dt, after kMaxRejections
+// rejections in a row, or when it has taken kMaxSubstepsPerStep substeps without reaching
+// t + dt (a substep that keeps shrinking towards its floor would otherwise take hours).
 constexpr double kDefaultRtol = 1e-9;
 constexpr double kDefaultAtol = 1e-11;
 constexpr double kMinSubstepFraction = 1e-10;
 constexpr int kMaxRejections = 40;
+constexpr std::int64_t kMaxSubstepsPerStep = 100000;
 
 // What became of an active direction, from the solve at the start of a step under the
 // variable_damping policy (direction_events.cpp has the thresholds):
