@@ -14,9 +14,7 @@
 // (the factor 1 / (1 + dt c_i / I_i) instead of 1 - dt c_i / I_i); the method is first order.
 #include <cmath>
 
-#include "achd/hybrid_dynamics.hpp"
 #include "achd/simulator.hpp"
-#include "held_directions.hpp"
 
 namespace achd {
 
@@ -35,18 +33,12 @@ void Simulator::step_implicit_euler(double dt, double w_n, Data& first) {
   }
   const std::uint32_t effects = solver_.effects;
   solver_.effects |= kRotorInertia;
+  // The semi-implicit Euler step, its solve on implicit_model_ with the armature on (a
+  // failed step's undo in step() clears implicit_solve_; step() resets solver_).
   implicit_solve_ = true;
-  stage_ = 0;
-  evaluate(q, qd, held_.angle, w_n, first, k_angle_[0]);
+  step_semi_implicit_euler(dt, w_n, first);
   implicit_solve_ = false;
   solver_.effects = effects;
-  qd += dt * first.qdd;
-  body_motion(model_, q, qd, X0_, r_, v_);
-  const Vector3 w = tip_state(model_, X0_, v_).w;
-  for (int k = 0; k < kNumDirections; ++k)
-    if (held_.mode[k] == DirectionMode::Hold && !is_linear_direction(k))
-      held_.angle[k] += dt * direction_axis(k).dot(w);
-  q += dt * qd;
 }
 
 }  // namespace achd
