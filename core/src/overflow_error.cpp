@@ -46,8 +46,8 @@ void name_the_first_overflow(const Model& model, const Data& d, int nc) {
       overflow(joint(model, i) + ": the articulated inertia is not finite (link masses, inertias "
                                  "or distances too large)");
     if (!finite(d.pA[i]) || !std::isfinite(d.workspace.u[i]))
-      overflow(joint(model, i) + ": the articulated bias force is not finite (ff_torques, f_ext, "
-                                 "gravity or velocity products too large for this robot)");
+      overflow(joint(model, i) + ": the articulated bias force is not finite (ff_torques, qdd_given, "
+                                 "f_ext, gravity or velocity products too large for this robot)");
   }
   // Steps 2-3 for the constraints: the coupling K, its right-hand side, the forces nu.
   const auto column = [](int k) {
