@@ -15,6 +15,12 @@ Case Case::zeros(const Model& model) {
   return c;
 }
 
+int Case::num_constraints() const {
+  int n = static_cast<int>(alpha.cols());
+  for (const ConstraintBlock& b : constraints) n += static_cast<int>(b.alpha.cols());
+  return n;
+}
+
 bool Case::any_prescribed() const {
   for (bool p : prescribed)
     if (p) return true;
@@ -40,9 +46,10 @@ namespace {
 static_assert(sizeof(Vector6) == 6 * sizeof(double), "f_ext is checked as one array");
 
 // The common case, in one pass: right sizes and every number finite.
-bool plainly_valid(const Model& model, const Case& c) {
+bool plainly_valid(const Model& model, const Case& c, int capacity) {
   const Eigen::Index nj = model.num_joints();
-  const int nc = c.num_constraints();
+  const int nc = static_cast<int>(c.alpha.cols());
+  if (nc && !model.has_tip()) return false;
   if (c.q.size() != nj || (c.qd.size() && c.qd.size() != nj) ||
       (c.ff_torques.size() && c.ff_torques.size() != nj) || nc > kMaxConstraints ||
       c.beta.size() != nc || (!c.f_ext.empty() && static_cast<int>(c.f_ext.size()) != model.num_links()) ||
@@ -54,13 +61,51 @@ bool plainly_valid(const Model& model, const Case& c) {
              finite_probe(c.gravity.data(), 3) + finite_probe(c.alpha.data(), 6 * nc) +
              finite_probe(c.beta.data(), nc) + finite_probe(c.qdd_given.data(), c.qdd_given.size());
   if (!c.f_ext.empty()) s += finite_probe(c.f_ext[0].data(), 6 * Eigen::Index(c.f_ext.size()));
-  return s == 0;
+  for (const ConstraintBlock& b : c.constraints) {
+    const Eigen::Index k = b.alpha.cols();
+    if (b.link < 0 || b.link >= model.num_links() || k > kMaxConstraints || b.beta.size() != k) return false;
+    s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k);
+  }
+  return s == 0 && c.num_constraints() <= capacity;
+}
+
+// Columns alpha (6 x nc) and beta of the tip (field "") or of block b ("constraints[b].").
+void check_columns(const ConstraintMatrix& alpha, const ConstraintVector& beta, const std::string& field) {
+  const int nc = static_cast<int>(alpha.cols());
+  if (nc > kMaxConstraints)
+    throw Error(field + "alpha: at most " + std::to_string(kMaxConstraints) + " constraints, got " +
+                std::to_string(nc));
+  if (beta.size() != nc)
+    throw Error(field + "beta: expected " + std::to_string(nc) + " values (one per alpha column), got " +
+                std::to_string(beta.size()));
+  for (int j = 0; j < nc; ++j) {
+    for (int r = 0; r < 6; ++r)
+      if (!std::isfinite(alpha(r, j)))
+        throw Error(field + "alpha[" + std::to_string(j) + "][" + std::to_string(r) + "] is not finite");
+    if (!std::isfinite(beta[j])) throw Error(field + "beta[" + std::to_string(j) + "] is not finite");
+  }
+}
+
+// The blocks of Case::constraints: on a link of the model, at a finite point.
+void check_blocks(const Model& model, const Case& c) {
+  for (size_t b = 0; b < c.constraints.size(); ++b) {
+    const ConstraintBlock& block = c.constraints[b];
+    const std::string field = "constraints[" + std::to_string(b) + "].";
+    if (block.link < 0 || block.link >= model.num_links())
+      throw Error(field + "link: " + std::to_string(block.link) + " is not a link index of the model (0 to " +
+                  std::to_string(model.num_links() - 1) + ")");
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(block.point[k]))
+        throw Error(field + "point[" + std::to_string(k) + "] (link '" + model.links[block.link].name +
+                    "') is not finite");
+    check_columns(block.alpha, block.beta, field);
+  }
 }
 
 }  // namespace
 
-void validate(const Model& model, const Case& c) {
-  if (plainly_valid(model, c)) return;
+void validate(const Model& model, const Case& c, int capacity) {
+  if (plainly_valid(model, c, capacity)) return;
   const int nj = model.num_joints();
   check_vector(c.q, nj, "q", false);
   check_vector(c.qd, nj, "qd", true);
@@ -68,19 +113,14 @@ void validate(const Model& model, const Case& c) {
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(c.gravity[k]))
       throw Error("gravity[" + std::to_string(k) + "] is not finite");
+  check_columns(c.alpha, c.beta, "");
+  if (c.alpha.cols() && !model.has_tip())
+    throw Error("alpha: the model is a tree with no tip; constrain its links with constraint blocks");
+  check_blocks(model, c);
   const int nc = c.num_constraints();
-  if (nc > kMaxConstraints)
-    throw Error("alpha: at most " + std::to_string(kMaxConstraints) + " constraints, got " +
-                std::to_string(nc));
-  if (c.beta.size() != nc)
-    throw Error("beta: expected " + std::to_string(nc) + " values (one per alpha column), got " +
-                std::to_string(c.beta.size()));
-  for (int j = 0; j < nc; ++j) {
-    for (int r = 0; r < 6; ++r)
-      if (!std::isfinite(c.alpha(r, j)))
-        throw Error("alpha[" + std::to_string(j) + "][" + std::to_string(r) + "] is not finite");
-    if (!std::isfinite(c.beta[j])) throw Error("beta[" + std::to_string(j) + "] is not finite");
-  }
+  if (nc > capacity)
+    throw Error("constraints: " + std::to_string(nc) + " columns in all, more than the workspace's capacity of " +
+                std::to_string(capacity) + " (Data's constraint_capacity)");
   if (!c.f_ext.empty()) {
     if (static_cast<int>(c.f_ext.size()) != model.num_links())
       throw Error("f_ext: expected " + std::to_string(model.num_links()) +

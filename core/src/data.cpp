@@ -1,12 +1,20 @@
 #include "achd/data.hpp"
 
+#include <string>
+
+#include "achd/error.hpp"
+
 namespace achd {
 
-Data::Data(const Model& model) {
+Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_capacity) {
+  if (constraint_capacity < 0 || constraint_capacity > kMaxConstraintColumns)
+    throw Error("constraint capacity must be in [0, " + std::to_string(kMaxConstraintColumns) + "], got " +
+                std::to_string(constraint_capacity));
   const int n = model.num_joints();
   qdd = constraint_torques = total_torques = joint_torques = prescribed_torques = Eigen::VectorXd::Zero(n);
   nu.resize(0);
   constraint_wrench.setZero();
+  constraint_wrenches.reserve(constraint_capacity);  // a block has at least one column
   link_accelerations.assign(model.num_links() + 1, Vector6::Zero());
   dropped.resize(0, 0);
   damped.resize(0, 0);

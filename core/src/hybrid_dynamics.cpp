@@ -435,7 +435,7 @@ double joint_torques(const Model& model, Data& d, const Case& c, int nc, bool pr
 }  // namespace
 
 void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
-  validate(model, c);
+  validate(model, c, d.constraint_capacity());
   validate(o);
   const int nc = (o.effects & kConstraints) ? c.num_constraints() : 0;
   const bool gravity = o.effects & kGravity;

@@ -53,23 +53,29 @@ bool finite(const Matrix6& m) { return m.allFinite(); }
 // made the number overflow.
 void check_no_overflow(const Model& model, const Eigen::VectorXd& q) {
   const int n = model.num_joints();
-  std::vector<Transform> X(n);
-  Transform pose;  // of body i in the root frame
+  std::vector<Transform> X(n), pose(n);  // parent -> body; body in the root frame
   for (int i = 0; i < n; ++i) {
+    const int p = model.bodies[i].parent;
     X[i] = joint_transform(model.bodies[i], q[i]);
-    pose = pose * X[i];
-    if (!pose.p.allFinite())
+    pose[i] = p < 0 ? X[i] : pose[p] * X[i];
+    if (!pose[i].p.allFinite())
       throw Error("joint '" + model.bodies[i].joint_name +
                   "': origin overflows: its position from the root is not finite");
   }
-  Matrix6 Ic = Matrix6::Zero();  // composite inertia of bodies i.. in body i's frame
+  // Composite inertia of the subtree of body i, in body i's frame: its own (finite,
+  // checked before), plus each child's composite moved to it (children come after their
+  // parent, so a body's composite is complete when the loop reaches it).
+  std::vector<Matrix6> Ic(n);
+  for (int i = 0; i < n; ++i) Ic[i] = model.bodies[i].inertia;
   for (int i = n - 1; i >= 0; --i) {
-    Matrix6 next = model.bodies[i].inertia;
-    if (i < n - 1) add_inertia_to_parent(X[i + 1], Ic, next);
+    const int p = model.bodies[i].parent;
+    if (p < 0) continue;
+    Matrix6 next = Ic[p];
+    add_inertia_to_parent(X[i], Ic[i], next);
     if (!finite(next))
-      throw Error("joint '" + model.bodies[i + 1].joint_name + "': origin overflows: the inertia of the "
-                  "links after it, moved to joint '" + model.bodies[i].joint_name + "', is not finite");
-    Ic = next;
+      throw Error("joint '" + model.bodies[i].joint_name + "': origin overflows: the inertia of the "
+                  "links after it, moved to joint '" + model.bodies[p].joint_name + "', is not finite");
+    Ic[p] = next;
   }
 }
 
@@ -77,12 +83,14 @@ void check_no_overflow(const Model& model, const Eigen::VectorXd& q) {
 
 void validate(const Model& model) {
   if (model.num_joints() == 0)
-    throw Error("the chain from '" + model.root_name + "' to '" + model.tip_name +
-                "' has no movable joint");
+    throw Error(model.has_tip() ? "the chain from '" + model.root_name + "' to '" + model.tip_name +
+                                      "' has no movable joint"
+                                : "the tree below '" + model.root_name + "' has no movable joint");
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
     const std::string where = "joint '" + b.joint_name + "'";
-    if (b.parent != i - 1) throw Error(where + ": bodies must form a chain in order");
+    if (b.parent < -1 || b.parent >= i)
+      throw Error(where + ": its parent body must come before it (parent " + std::to_string(b.parent) + ")");
     if (!b.X_tree.R.allFinite() || !b.X_tree.p.allFinite())
       throw Error(where + ": origin is not finite");
     if (!(b.X_tree.R.transpose() * b.X_tree.R).isIdentity(1e-9) || b.X_tree.R.determinant() < 0)
@@ -98,8 +106,12 @@ void validate(const Model& model) {
     if (eig.eigenvalues().minCoeff() < -1e-9 * std::max(1.0, eig.eigenvalues().maxCoeff()))
       throw Error("link '" + b.link_name + "': spatial inertia is not positive semi-definite");
   }
-  if (model.links.empty() || model.links.back().name != model.tip_name)
+  if (model.has_tip() && (model.links.empty() || model.links.back().name != model.tip_name))
     throw Error("the model's last link must be the tip '" + model.tip_name + "'");
+  for (int l = 0; l < model.num_links(); ++l)
+    if (model.links[l].body < -1 || model.links[l].body >= model.num_joints())
+      throw Error("link '" + model.links[l].name + "': rides on body " + std::to_string(model.links[l].body) +
+                  ", not a body of the model");
   // Two configurations: the zero pose and a generic one (within limits).
   Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.num_joints()), generic(model.num_joints());
   for (int i = 0; i < model.num_joints(); ++i) {

@@ -9,19 +9,40 @@
 
 namespace achd {
 
+// Columns of one constraint block (the tip's alpha, or one ConstraintBlock): a link has six
+// directions to constrain.
 constexpr int kMaxConstraints = 6;
+// Columns in all of a case's blocks together: the largest capacity a Data can be created
+// with (Data's constructor), so that every matrix of the constraint solve has fixed storage.
+constexpr int kMaxConstraintColumns = 36;
 
 // 6 x nc, nc <= 6: storage is fixed-size, so resizing never allocates.
 using ConstraintMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxConstraints>;
-using ConstraintVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxConstraints, 1>;
+// One value per constraint column (of a block, or of all blocks: nu), fixed storage.
+using ConstraintVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxConstraintColumns, 1>;
+
+// Constraints on one link (Popov-Vereshchagin on trees): the spatial acceleration a_P of
+// the link at `point` (linear part: of the point; base axes, as link_accelerations but
+// taken at the point) must satisfy alpha^T a_P = beta, column by column; the force
+// alpha nu acts at the point. Columns are oriented like the base, as Case::alpha.
+struct ConstraintBlock {
+  int link = 0;                      // Model::links index of the constrained link
+  Vector3 point = Vector3::Zero();   // where the constraint acts, in the link's frame
+  ConstraintMatrix alpha = ConstraintMatrix(6, 0);  // unit constraint forces, columns
+  ConstraintVector beta = ConstraintVector(0);      // one per column of alpha
+};
 
 struct Case {
   Eigen::VectorXd q;           // one per movable joint, root to tip
   Eigen::VectorXd qd;          // empty = zero
   Eigen::VectorXd ff_torques;  // empty = zero
   Vector3 gravity = Vector3(0, 0, -9.81);  // the physical vector, base frame
+  // The tip's constraints (chains, KDL's alpha and beta): a block on the tip link's origin.
   ConstraintMatrix alpha = ConstraintMatrix(6, 0);  // unit constraint forces, columns
   ConstraintVector beta = ConstraintVector(0);      // one per column of alpha
+  // Constraints on any links, after the tip's: nu holds the tip's columns, then each
+  // block's in order. Set once and reuse: a solve reads the blocks and never resizes them.
+  std::vector<ConstraintBlock> constraints;
   std::vector<Vector6> f_ext;  // empty = none, else one per link after the root
   // Prescribed joints (Featherstone's hybrid dynamics): joint i with prescribed[i] true has
   // the acceleration qdd_given[i] instead of a torque (its ff_torques[i] is ignored); the
@@ -31,7 +52,8 @@ struct Case {
   Eigen::VectorXd qdd_given;
   std::vector<bool> prescribed;
 
-  int num_constraints() const { return static_cast<int>(alpha.cols()); }
+  // Constraint columns in all: the tip's and every block's.
+  int num_constraints() const;
   // True when some joint is prescribed.
   bool any_prescribed() const;
   // A case of zeros for the model (q = 0, no constraints, gravity -9.81 z).
@@ -39,7 +61,9 @@ struct Case {
 };
 
 // Throws achd::Error naming the field and index on a wrong length, a non-finite
-// number or more than kMaxConstraints constraints.
-void validate(const Model& model, const Case& c);
+// number, more than kMaxConstraints columns on the tip or in a block, a block on a link
+// that is not in the model, a tip constraint on a model without a tip (a tree), or more
+// constraint columns in all than `capacity` (the Data's: Data::constraint_capacity()).
+void validate(const Model& model, const Case& c, int capacity = kMaxConstraintColumns);
 
 }  // namespace achd

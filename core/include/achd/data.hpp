@@ -11,11 +11,15 @@
 
 namespace achd {
 
-using CouplingMatrix =
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraints, kMaxConstraints>;
+using CouplingMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraintColumns,
+                                     kMaxConstraintColumns>;
 
 struct Data {
-  explicit Data(const Model& model);
+  // constraint_capacity: the most constraint columns a case solved with this Data may
+  // have, all blocks together (at most kMaxConstraintColumns); the storage of the
+  // several-block constraint sweep grows with it, per body.
+  explicit Data(const Model& model, int constraint_capacity = kMaxConstraintColumns);
+  int constraint_capacity() const { return capacity_; }
 
   // ---- results of the last hybrid_dynamics() ----
   Eigen::VectorXd qdd;                 // joint accelerations
@@ -27,8 +31,12 @@ struct Data {
                                        // the actuator torque its given qdd needs while the
                                        // constraint forces act (the ff_torques that, with the
                                        // joint free, gives the same solve); 0 for the others
-  ConstraintVector nu;                 // constraint force magnitudes
-  Vector6 constraint_wrench;           // alpha nu: what the tip exerts on the constraint
+  ConstraintVector nu;                 // constraint force magnitudes: the tip's columns,
+                                       // then each block's (Case::constraints) in order
+  Vector6 constraint_wrench;           // alpha nu of the tip's columns, at the tip link's
+                                       // origin: what the tip exerts on the constraint
+  std::vector<Vector6> constraint_wrenches;  // per Case::constraints block: alpha nu at
+                                             // its point, base axes
   std::vector<Vector6> link_accelerations;  // root link first, then Model::links
   int rank = 0;                  // of the coupling matrix K (nc x nc); its
                                  // smallest singular value: sigma_min(data)
@@ -87,6 +95,8 @@ struct Data {
     ConstraintVector alpha_scale;   // s_k: the sweeps use the columns alpha_k s_k
     ConstraintVector rhs;           // K nu' = rhs: E_0^T a_0 + G_0 - beta' (scaled columns)
   } workspace;
+ private:
+  int capacity_;
 };
 
 }  // namespace achd

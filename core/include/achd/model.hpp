@@ -1,8 +1,9 @@
 #pragma once
-// The robot model: an immutable serial chain of rigid bodies between a root and a tip
-// link. Fixed joints are merged into their parent body, so a Body is one movable joint
-// plus everything rigidly attached after it; every URDF link keeps its own frame in
-// `links` so that wrenches, accelerations and the tip stay where the user named them.
+// The robot model: an immutable kinematic tree of rigid bodies below a root link (a
+// serial chain between a root and a tip link is the tree with one branch). Fixed joints
+// are merged into their parent body, so a Body is one movable joint plus everything
+// rigidly attached after it; every URDF link keeps its own frame in `links` so that
+// wrenches, accelerations and constraints stay where the user named them.
 #include <string>
 #include <vector>
 
@@ -27,7 +28,7 @@ struct JointLimits {
 struct Body {
   std::string joint_name;  // the URDF joint
   std::string link_name;   // the URDF child link (its frame: Model::links)
-  int parent = -1;         // body index of the parent, -1 = the root (fixed base)
+  int parent = -1;         // body index of the parent (< this body's), -1 = the root
   JointType type = JointType::Revolute;
   Transform X_tree;                 // parent body frame -> body frame at q = 0
   Matrix6 inertia = Matrix6::Zero();  // spatial inertia about the body origin, merged
@@ -45,14 +46,26 @@ struct Link {
   Transform offset;
 };
 
+// A movable joint of the URDF that the model holds fixed (a side branch of a chain): its
+// child link rides rigidly on the body it hangs from, at the joint position `value`.
+struct LockedJoint {
+  std::string name;
+  double value = 0;  // rad or m
+};
+
 struct Model {
+  // tip_name is empty for a tree (a model loaded without a tip): then the case's tip
+  // constraints (Case::alpha) do not apply, constraint blocks name their links.
   std::string root_name, tip_name;
-  std::vector<Body> bodies;  // movable joints, root to tip
-  std::vector<Link> links;   // every link after the root, root to tip (tip last)
+  std::vector<Body> bodies;  // movable joints, parents before children
+  std::vector<Link> links;   // every link after the root, parents before children; a
+                             // chain's tip last
+  std::vector<LockedJoint> locked_joints;  // held fixed by the loader, reported
 
   int num_joints() const { return static_cast<int>(bodies.size()); }
   int num_links() const { return static_cast<int>(links.size()); }
-  const Link& tip() const { return links.back(); }
+  bool has_tip() const { return !tip_name.empty(); }
+  const Link& tip() const { return links.back(); }  // when has_tip()
 
   // Set the rotor (armature) inertia of a movable joint, by index; checked.
   void set_rotor_inertia(int joint, double value);
