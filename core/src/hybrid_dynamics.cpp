@@ -437,6 +437,7 @@ double joint_torques(const Model& model, Data& d, const Case& c, int nc, bool pr
 void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
   validate(model, c, d.constraint_capacity());
   validate(o);
+  if (!c.constraints.empty()) throw Error("constraints: blocks on links are not solved yet");
   const int nc = (o.effects & kConstraints) ? c.num_constraints() : 0;
   const bool gravity = o.effects & kGravity;
   // Skipped by themselves when their inputs are zero: the result is identical.
