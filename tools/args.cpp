@@ -22,6 +22,7 @@ Args::Args(int argc, char** argv, const std::set<std::string>& valued,
       } else if (valued.count(a)) {
         if (i + 1 >= argc) throw Error("option " + a + " needs a value");
         values_[a] = argv[++i];
+        repeated_[a].push_back(values_[a]);
       } else {
         throw Error("unknown option " + a);
       }
@@ -39,6 +40,11 @@ std::string Args::get(const std::string& name) const {
 
 std::string Args::get(const std::string& name, const std::string& fallback) const {
   return has(name) ? get(name) : fallback;
+}
+
+std::vector<std::string> Args::all(const std::string& name) const {
+  const auto it = repeated_.find(name);
+  return it == repeated_.end() ? std::vector<std::string>() : it->second;
 }
 
 double Args::number(const std::string& name, double fallback) const {

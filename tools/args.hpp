@@ -20,6 +20,9 @@ class Args {
   bool has(const std::string& name) const { return values_.count(name) > 0; }
   std::string get(const std::string& name) const;  // throws if absent
   std::string get(const std::string& name, const std::string& fallback) const;
+  // Every value of a repeatable option (--lock J=V ...), in the order given; get() reads
+  // the last one.
+  std::vector<std::string> all(const std::string& name) const;
   double number(const std::string& name, double fallback) const;  // finite, else throws
   // A decimal integer in [min, max] (parsed in 64 bits), else an achd::Error naming the
   // option and the range.
@@ -28,6 +31,7 @@ class Args {
  private:
   std::vector<std::string> positional_;
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> repeated_;
 };
 
 // --convention, --policy, --tolerance, --absolute-tolerance, --damping, --singular-region,

@@ -46,6 +46,109 @@ std::string array(const V& v) {
   return s + "]";
 }
 
+// Why `name` is not a movable joint of the model, in the user's terms: a joint the loader
+// locked (a side joint of a chain), or one that is not on the chain / not below the root.
+std::string no_joint(const Model& model, const std::string& name) {
+  for (const LockedJoint& l : model.locked_joints)
+    if (l.name == name)
+      return "joint '" + name + "' is locked at " + fmt(l.value) + " (a side joint of the chain; --lock sets its position)";
+  if (model.has_tip()) return "no movable joint '" + name + "' between the root and the tip";
+  return "no movable joint '" + name + "' below the root link '" + model.root_name + "'";
+}
+
+// Why `name` names no link after the root (the links wrenches and constraint blocks act on).
+std::string no_link(const Model& model, const std::string& name) {
+  if (name == model.root_name) return "'" + name + "' is the root link, which is fixed (nothing acts on the model through it)";
+  return "no link '" + name + "'" + (model.has_tip() ? " on the chain" : " below the root link '" + model.root_name + "'");
+}
+
+// A per-joint vector (q, qd, ff_torques): an array of nj numbers in model order, or an
+// object keyed by joint name (joints not named: 0).
+Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Model& model) {
+  const int nj = model.num_joints();
+  if (!v.is_object()) {
+    if (!v.is_array())
+      throw Error(field + " must be an array of " + std::to_string(nj) + " numbers or an object {joint name: value}");
+    return vector(v, field, nj);
+  }
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(nj);
+  for (const auto& item : v.items()) {
+    const int i = model.joint_index(item.key());
+    if (i < 0) throw Error(field + ": " + no_joint(model, item.key()));
+    out[i] = number(item.value(), field + "['" + item.key() + "']");
+  }
+  return out;
+}
+
+// "f_ext": an array of one wrench per link after the root, or an object keyed by link
+// name (links not named: no wrench).
+void external_wrenches(const json& f, const Model& model, Case& c) {
+  const int nl = model.num_links();
+  if (f.is_object()) {
+    c.f_ext.assign(nl, Vector6::Zero());
+    for (const auto& item : f.items()) {
+      const int l = model.link_index(item.key());
+      if (l < 0) throw Error("f_ext: " + no_link(model, item.key()));
+      c.f_ext[l] = spatial(item.value(), "f_ext['" + item.key() + "']");
+    }
+    return;
+  }
+  if (!f.is_array()) throw Error("f_ext must be an array of 6-element wrenches or an object {link name: wrench}");
+  if (static_cast<int>(f.size()) != nl)
+    throw Error("f_ext: expected " + std::to_string(nl) + " wrenches (one per link after the root), got " +
+                std::to_string(f.size()));
+  for (size_t i = 0; i < f.size(); ++i) c.f_ext.push_back(spatial(f[i], at("f_ext", i)));
+}
+
+// Constraint columns: `alpha` (up to kMaxConstraints 6-element columns) and `beta` (one
+// per column; absent = zeros) of the tip (prefix "") or of a block ("constraints[b].").
+void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, ConstraintVector& beta) {
+  if (j.contains("alpha")) {
+    const json& a = j["alpha"];
+    if (!a.is_array()) throw Error(prefix + "alpha must be an array of 6-element columns");
+    if (a.size() > static_cast<size_t>(kMaxConstraints))
+      throw Error(prefix + "alpha: at most " + std::to_string(kMaxConstraints) + " constraints, got " +
+                  std::to_string(a.size()));
+    alpha.resize(6, static_cast<Eigen::Index>(a.size()));
+    for (size_t k = 0; k < a.size(); ++k) alpha.col(k) = spatial(a[k], at(prefix + "alpha", k));
+  }
+  const int nc = static_cast<int>(alpha.cols());
+  if (j.contains("beta")) {
+    const json& b = j["beta"];
+    if (!b.is_array()) throw Error(prefix + "beta must be an array of numbers");
+    if (static_cast<int>(b.size()) != nc)
+      throw Error(prefix + "beta: expected " + std::to_string(nc) + " values (one per alpha column), got " +
+                  std::to_string(b.size()));
+    beta.resize(nc);
+    for (int k = 0; k < nc; ++k) beta[k] = number(b[k], at(prefix + "beta", k));
+  } else {
+    beta.setZero(nc);
+  }
+}
+
+// "constraints": blocks {link, alpha, beta, point} on links named by the user.
+void constraint_blocks(const json& cs, const Model& model, Case& c) {
+  if (!cs.is_array()) throw Error("constraints must be an array of blocks {link, alpha, beta, point}");
+  for (size_t b = 0; b < cs.size(); ++b) {
+    const json& j = cs[b];
+    const std::string where = at("constraints", b);
+    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point}");
+    for (const auto& item : j.items())
+      if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point")
+        throw Error(where + ": unknown field '" + item.key() + "'");
+    if (!j.contains("link")) throw Error(where + ": missing required field 'link'");
+    if (!j.contains("alpha")) throw Error(where + ": missing required field 'alpha'");
+    if (!j["link"].is_string()) throw Error(where + ".link must be a link name");
+    ConstraintBlock block;
+    const std::string name = j["link"].get<std::string>();
+    block.link = model.link_index(name);
+    if (block.link < 0) throw Error(where + ".link: " + no_link(model, name));
+    columns(j, where + ".", block.alpha, block.beta);
+    if (j.contains("point")) block.point = vector(j["point"], where + ".point", 3);
+    c.constraints.push_back(block);
+  }
+}
+
 // "qdd_given": the prescribed joints' accelerations, as an object keyed by joint name or
 // an array in model order with null for a joint that is not prescribed.
 void prescribed_joints(const json& v, const Model& model, Case& c) {
@@ -55,8 +158,7 @@ void prescribed_joints(const json& v, const Model& model, Case& c) {
   if (v.is_object()) {
     for (const auto& item : v.items()) {
       const int i = model.joint_index(item.key());
-      if (i < 0)
-        throw Error("qdd_given: no movable joint '" + item.key() + "' between the root and the tip");
+      if (i < 0) throw Error("qdd_given: " + no_joint(model, item.key()));
       c.qdd_given[i] = number(item.value(), "qdd_given['" + item.key() + "']");
       c.prescribed[i] = true;
     }
@@ -75,54 +177,31 @@ void prescribed_joints(const json& v, const Model& model, Case& c) {
   }
 }
 
+// A JSON string.
+std::string quoted(const std::string& s) { return json(s).dump(); }
+
 }  // namespace
 
 Case case_from_json(const json& j, const Model& model, const std::string& source) {
   try {
     if (!j.is_object()) throw Error("the case must be a JSON object");
-    static const char* known[] = {"q", "qd", "gravity", "alpha", "beta", "f_ext", "ff_torques", "qdd_given"};
+    static const char* known[] = {"q",     "qd",         "gravity",   "alpha",      "beta",
+                                  "f_ext", "ff_torques", "qdd_given", "constraints"};
     for (const auto& item : j.items()) {
       bool ok = false;
       for (const char* k : known) ok = ok || item.key() == k;
       if (!ok) throw Error("unknown field '" + item.key() + "'");
     }
-    const int nj = model.num_joints();
     if (!j.contains("q")) throw Error("missing required field 'q'");
     if (!j.contains("gravity")) throw Error("missing required field 'gravity'");
     Case c;
-    c.q = vector(j["q"], "q", nj);
+    c.q = joint_vector(j["q"], "q", model);
     c.gravity = vector(j["gravity"], "gravity", 3);
-    if (j.contains("qd")) c.qd = vector(j["qd"], "qd", nj);
-    if (j.contains("ff_torques")) c.ff_torques = vector(j["ff_torques"], "ff_torques", nj);
-    if (j.contains("alpha")) {
-      const json& a = j["alpha"];
-      if (!a.is_array()) throw Error("alpha must be an array of 6-element columns");
-      if (a.size() > static_cast<size_t>(kMaxConstraints))
-        throw Error("alpha: at most " + std::to_string(kMaxConstraints) + " constraints, got " +
-                    std::to_string(a.size()));
-      c.alpha.resize(6, static_cast<Eigen::Index>(a.size()));
-      for (size_t k = 0; k < a.size(); ++k) c.alpha.col(k) = spatial(a[k], at("alpha", k));
-    }
-    const int nc = c.num_constraints();
-    if (j.contains("beta")) {
-      const json& b = j["beta"];
-      if (!b.is_array()) throw Error("beta must be an array of numbers");
-      if (static_cast<int>(b.size()) != nc)
-        throw Error("beta: expected " + std::to_string(nc) + " values (one per alpha column), got " +
-                    std::to_string(b.size()));
-      c.beta.resize(nc);
-      for (int k = 0; k < nc; ++k) c.beta[k] = number(b[k], at("beta", k));
-    } else {
-      c.beta.setZero(nc);
-    }
-    if (j.contains("f_ext")) {
-      const json& f = j["f_ext"];
-      if (!f.is_array()) throw Error("f_ext must be an array of 6-element wrenches");
-      if (static_cast<int>(f.size()) != model.num_links())
-        throw Error("f_ext: expected " + std::to_string(model.num_links()) +
-                    " wrenches (one per link after the root), got " + std::to_string(f.size()));
-      for (size_t i = 0; i < f.size(); ++i) c.f_ext.push_back(spatial(f[i], at("f_ext", i)));
-    }
+    if (j.contains("qd")) c.qd = joint_vector(j["qd"], "qd", model);
+    if (j.contains("ff_torques")) c.ff_torques = joint_vector(j["ff_torques"], "ff_torques", model);
+    columns(j, "", c.alpha, c.beta);
+    if (j.contains("constraints")) constraint_blocks(j["constraints"], model, c);
+    if (j.contains("f_ext")) external_wrenches(j["f_ext"], model, c);
     if (j.contains("qdd_given")) prescribed_joints(j["qdd_given"], model, c);
     validate(model, c);
     return c;
@@ -143,6 +222,11 @@ Case parse_case(const std::string& text, const Model& model, const std::string& 
 
 std::string result_json(const Model& model, const Data& d, const Case& c) {
   std::string s = "{\n";
+  s += "  \"joints\": [";
+  for (int i = 0; i < model.num_joints(); ++i) s += (i ? ", " : "") + quoted(model.bodies[i].joint_name);
+  s += "],\n  \"links\": [" + quoted(model.root_name);
+  for (const Link& l : model.links) s += ", " + quoted(l.name);
+  s += "],\n";
   s += "  \"qdd\": " + array(d.qdd) + ",\n";
   s += "  \"constraint_torques\": " + array(d.constraint_torques) + ",\n";
   s += "  \"total_torques\": " + array(d.total_torques) + ",\n";
@@ -155,6 +239,9 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
     s += "],\n";
   }
   s += "  \"constraint_wrench\": " + array(d.constraint_wrench) + ",\n";
+  s += "  \"constraint_wrenches\": [";  // one per block of c.constraints
+  for (size_t b = 0; b < c.constraints.size(); ++b) s += (b ? ", " : "") + array(d.constraint_wrenches[b]);
+  s += "],\n";
   s += "  \"link_accelerations\": [";
   for (int i = 0; i <= model.num_links(); ++i)
     s += std::string(i ? ",\n    " : "\n    ") + array(d.link_accelerations[i]);
@@ -164,8 +251,17 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
   s += "  \"dropped\": [";
   for (Eigen::Index k = 0; k < d.dropped.cols(); ++k)
     s += (k ? ", " : "") + array(d.dropped.col(k));
-  s += "]\n}\n";
-  return s;
+  s += "]";
+  if (!model.locked_joints.empty()) s += ",\n  \"locked_joints\": " + locked_joints_json(model);
+  return s + "\n}\n";
+}
+
+std::string locked_joints_json(const Model& model) {
+  std::string s = "[";
+  for (size_t k = 0; k < model.locked_joints.size(); ++k)
+    s += std::string(k ? ", " : "") + "{\"name\": " + quoted(model.locked_joints[k].name) +
+         ", \"value\": " + fmt(model.locked_joints[k].value) + "}";
+  return s + "]";
 }
 
 std::string read_file(const std::string& path) {

@@ -1,6 +1,7 @@
-// achd bench ROBOT.urdf --root LINK --tip LINK --case CASE.json [--iterations N]
-//            [--repeats R] [--clock cpu|wall] [--against kdl] [--mimic error|independent]
-//            [solver options]
+// achd bench ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json [--iterations N]
+//            [--repeats R] [--clock cpu|wall] [--against kdl] [--lock JOINT=VALUE ...]
+//            [--mimic error|independent] [solver options]
+// Loads the robot and reads the case as `achd solve` does (without --tip: the whole tree).
 // Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R rounds of N
 // calls (default: about 2 ms per round, 51 rounds) after a warm-up round; with --against
 // kdl also KDL's ChainHdSolver_Vereshchagin on the same chain and case, timed in the same
@@ -29,8 +30,7 @@ int cmd_bench(int argc, char** argv) {
   if (args.positional().size() != 1) throw Error("bench: expected one URDF file, see `achd help`");
   const Options options = solver_options(args);
   const std::string urdf = args.positional()[0];
-  const std::string root = args.get("--root"), tip = args.get("--tip");
-  const Model model = load_urdf_file(urdf, root, tip, urdf_options(args));
+  const Model model = load_urdf_file(urdf, args.get("--root", ""), args.get("--tip", ""), urdf_options(args));
   const std::string case_path = args.get("--case");
   const Case c = parse_case(case_path == "-" ? read_file("/dev/stdin") : read_file(case_path), model,
                             case_path);
@@ -49,7 +49,10 @@ int cmd_bench(int argc, char** argv) {
 #ifdef ACHD_HAVE_KDL
   std::unique_ptr<KdlProblem> kdl;
   if (!against.empty()) {
-    kdl = std::make_unique<KdlProblem>(urdf, false, root, tip, c);
+    // KDL's solver holds a chain at its tip: no trees, no constraint blocks.
+    if (!model.has_tip()) throw Error("--against kdl: KDL's solver takes a chain; give --tip");
+    if (!c.constraints.empty()) throw Error("--against kdl: KDL's solver has no constraint blocks (\"constraints\")");
+    kdl = std::make_unique<KdlProblem>(urdf, false, model.root_name, model.tip_name, c);
     fns.push_back([&] { kdl->solve(); });
   }
 #else

@@ -5,6 +5,7 @@ namespace achd::cli {
 
 int cmd_solve(int argc, char** argv);
 int cmd_bench(int argc, char** argv);
+int cmd_info(int argc, char** argv);
 int cmd_simulate(int argc, char** argv);
 int cmd_accuracy(int argc, char** argv);
 

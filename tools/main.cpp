@@ -16,17 +16,25 @@ namespace {
 
 const char* kUsage =
     "usage: achd <command> [arguments]\n"
-    "  solve ROBOT.urdf --root LINK --tip LINK --case CASE.json\n"
-    "        [--mimic error|independent]\n"
+    "  solve ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json\n"
+    "        [--lock JOINT=VALUE ...] [--mimic error|independent]\n"
     "        [--convention physical|kdl] [--policy truncate|damped|variable_damping]\n"
     "        [--tolerance X] [--absolute-tolerance] [--damping X]\n"
     "        [--singular-region X] [--max-damping X]\n"
-    "                  solve one case, print the result JSON\n"
-    "  bench ROBOT.urdf --root LINK --tip LINK --case CASE.json\n"
+    "                  solve one case, print the result JSON; without --tip the\n"
+    "                  whole tree below --root (default: the URDF's root link),\n"
+    "                  with --tip the chain (side branches merged, their movable\n"
+    "                  joints locked at 0 or at --lock's value; --convention kdl\n"
+    "                  ignores them, as KDL does)\n"
+    "  bench ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json\n"
     "        [--iterations N] [--repeats R] [--against kdl]\n"
-    "        [--mimic error|independent] [solver options]\n"
+    "        [--lock JOINT=VALUE ...] [--mimic error|independent] [solver options]\n"
     "                  ns per solve (median of R repeats of N calls), with\n"
     "                  --against kdl also KDL's solver in the same run\n"
+    "  info ROBOT.urdf [--root LINK] [--tip LINK] [--lock JOINT=VALUE ...]\n"
+    "        [--mimic error|independent] [--convention physical|kdl]\n"
+    "                  print the model as JSON: joints, links, masses, locked\n"
+    "                  joints, a default pose\n"
     "  simulate SCENE.json [--out traj.csv] [--integrator NAME] [--rtol R] [--atol A]\n"
     "                  run a scene (robots/scenes/*.json), write the trajectory\n"
     "                  CSV, print a JSON summary (steps, ns per step, drifts);\n"
@@ -46,6 +54,7 @@ struct Command {
 const Command kCommands[] = {
     {"solve", achd::cli::cmd_solve},
     {"bench", achd::cli::cmd_bench},
+    {"info", achd::cli::cmd_info},
     {"simulate", achd::cli::cmd_simulate},
     {"accuracy", achd::cli::cmd_accuracy},
 };

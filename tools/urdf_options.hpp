@@ -1,5 +1,7 @@
 #pragma once
-// The URDF-loading options of `achd solve` and `achd bench`: --mimic error|independent.
+// The URDF-loading options of `achd solve`, `achd bench` and `achd info`: --mimic
+// error|independent, --lock JOINT=VALUE (repeatable: a chain's side joint held at VALUE),
+// and --convention kdl, which loads a chain as KDL does (side branches ignored).
 #include <set>
 #include <string>
 
@@ -8,7 +10,7 @@
 
 namespace achd::cli {
 
-// The option names urdf_options() reads.
+// The option names urdf_options() reads (besides --convention, a solver option).
 extern const std::set<std::string> kUrdfValued;
 
 UrdfOptions urdf_options(const Args& args);

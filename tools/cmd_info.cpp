@@ -1,0 +1,28 @@
+// achd info ROBOT.urdf [--root LINK] [--tip LINK] [--lock JOINT=VALUE ...]
+//           [--mimic error|independent] [--convention physical|kdl]
+// Prints the model the other commands would load, as JSON (model_info.hpp).
+#include <iostream>
+
+#include "args.hpp"
+#include "case_json.hpp"
+#include "commands.hpp"
+#include "model_info.hpp"
+#include "urdf_options.hpp"
+
+namespace achd::cli {
+
+int cmd_info(int argc, char** argv) {
+  std::set<std::string> valued = {"--root", "--tip", "--convention"};
+  valued.insert(kUrdfValued.begin(), kUrdfValued.end());
+  const Args args(argc, argv, valued, {});
+  if (args.positional().size() != 1) throw Error("info: expected one URDF file, see `achd help`");
+  const std::string convention = args.get("--convention", "physical");
+  if (convention != "physical" && convention != "kdl")
+    throw Error("option --convention: expected 'physical' or 'kdl', got '" + convention + "'");
+  const std::string urdf = args.positional()[0];
+  const Model model = load_urdf_file(urdf, args.get("--root", ""), args.get("--tip", ""), urdf_options(args));
+  std::cout << model_info_json(model, read_file(urdf));
+  return 0;
+}
+
+}  // namespace achd::cli

@@ -1,0 +1,62 @@
+#include "model_info.hpp"
+
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+#include <urdf_parser/urdf_parser.h>
+
+#include "achd/error.hpp"
+#include "console_capture.hpp"
+
+namespace achd::cli {
+namespace {
+
+using nlohmann::ordered_json;
+
+// A joint limit, null when unbounded (the model's +-1e300 of continuous joints).
+ordered_json bound(double x) { return std::abs(x) >= 1e300 ? ordered_json(nullptr) : ordered_json(x); }
+
+ordered_json body_name(const Model& model, int body) {
+  return body < 0 ? ordered_json(nullptr) : ordered_json(model.bodies[body].joint_name);
+}
+
+}  // namespace
+
+std::string model_info_json(const Model& model, const std::string& urdf_text) {
+  urdf::ModelInterfaceSharedPtr urdf;
+  {
+    // The loader has parsed this text already; urdfdom's log stays off stderr.
+    const ConsoleCapture console;
+    urdf = urdf::parseURDF(urdf_text);
+  }
+  if (!urdf) throw Error("URDF: cannot read the link masses");
+  const auto mass = [&](const std::string& link) {
+    const urdf::LinkConstSharedPtr l = urdf->getLink(link);
+    return l && l->inertial ? l->inertial->mass : 0.0;
+  };
+
+  ordered_json info;
+  info["root"] = model.root_name;
+  info["tip"] = model.has_tip() ? ordered_json(model.tip_name) : ordered_json(nullptr);
+  info["joints"] = ordered_json::array();
+  for (const Body& b : model.bodies)
+    info["joints"].push_back({{"name", b.joint_name},
+                              {"type", joint_type_name(b.type)},
+                              {"parent", body_name(model, b.parent)},
+                              {"link", b.link_name},
+                              {"limits", {{"lower", bound(b.limits.lower)},
+                                          {"upper", bound(b.limits.upper)},
+                                          {"velocity", b.limits.velocity},
+                                          {"effort", b.limits.effort}}}});
+  info["links"] = ordered_json::array();
+  info["links"].push_back({{"name", model.root_name}, {"body", nullptr}, {"mass", mass(model.root_name)}});
+  for (const Link& l : model.links)
+    info["links"].push_back({{"name", l.name}, {"body", body_name(model, l.body)}, {"mass", mass(l.name)}});
+  info["locked_joints"] = ordered_json::array();
+  for (const LockedJoint& j : model.locked_joints) info["locked_joints"].push_back({{"name", j.name}, {"value", j.value}});
+  info["default_q"] = ordered_json::object();
+  for (const Body& b : model.bodies) info["default_q"][b.joint_name] = std::clamp(0.0, b.limits.lower, b.limits.upper);
+  return info.dump(2) + "\n";
+}
+
+}  // namespace achd::cli
