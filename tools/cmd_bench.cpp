@@ -43,15 +43,16 @@ int cmd_bench(int argc, char** argv) {
   const Clock clock = clock_name == "wall" ? Clock::Wall : Clock::ThreadCpu;
   if (!against.empty() && against != "kdl")
     throw Error("option --against: expected 'kdl', got '" + against + "'");
+  // KDL's solver holds a chain at its tip: no trees, no constraint blocks.
+  if (!against.empty() && !model.has_tip()) throw Error("--against kdl: KDL's solver takes a chain; give --tip");
+  if (!against.empty() && !c.constraints.empty())
+    throw Error("--against kdl: KDL's solver has no constraint blocks (\"constraints\")");
 
   Data data(model);
   std::vector<std::function<void()>> fns = {[&] { hybrid_dynamics(model, data, c, options); }};
 #ifdef ACHD_HAVE_KDL
   std::unique_ptr<KdlProblem> kdl;
   if (!against.empty()) {
-    // KDL's solver holds a chain at its tip: no trees, no constraint blocks.
-    if (!model.has_tip()) throw Error("--against kdl: KDL's solver takes a chain; give --tip");
-    if (!c.constraints.empty()) throw Error("--against kdl: KDL's solver has no constraint blocks (\"constraints\")");
     kdl = std::make_unique<KdlProblem>(urdf, false, model.root_name, model.tip_name, c);
     fns.push_back([&] { kdl->solve(); });
   }

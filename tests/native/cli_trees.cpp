@@ -1,0 +1,344 @@
+// The command line on whole robots (issue 15), through the real `achd` binary: inputs by
+// name (q, qd, ff_torques by joint, f_ext by link) give the results of the arrays; results
+// name their joints and links; constraint blocks are read by link name, with errors naming
+// the field and index; without --tip the whole tree loads; --lock and locked side joints
+// are reported by `achd info` and in results; --convention kdl loads a chain as KDL does;
+// `achd bench` takes every case `achd solve` takes. The small tree is
+// tests/fixtures/small_tree.urdf.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "case_json.hpp"
+#include "cli_run.hpp"
+
+namespace achd::test {
+namespace {
+
+using nlohmann::json;
+
+const std::string kKuka = ACHD_SOURCE_DIR "/robots/kuka_lwr4.urdf";
+const std::string kTree = ACHD_SOURCE_DIR "/tests/fixtures/small_tree.urdf";
+const std::vector<std::string> kKukaChain = {"--root", "lwr_base_link", "--tip", "lwr_link_7"};
+const std::vector<double> kKukaQ = {0.3, 0.6, -0.2, -1.2, 0.4, 0.8, 0.1};
+const std::vector<std::string> kKukaJoints = {"lwr_joint_1", "lwr_joint_2", "lwr_joint_3", "lwr_joint_4",
+                                              "lwr_joint_5", "lwr_joint_6", "lwr_joint_7"};
+
+class CliTrees : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { dir_ = make_temp_dir("achd_cli_trees"); }
+
+  static std::string write(const std::string& name, const std::string& text) {
+    const std::string path = dir_ + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  // `achd command urdf args...`; must succeed with nothing on stderr.
+  static std::string ok(const std::string& command, const std::string& urdf, std::vector<std::string> args) {
+    args.insert(args.begin(), {command, urdf});
+    const CliRun r = run_cli(dir_, args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    return r.out;
+  }
+  static json solve(const std::string& urdf, std::vector<std::string> args, const json& c) {
+    args.insert(args.end(), {"--case", write("case.json", c.dump())});
+    const std::string out = ok("solve", urdf, args);
+    return out.empty() ? json() : json::parse(out);
+  }
+  static json info(const std::string& urdf, const std::vector<std::string>& args) {
+    const std::string out = ok("info", urdf, args);
+    return out.empty() ? json() : json::parse(out);
+  }
+
+  // Exit 2, nothing on stdout, one line "achd: error: ..." holding `message`.
+  static void refused(std::vector<std::string> args, const std::string& message) {
+    const CliRun r = run_cli(dir_, args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err.rfind("achd: error: ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << "'" << message << "' not in: " << r.err;
+  }
+
+  static inline std::string dir_;
+};
+
+json kuka_case() { return {{"q", kKukaQ}, {"gravity", {0, 0, -9.81}}}; }
+
+// Inputs by name: the same solve as the arrays, printed to the same bits; joints and
+// links not named are 0 / no wrench. (Before: "q must be an array of 7 numbers".)
+TEST_F(CliTrees, InputsByNameEqualTheArrays) {
+  json by_array = kuka_case(), by_name = kuka_case();
+  by_array["qd"] = {0.1, -0.2, 0.3, 0, 0.5, 0, 0.7};
+  by_array["ff_torques"] = {1, 0, 0, 2, 0, 0, 0};
+  by_array["f_ext"] = json::array();
+  for (int l = 0; l < 7; ++l)
+    by_array["f_ext"].push_back(l == 6 ? json{0, 0, -5, 0.1, 0, 0} : json{0, 0, 0, 0, 0, 0});
+  by_array["alpha"] = {{0, 0, 1, 0, 0, 0}};
+  by_array["beta"] = {0.2};
+  by_name["q"] = json::object();
+  for (int i = 6; i >= 0; --i) by_name["q"][kKukaJoints[i]] = kKukaQ[i];
+  by_name["qd"] = {{"lwr_joint_1", 0.1}, {"lwr_joint_2", -0.2}, {"lwr_joint_3", 0.3}, {"lwr_joint_5", 0.5},
+                   {"lwr_joint_7", 0.7}};
+  by_name["ff_torques"] = {{"lwr_joint_4", 2}, {"lwr_joint_1", 1}};
+  by_name["f_ext"] = {{"lwr_link_7", {0, 0, -5, 0.1, 0, 0}}};
+  by_name["alpha"] = by_array["alpha"];
+  by_name["beta"] = by_array["beta"];
+  std::vector<std::string> args = kKukaChain;
+  const std::string a = write("by_array.json", by_array.dump()), n = write("by_name.json", by_name.dump());
+  std::vector<std::string> with_a = args, with_n = args;
+  with_a.insert(with_a.end(), {"--case", a});
+  with_n.insert(with_n.end(), {"--case", n});
+  const std::string out_a = ok("solve", kKuka, with_a), out_n = ok("solve", kKuka, with_n);
+  EXPECT_EQ(out_n, out_a);
+  EXPECT_NE(json::parse(out_a).at("qdd"), solve(kKuka, kKukaChain, kuka_case()).at("qdd"));  // inputs mattered
+}
+
+// Every result names its joints (the order of qdd) and links (of link_accelerations, the
+// root link first), and has one constraint wrench per block (none here); a model with no
+// locked joint has no "locked_joints".
+TEST_F(CliTrees, ResultsNameJointsAndLinks) {
+  const json r = solve(kKuka, kKukaChain, kuka_case());
+  EXPECT_EQ(r.at("joints"), json(kKukaJoints));
+  EXPECT_EQ(r.at("links"), json({"lwr_base_link", "lwr_link_1", "lwr_link_2", "lwr_link_3", "lwr_link_4",
+                                 "lwr_link_5", "lwr_link_6", "lwr_link_7"}));
+  EXPECT_EQ(r.at("links").size(), r.at("link_accelerations").size());
+  EXPECT_EQ(r.at("constraint_wrenches"), json::array());
+  EXPECT_FALSE(r.contains("locked_joints"));
+}
+
+// Constraint blocks and inputs by name that are wrong: the error names the field and the
+// index, in the user's terms.
+TEST_F(CliTrees, BadBlocksAndNamesAreNamed) {
+  const json col = {0, 0, 1, 0, 0, 0};
+  const std::vector<std::pair<json, std::string>> bad = {
+      {{{"constraints", {{{"link", "lwr_link_7"}, {"alpha", {col}}}, {{"link", "x"}, {"alpha", {col}}}}}},
+       "constraints[1].link: no link 'x'"},
+      {{{"constraints", {{{"link", "lwr_base_link"}, {"alpha", {col}}}}}},
+       "constraints[0].link: 'lwr_base_link' is the root link"},
+      {{{"constraints", {{{"link", 7}, {"alpha", {col}}}}}}, "constraints[0].link must be a link name"},
+      {{{"constraints", {{{"alpha", {col}}}}}}, "constraints[0]: missing required field 'link'"},
+      {{{"constraints", {{{"link", "lwr_link_3"}}}}}, "constraints[0]: missing required field 'alpha'"},
+      {{{"constraints", {{{"link", "lwr_link_3"}, {"alpha", {col}}, {"where", 1}}}}},
+       "constraints[0]: unknown field 'where'"},
+      {{{"constraints", {{{"link", "lwr_link_3"}, {"alpha", {{0, 0, 1, 0, 0}}}}}}},
+       "constraints[0].alpha[0]: expected 6 values, got 5"},
+      {{{"constraints", {{{"link", "lwr_link_3"}, {"alpha", {col}}, {"beta", {1, 2}}}}}},
+       "constraints[0].beta: expected 1 values (one per alpha column), got 2"},
+      {{{"constraints", {{{"link", "lwr_link_3"}, {"alpha", {col}}, {"point", {0, 1}}}}}},
+       "constraints[0].point: expected 3 values, got 2"},
+      {{{"constraints", {{{"link", "lwr_link_3"}, {"alpha", {col, col, col, col, col, col, col}}}}}},
+       "constraints[0].alpha: at most 6 constraints, got 7"},
+      {{{"constraints", json::array({1})}}, "constraints[0] must be an object {link, alpha, beta, point}"},
+      {{{"constraints", 1}}, "constraints must be an array of blocks"},
+      {{{"q", {{"lwr_joint_9", 1}}}}, "q: no movable joint 'lwr_joint_9' between the root and the tip"},
+      {{{"qd", {{"lwr_joint_2", "fast"}}}}, "qd['lwr_joint_2'] must be a number"},
+      {{{"ff_torques", "none"}}, "ff_torques must be an array of 7 numbers or an object {joint name: value}"},
+      {{{"f_ext", {{"lwr_base_link", col}}}}, "f_ext: 'lwr_base_link' is the root link"},
+      {{{"f_ext", {{"lwr_link_9", col}}}}, "f_ext: no link 'lwr_link_9'"},
+      {{{"f_ext", {{"lwr_link_2", {0, 0}}}}}, "f_ext['lwr_link_2']: expected 6 values, got 2"},
+  };
+  for (const auto& [fields, message] : bad) {
+    json c = kuka_case();
+    c.update(fields);
+    std::vector<std::string> args = {"solve", kKuka};
+    args.insert(args.end(), kKukaChain.begin(), kKukaChain.end());
+    args.insert(args.end(), {"--case", write("bad.json", c.dump())});
+    SCOPED_TRACE(c.dump());
+    refused(args, "bad.json: " + message);
+  }
+}
+
+// The case JSON into Case::constraints: link by name -> index, columns, beta (absent:
+// zeros), point (absent: the link's origin), in the order given.
+TEST_F(CliTrees, BlocksAreReadIntoTheCase) {
+  const Model m = load_urdf_file(kKuka, "lwr_base_link", "lwr_link_7");
+  json c = kuka_case();
+  c["constraints"] = {{{"link", "lwr_link_7"}, {"alpha", {{1, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 1}}}, {"beta", {0.5, -1}},
+                       {"point", {0, 0, 0.1}}},
+                      {{"link", "lwr_link_3"}, {"alpha", {{0, 0, 1, 0, 0, 0}}}}};
+  const Case k = cli::case_from_json(c, m, "case.json");
+  ASSERT_EQ(k.constraints.size(), 2u);
+  EXPECT_EQ(k.constraints[0].link, m.link_index("lwr_link_7"));
+  EXPECT_EQ(k.constraints[0].alpha.cols(), 2);
+  EXPECT_EQ(k.constraints[0].alpha(5, 1), 1);
+  EXPECT_EQ(k.constraints[0].beta[0], 0.5);
+  EXPECT_EQ(k.constraints[0].beta[1], -1);
+  EXPECT_EQ(k.constraints[0].point, Vector3(0, 0, 0.1));
+  EXPECT_EQ(k.constraints[1].link, m.link_index("lwr_link_3"));
+  EXPECT_EQ(k.constraints[1].beta.size(), 1);
+  EXPECT_EQ(k.constraints[1].beta[0], 0);
+  EXPECT_EQ(k.constraints[1].point, Vector3::Zero());
+  EXPECT_EQ(k.num_constraints(), 3);
+}
+
+// A block on the tip link at its origin is the tip's alpha: the same solve (needs the
+// solver of blocks); its constraint wrench is the tip's.
+TEST_F(CliTrees, TipBlockSolvesAsTheTipConstraint) {
+  json tip = kuka_case(), block = kuka_case();
+  tip["alpha"] = {{0, 0, 1, 0, 0, 0}, {0, 0, 0, 1, 0, 0}};
+  tip["beta"] = {0.3, -0.1};
+  block["constraints"] = {{{"link", "lwr_link_7"}, {"alpha", tip["alpha"]}, {"beta", tip["beta"]}}};
+  const json a = solve(kKuka, kKukaChain, tip), b = solve(kKuka, kKukaChain, block);
+  ASSERT_TRUE(b.is_object());
+  for (const char* key : {"qdd", "joint_torques", "nu"}) {
+    ASSERT_EQ(a.at(key).size(), b.at(key).size()) << key;
+    for (size_t i = 0; i < a.at(key).size(); ++i)
+      EXPECT_NEAR(b.at(key)[i].get<double>(), a.at(key)[i].get<double>(),
+                  1e-12 * std::max(1.0, std::abs(a.at(key)[i].get<double>())))
+          << key << "[" << i << "]";
+  }
+  ASSERT_EQ(b.at("constraint_wrenches").size(), 1u);
+  for (int r = 0; r < 6; ++r)
+    EXPECT_NEAR(b.at("constraint_wrenches")[0][r].get<double>(), a.at("constraint_wrench")[r].get<double>(), 1e-9);
+}
+
+// achd info: the model as JSON, a chain with its tip.
+TEST_F(CliTrees, InfoDescribesAChain) {
+  const json i = info(ACHD_SOURCE_DIR "/robots/planar2.urdf", {"--root", "base_link", "--tip", "link2"});
+  const json expected = json::parse(R"({
+    "root": "base_link", "tip": "link2",
+    "joints": [
+      {"name": "joint1", "type": "revolute", "parent": null, "link": "link1",
+       "limits": {"lower": -3.141592653589793, "upper": 3.141592653589793, "velocity": 10.0, "effort": 100.0}},
+      {"name": "joint2", "type": "revolute", "parent": "joint1", "link": "link2",
+       "limits": {"lower": -3.141592653589793, "upper": 3.141592653589793, "velocity": 10.0, "effort": 100.0}}],
+    "links": [{"name": "base_link", "body": null, "mass": 0.0}, {"name": "link1", "body": "joint1", "mass": 1.0},
+              {"name": "link2", "body": "joint2", "mass": 1.0}],
+    "locked_joints": [],
+    "default_q": {"joint1": 0.0, "joint2": 0.0}})");
+  EXPECT_EQ(i, expected);
+  refused({"info"}, "info: expected one URDF file");
+  refused({"info", kKuka, "--case", "c.json"}, "unknown option --case");
+  refused({"info", kKuka, "--convention", "rbdl"}, "option --convention: expected 'physical' or 'kdl'");
+}
+
+// Without --tip (and without --root) the whole tree: every movable joint, parents before
+// children (each body's subtree after it), every link with the body it rides on, the
+// fixed camera on the torso's; the default pose inside the limits. (Needs the loader of
+// trees; before: "unknown root link ''".)
+TEST_F(CliTrees, InfoDescribesTheWholeTree) {
+  const json i = info(kTree, {});
+  ASSERT_TRUE(i.is_object());
+  EXPECT_EQ(i.at("root"), "base");
+  EXPECT_TRUE(i.at("tip").is_null());
+  std::vector<std::string> joints, parents;
+  for (const json& j : i.at("joints")) {
+    joints.push_back(j.at("name"));
+    parents.push_back(j.at("parent").is_null() ? "-" : j.at("parent").get<std::string>());
+  }
+  EXPECT_EQ(joints, (std::vector<std::string>{"torso_yaw", "left_hip", "left_knee", "right_hip", "right_knee"}));
+  EXPECT_EQ(parents, (std::vector<std::string>{"-", "torso_yaw", "left_hip", "torso_yaw", "right_hip"}));
+  EXPECT_EQ(i.at("joints")[4].at("type"), "prismatic");
+  std::map<std::string, json> links;
+  for (const json& l : i.at("links")) links[l.at("name")] = l;
+  EXPECT_EQ(i.at("links")[0].at("name"), "base");
+  EXPECT_EQ(links.size(), 9u);
+  EXPECT_EQ(links["camera"].at("body"), "torso_yaw");
+  EXPECT_EQ(links["left_foot"].at("body"), "left_knee");
+  EXPECT_EQ(links["right_foot"].at("mass"), 0.15);
+  EXPECT_EQ(i.at("locked_joints"), json::array());
+  EXPECT_EQ(i.at("default_q").at("left_knee"), 0.2);  // 0 is below its lower limit
+  EXPECT_EQ(i.at("default_q").at("left_hip"), 0.0);
+}
+
+// A tree solves with inputs by name and names its outputs; a tip constraint on a tree is
+// refused, blocks on its feet are taken.
+TEST_F(CliTrees, WholeTreeSolves) {
+  const json c = {{"q", {{"left_knee", 0.8}, {"right_hip", 0.2}}}, {"gravity", {0, 0, -9.81}}};
+  const json r = solve(kTree, {}, c);
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r.at("joints"), json({"torso_yaw", "left_hip", "left_knee", "right_hip", "right_knee"}));
+  EXPECT_EQ(r.at("links").size(), 9u);
+  EXPECT_EQ(r.at("links")[0], "base");
+  EXPECT_EQ(r.at("link_accelerations").size(), 9u);
+  json tip = c;
+  tip["alpha"] = {{0, 0, 1, 0, 0, 0}};
+  tip["beta"] = {0};
+  refused({"solve", kTree, "--case", write("tip.json", tip.dump())}, "tree");
+  json feet = c;
+  feet["constraints"] = {{{"link", "left_foot"}, {"alpha", {{0, 0, 1, 0, 0, 0}}}},
+                         {{"link", "right_foot"}, {"alpha", {{1, 0, 0, 0, 0, 0}}}, {"point", {0, 0, -0.02}}}};
+  const json held = solve(kTree, {}, feet);
+  ASSERT_TRUE(held.is_object());
+  EXPECT_EQ(held.at("nu").size(), 2u);
+  EXPECT_EQ(held.at("constraint_wrenches").size(), 2u);
+}
+
+// --root without --tip on a robot that is a chain: the tree below it is that chain, and
+// solves exactly as the chain does. (Before: "missing option --tip".)
+TEST_F(CliTrees, ChainLoadedAsATreeSolvesAsTheChain) {
+  const json chain = solve(kKuka, kKukaChain, kuka_case());
+  const json tree = solve(kKuka, {"--root", "lwr_base_link"}, kuka_case());
+  ASSERT_TRUE(tree.is_object());
+  for (const char* key : {"joints", "links", "qdd", "joint_torques", "link_accelerations"})
+    EXPECT_EQ(tree.at(key), chain.at(key)) << key;
+}
+
+// A chain with side branches: the right leg's movable joints are locked (at 0, or at
+// --lock's value) and reported by info and in results; naming a locked joint in a case
+// says so; --convention kdl ignores the side branches as KDL's chain does.
+TEST_F(CliTrees, LockedSideJointsAreReported) {
+  const std::vector<std::string> chain = {"--root", "base", "--tip", "left_foot", "--lock", "right_knee=0.05"};
+  const json i = info(kTree, chain);
+  ASSERT_TRUE(i.is_object());
+  EXPECT_EQ(i.at("tip"), "left_foot");
+  const json locked = json::parse(R"([{"name": "right_hip", "value": 0.0}, {"name": "right_knee", "value": 0.05}])");
+  EXPECT_EQ(i.at("locked_joints"), locked);
+  EXPECT_EQ(i.at("joints").size(), 3u);
+  EXPECT_EQ(i.at("links").size(), 9u);  // no link dropped: the side links ride on the torso
+  const json c = {{"q", {{"left_knee", 0.8}}}, {"gravity", {0, 0, -9.81}}};
+  const json r = solve(kTree, chain, c);
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r.at("locked_joints"), locked);
+  // The locked value moves the merged mass: another value, another solve.
+  std::vector<std::string> other = chain;
+  other.back() = "right_knee=-0.05";
+  EXPECT_NE(solve(kTree, other, c).at("qdd"), r.at("qdd"));
+  json bad = c;
+  bad["q"]["right_hip"] = 0.1;
+  std::vector<std::string> args = {"solve", kTree, "--case", write("locked.json", bad.dump())};
+  args.insert(args.end(), chain.begin(), chain.end());
+  refused(args, "q: joint 'right_hip' is locked at 0");
+  refused({"info", kTree, "--root", "base", "--tip", "left_foot", "--lock", "left_knee=1"}, "left_knee");
+  refused({"info", kTree, "--lock", "right_knee"}, "option --lock: expected JOINT=VALUE, got 'right_knee'");
+  refused({"info", kTree, "--lock", "right_knee=1", "--lock", "right_knee=2"}, "joint 'right_knee' is locked twice");
+  const json kdl = info(kTree, {"--root", "base", "--tip", "left_foot", "--convention", "kdl"});
+  ASSERT_TRUE(kdl.is_object());
+  EXPECT_EQ(kdl.at("locked_joints"), json::array());
+  EXPECT_EQ(kdl.at("links").size(), 5u);  // base, torso, left_thigh, left_shank, left_foot
+}
+
+// achd bench takes every case achd solve takes (names, blocks, a tree); --against kdl
+// needs a chain without blocks.
+TEST_F(CliTrees, BenchTakesWhatSolveTakes) {
+  json named = kuka_case();
+  named["q"] = {{"lwr_joint_2", 0.6}, {"lwr_joint_4", -1.2}};
+  const std::vector<std::string> quick = {"--iterations", "1", "--repeats", "1"};
+  std::vector<std::string> args = kKukaChain;
+  args.insert(args.end(), quick.begin(), quick.end());
+  args.insert(args.end(), {"--case", write("named.json", named.dump())});
+  EXPECT_TRUE(json::parse(ok("bench", kKuka, args)).contains("achd_ns"));
+  json blocks = kuka_case();
+  blocks["constraints"] = {{{"link", "lwr_link_4"}, {"alpha", {{0, 0, 1, 0, 0, 0}}}}};
+  const std::string blocks_path = write("blocks.json", blocks.dump());
+  args = kKukaChain;
+  args.insert(args.end(), quick.begin(), quick.end());
+  args.insert(args.end(), {"--case", blocks_path});
+  const std::string out = ok("bench", kKuka, args);
+  EXPECT_TRUE(!out.empty() && json::parse(out).contains("achd_ns"));
+  const std::string tree_case = write("tree.json", json({{"q", json::object()}, {"gravity", {0, 0, -9.81}}}).dump());
+  std::vector<std::string> tree_args = {"--case", tree_case};
+  tree_args.insert(tree_args.end(), quick.begin(), quick.end());
+  const std::string tree_out = ok("bench", kTree, tree_args);
+  EXPECT_TRUE(!tree_out.empty() && json::parse(tree_out).contains("achd_ns"));
+  refused({"bench", kKuka, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case", blocks_path, "--against", "kdl"},
+          "--against kdl: KDL's solver has no constraint blocks");
+  refused({"bench", kTree, "--case", tree_case, "--against", "kdl"}, "--against kdl: KDL's solver takes a chain; give --tip");
+}
+
+}  // namespace
+}  // namespace achd::test
