@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -46,12 +47,23 @@ std::string array(const V& v) {
   return s + "]";
 }
 
+// x with the fewest significant digits that read back as x ("0.05", "0"), as JS prints it.
+std::string shortest(double x) {
+  char buf[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
+}
+
 // Why `name` is not a movable joint of the model, in the user's terms: a joint the loader
 // locked (a side joint of a chain), or one that is not on the chain / not below the root.
 std::string no_joint(const Model& model, const std::string& name) {
   for (const LockedJoint& l : model.locked_joints)
     if (l.name == name)
-      return "joint '" + name + "' is locked at " + fmt(l.value) + " (a side joint of the chain; --lock sets its position)";
+      return "joint '" + name + "' is locked at " + shortest(l.value) +
+             " (a side joint of the chain; --lock sets its position)";
   if (model.has_tip()) return "no movable joint '" + name + "' between the root and the tip";
   return "no movable joint '" + name + "' below the root link '" + model.root_name + "'";
 }

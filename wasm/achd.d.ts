@@ -54,22 +54,52 @@ export interface SolveOptions {
   frictionVelocity?: number;
 }
 
+/** Per joint: an array in model order (Robot.jointNames), or an object keyed by joint name (joints not named: 0). */
+export type JointValues = Vec | Record<string, number>;
+
+/**
+ * Constraints on one link (Popov-Vereshchagin on trees): alpha^T a_P = beta, column by column,
+ * a_P the link's spatial acceleration at `point` (linear part: of the point), base axes.
+ */
+export interface ConstraintBlock {
+  /** a link after the root (Robot.linkNames). */
+  link: string;
+  /** unit constraint forces acting at the point, oriented like the base: one 6-vector per column (<= 6). */
+  alpha: Vec[];
+  /** one per alpha column; default zeros. */
+  beta?: Vec;
+  /** where the constraint acts, in the link's frame; default its origin. */
+  point?: Vec;
+}
+
 /** The case (docs/design.md section 5): q and gravity required, the rest default to zero/none. */
 export interface Case {
-  q: Vec;
-  qd?: Vec;
+  q: JointValues;
+  qd?: JointValues;
   gravity: Vec;
-  /** unit constraint forces at the tip link's origin, base orientation: one 6-vector per constraint (<= 6). */
+  /** the tip's constraints (a chain): unit constraint forces at the tip link's origin, base orientation: one 6-vector per constraint (<= 6). */
   alpha?: Vec[];
   /** one per alpha column. */
   beta?: Vec;
-  /** one wrench per link after the root (base orientation, about the link origin). */
-  f_ext?: Vec[];
-  ff_torques?: Vec;
+  /** constraint blocks on any links, after the tip's columns in nu; up to 36 columns in all. */
+  constraints?: ConstraintBlock[];
+  /** one wrench per link after the root (base orientation, about the link origin), or an object keyed by link name. */
+  f_ext?: Vec[] | Record<string, Vec>;
+  ff_torques?: JointValues;
+}
+
+/** A joint the loader held fixed (a chain's movable side joint), at `value` (rad or m). */
+export interface LockedJoint {
+  name: string;
+  value: number;
 }
 
 /** The result (docs/design.md section 5); plain arrays (copies). */
 export interface Result {
+  /** the joint names, in the order of qdd (and of the other per-joint arrays). */
+  joints: string[];
+  /** the link names, in the order of link_accelerations: the root link first. */
+  links: string[];
   qdd: number[];
   /** KDL's -S^T E nu (not the torques that produce the motion). */
   constraint_torques: number[];
@@ -80,6 +110,8 @@ export interface Result {
   joint_torques: number[];
   /** alpha nu: the wrench the tip exerts on the constraint. */
   constraint_wrench: number[];
+  /** per constraint block: alpha nu at its point, base axes. */
+  constraint_wrenches: number[][];
   /** root link first, then every link after the root; spatial accelerations. */
   link_accelerations: number[][];
   /** rank of the nc x nc coupling matrix K. */
@@ -89,6 +121,8 @@ export interface Result {
   sigma_min: number;
   /** constraint-space directions truncated or damped (columns of nc numbers). */
   dropped: number[][];
+  /** only when the robot has locked joints (Robot.lockedJoints). */
+  locked_joints?: LockedJoint[];
 }
 
 export interface JointLimits {
@@ -135,14 +169,20 @@ export interface Solver {
   numConstraints: number;
   /** default false. */
   useExternalWrenches: boolean;
+  /** constraint blocks for the solves that follow (copied in; a solve never allocates); [] for none. */
+  setConstraints(blocks: ConstraintBlock[]): void;
+  /** blocks set by setConstraints. */
+  readonly numBlocks: number;
   // outputs of the last solve (views)
   readonly qdd: Float64Array;
-  /** numConstraints long. */
+  /** numConstraints plus the blocks' columns long: the tip's, then each block's. */
   readonly nu: Float64Array;
   readonly joint_torques: Float64Array;
   readonly constraint_torques: Float64Array;
   readonly total_torques: Float64Array;
   readonly constraint_wrench: Float64Array;
+  /** 6 * numBlocks: alpha nu of each constraint block at its point. */
+  readonly constraint_wrenches: Float64Array;
   /** 6 * (numLinks + 1): root link first. */
   readonly link_accelerations: Float64Array;
   readonly rank: number;
@@ -272,7 +312,10 @@ export interface Simulator {
 
 export interface Robot {
   readonly root: string;
-  readonly tip: string;
+  /** null for a tree (loaded without a tip). */
+  readonly tip: string | null;
+  /** joints the loader held fixed: a chain's movable side joints. */
+  readonly lockedJoints: LockedJoint[];
   readonly numJoints: number;
   /** links after the root (fixed-joint links included). */
   readonly numLinks: number;
@@ -281,7 +324,7 @@ export interface Robot {
   readonly limits: JointLimits[];
   readonly damping: number[];
   readonly friction: number[];
-  /** links after the root, root to tip (the tip last). */
+  /** links after the root, parents before children (a chain's tip last). */
   readonly linkNames: string[];
   readonly deleted: boolean;
   solve(c: Case, options?: SolveOptions): Result;
@@ -299,15 +342,22 @@ export interface Robot {
 }
 
 export interface LoadOptions {
-  root: string;
-  tip: string;
+  /** default: the URDF's root link. */
+  root?: string;
+  /** the chain root -> tip; absent: the whole tree below root. */
+  tip?: string;
+  /** positions (rad or m) of a chain's movable side joints, locked there (others at 0). */
+  locked?: Record<string, number>;
+  /** a chain's side branches: 'merge' (default: riding on the body they hang from, no mass
+   * lost) or 'ignore' (dropped, as KDL's chain does). */
+  sideBranches?: 'merge' | 'ignore';
   /** a joint of the chain with a <mimic> element: an Error naming it ('error', the
    * default) or a joint of its own, as KDL loads it ('independent'). */
   mimic?: 'error' | 'independent';
 }
 
 export interface Achd {
-  loadURDF(text: string, options: LoadOptions): Robot;
+  loadURDF(text: string, options?: LoadOptions): Robot;
   /** bytes of wasm memory (grows, never shrinks). */
   memoryBytes(): number;
   /** the effect bits, for SolveOptions.effects as a number. */
@@ -350,6 +400,8 @@ export interface Constants {
   /** kAllEffects: the simulator's default. */
   readonly all_effects: number;
   readonly max_constraints: number;
+  /** kMaxConstraintColumns: columns of all constraint blocks together. */
+  readonly max_constraint_columns: number;
   readonly integrators: readonly Integrator[];
   readonly directions: readonly Direction[];
   readonly direction_modes: readonly ('free' | 'hold' | 'accelerate')[];

@@ -127,7 +127,7 @@ test('every view and result covers the C++ buffer of its name', () => {
   solver.useExternalWrenches = true;
   solver.solve();
   const views = ['q', 'qd', 'ff_torques', 'gravity', 'alpha', 'beta', 'f_ext', 'qdd', 'nu', 'joint_torques',
-    'constraint_torques', 'total_torques', 'link_accelerations', 'constraint_wrench'];
+    'constraint_torques', 'total_torques', 'link_accelerations', 'constraint_wrench', 'constraint_wrenches'];
   assert.deepEqual(c.solver_buffers.filter((name) => name !== 'dropped'), views, 'a view per C++ buffer');
   for (const name of views)
     assert.equal(solver[name].byteOffset, achd._achd_solver_buffer(solver._ptr, c.solver_buffers.indexOf(name)), name);

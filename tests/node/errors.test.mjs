@@ -27,7 +27,8 @@ test('broken URDF text and unknown links', () => {
   throwsThenRecovers(() => achd.loadURDF(entry.text, { root: 'nope', tip: entry.tip }), /unknown root link 'nope'/);
   throwsThenRecovers(() => achd.loadURDF(entry.text, { root: entry.root, tip: 'tool0' }), /unknown tip link 'tool0'/);
   throwsThenRecovers(() => achd.loadURDF(entry.text, { root: entry.tip, tip: entry.root }), /is not below root link/);
-  throwsThenRecovers(() => achd.loadURDF(entry.text, { root: entry.root }), /options\.tip must be a link name/);
+  // Without a tip the whole tree loads (trees.test.mjs); a tip that is not a name is refused.
+  throwsThenRecovers(() => achd.loadURDF(entry.text, { root: entry.root, tip: 7 }), /options\.tip must be a link name/);
   throwsThenRecovers(() => achd.loadURDF(42, { root: 'a', tip: 'b' }), /URDF must be a string/);
 });
 

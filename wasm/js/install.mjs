@@ -3,21 +3,42 @@
 import { achdConstants, achdEffectBitsByKey } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
 import { achdCheckObject, achdChoice } from './validation.mjs';
-import { achdWithString } from './memory.mjs';
+import { achdWithScratch, achdWithString } from './memory.mjs';
 import { Robot } from './robot.mjs';
 
 export function installAchd(Module) {
-  // Loads the chain root -> tip from URDF text; throws an Error naming the problem.
+  // Loads the chain root -> tip from URDF text, or without a tip the whole tree below
+  // root (default: the URDF's root link); throws an Error naming the problem.
   // options.mimic: 'error' (default: a <mimic> joint on the chain is an error) or
   // 'independent' (loaded as a joint of its own, as KDL does); achd::MimicJoints' order.
+  // options.locked: {joint name: position} for a chain's movable side joints (others: 0).
+  // options.sideBranches: 'merge' (default: what hangs off a chain rides on the body it
+  // hangs from) or 'ignore' (dropped, as KDL's chain does); achd::SideBranches' order.
   Module['loadURDF'] = function loadURDF(text, options) {
     if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
-    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic']);
+    if (options === undefined || options === null) options = {};
+    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches']);
     for (const key of ['root', 'tip'])
-      if (typeof options[key] !== 'string') throw new Error(`loadURDF: options.${key} must be a link name`);
+      if (options[key] !== undefined && typeof options[key] !== 'string')
+        throw new Error(`loadURDF: options.${key} must be a link name`);
     const mimic = achdChoice(options.mimic, ['error', 'independent'], 'error', 'loadURDF: options.mimic');
-    const ptr = achdWithString(text, (x) => achdWithString(options.root, (r) =>
-      achdWithString(options.tip, (t) => achdWasm.module._achd_robot_load(x, r, t, mimic))));
+    const sides = achdChoice(options.sideBranches, ['merge', 'ignore'], 'merge', 'loadURDF: options.sideBranches');
+    const locked = options.locked === undefined ? {} : options.locked;
+    achdCheckObject(locked, 'loadURDF: options.locked', Object.keys(locked));
+    const names = Object.keys(locked), values = names.map((name) => locked[name]);
+    values.forEach((x, k) => {
+      if (typeof x !== 'number' || !Number.isFinite(x))
+        throw new Error(`loadURDF: options.locked['${names[k]}'] must be a finite number, got ${x}`);
+      if (names[k].includes('\n') || names[k] === '') throw new Error(`loadURDF: options.locked: '${names[k]}' is not a joint name`);
+    });
+    // Emscripten's JS optimizer predates `??`: the empty names spelled out.
+    const root = options.root === undefined ? '' : options.root, tip = options.tip === undefined ? '' : options.tip;
+    const ptr = achdWithString(text, (x) => achdWithString(root, (r) =>
+      achdWithString(tip, (t) => achdWithString(names.map((n) => `${n}\n`).join(''), (ln) =>
+        achdWithScratch(values.length, (v) => {
+          achdWasm.module.HEAPF64.set(values, v);
+          return achdWasm.module._achd_robot_load(x, r, t, mimic, sides, ln, 8 * v);
+        })))));
     if (!ptr) throw achdLastError();
     return new Robot(ptr);
   };

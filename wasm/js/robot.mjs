@@ -2,6 +2,7 @@
 import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeprecated } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
 import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdEffectBits, achdIsArrayLike, achdPositive, achdSolverOptions, achdWriteSpatialList, achdWriteVector } from './validation.mjs';
+import { achdJointValues, achdLinkWrenches } from './case_names.mjs';
 import { achdChunks, achdWithScratch } from './memory.mjs';
 import { AchdHandle } from './handle.mjs';
 import { Solver } from './solver.mjs';
@@ -13,7 +14,9 @@ export class Robot extends AchdHandle {
     const info = JSON.parse(achdWasm.text.UTF8ToString(achdWasm.module._achd_robot_info(ptr)));
     const bound = (x) => (Math.abs(x) >= 1e300 ? Math.sign(x) * Infinity : x);
     this.root = info.root;
-    this.tip = info.tip;
+    this.tip = info.tip;  // null for a tree
+    // Joints the loader held fixed (a chain's movable side joints), [{name, value}].
+    this.lockedJoints = info.locked_joints;
     this.numJoints = info.joints.length;
     this.numLinks = info.links.length;
     this.jointNames = info.joints.map((j) => j.name);
@@ -46,10 +49,11 @@ export class Robot extends AchdHandle {
     return new Solver(this, s, mc);  // gravity: the C++ Case's default
   }
   // The case object in, the result object out (docs/design.md section 5; plain arrays:
-  // copies).
+  // copies). q, qd, ff_torques by joint name and f_ext by link name as in the CLI;
+  // constraints: blocks {link (a name), alpha, beta, point}.
   solve(c, options) {
     this._live();
-    achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques']);
+    achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques', 'constraints']);
     if (!('q' in c)) throw new Error("missing required field 'q'");
     if (!('gravity' in c)) throw new Error("missing required field 'gravity'");
     const args = achdSolverOptions(options);
@@ -57,12 +61,12 @@ export class Robot extends AchdHandle {
     const s = this._solver, ptr = s._ptr, nj = this.numJoints, nl = this.numLinks;
     const names = s._bufferNames(), max = achdConstants().max_constraints;
     const at = (name) => achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)) >> 3;
-    achdWriteVector(c.q, 'q', nj, at('q'));
+    achdWriteVector(achdJointValues(c.q, 'q', this), 'q', nj, at('q'));
     achdWriteVector(c.gravity, 'gravity', 3, at('gravity'));
     if (c.qd === undefined) achdWasm.module.HEAPF64.fill(0, at('qd'), at('qd') + nj);
-    else achdWriteVector(c.qd, 'qd', nj, at('qd'));
+    else achdWriteVector(achdJointValues(c.qd, 'qd', this), 'qd', nj, at('qd'));
     if (c.ff_torques === undefined) achdWasm.module.HEAPF64.fill(0, at('ff_torques'), at('ff_torques') + nj);
-    else achdWriteVector(c.ff_torques, 'ff_torques', nj, at('ff_torques'));
+    else achdWriteVector(achdJointValues(c.ff_torques, 'ff_torques', this), 'ff_torques', nj, at('ff_torques'));
     let nc = 0;
     if (c.alpha !== undefined) {
       if (!Array.isArray(c.alpha)) throw new Error('alpha must be an array of 6-element columns');
@@ -79,20 +83,21 @@ export class Robot extends AchdHandle {
       achdWasm.module.HEAPF64.fill(0, at('beta'), at('beta') + nc);
     }
     if (c.f_ext !== undefined) {
-      if (!Array.isArray(c.f_ext)) throw new Error('f_ext must be an array of 6-element wrenches');
-      if (c.f_ext.length !== nl)
-        throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${c.f_ext.length}`);
+      const f_ext = achdLinkWrenches(c.f_ext, this);
+      if (f_ext.length !== nl)
+        throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${f_ext.length}`);
       s.useExternalWrenches = true;
-      achdWriteSpatialList(c.f_ext, 'f_ext', nl, at('f_ext'), 'wrenches');
+      achdWriteSpatialList(f_ext, 'f_ext', nl, at('f_ext'), 'wrenches');
     } else {
       s.useExternalWrenches = false;
     }
+    s.setConstraints(c.constraints === undefined ? [] : c.constraints);
     s.numConstraints = nc;
     achdWasm.module._achd_solver_set_options(ptr, ...args);
     s.solve();
     return s.result();
   }
-  _q(q, p) { achdWriteVector(q, 'q', this.numJoints, p); }
+  _q(q, p) { achdWriteVector(achdJointValues(q, 'q', this), 'q', this.numJoints, p); }
   // [{name, position: [x, y, z], rotation: [9, row-major]}] per link after the root.
   forwardKinematics(q) {
     const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;

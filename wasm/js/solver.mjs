@@ -2,7 +2,8 @@
 import { achdConstants } from './constants.mjs';
 import { achdLastError, achdSigmaMin, achdWasm } from './runtime.mjs';
 import { achdSolverOptions } from './validation.mjs';
-import { achdChunks, achdCopy } from './memory.mjs';
+import { achdChunks, achdCopy, achdWithScratch } from './memory.mjs';
+import { achdPackBlocks } from './case_names.mjs';
 import { AchdHandle } from './handle.mjs';
 
 // The zero-copy solver: write the views, call solve(), read the views.
@@ -12,7 +13,12 @@ export class Solver extends AchdHandle {
     this.numJoints = robot.numJoints;
     this.numLinks = robot.numLinks;
     this.maxConstraints = maxConstraints;
+    // The names results carry and blocks are given by (case_names.mjs reads them).
+    this._names = { root: robot.root, tip: robot.tip, numJoints: robot.numJoints, jointNames: robot.jointNames,
+      linkNames: robot.linkNames, lockedJoints: robot.lockedJoints };
     this._nc = 0;
+    this._blocks = 0;
+    this._blockColumns = 0;
     this._external = false;
   }
   _bufferOf(ptr, index) { return achdWasm.module._achd_solver_buffer(ptr, index); }
@@ -20,8 +26,9 @@ export class Solver extends AchdHandle {
   _layout() {
     const nj = this.numJoints, nl = this.numLinks, mc = this.maxConstraints;
     return [['q', nj], ['qd', nj], ['ff_torques', nj], ['gravity', 3], ['alpha', 6 * mc], ['beta', mc],
-      ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc], ['joint_torques', nj], ['constraint_torques', nj],
-      ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6]];
+      ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc + this._blockColumns], ['joint_torques', nj], ['constraint_torques', nj],
+      ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6],
+      ['constraint_wrenches', 6 * this._blocks]];
   }
   get q() { return this._view('q'); }
   get qd() { return this._view('qd'); }
@@ -37,6 +44,7 @@ export class Solver extends AchdHandle {
   get total_torques() { return this._view('total_torques'); }
   get link_accelerations() { return this._view('link_accelerations'); }
   get constraint_wrench() { return this._view('constraint_wrench'); }
+  get constraint_wrenches() { return this._view('constraint_wrenches'); }
   get rank() { return achdWasm.module._achd_solver_rank(this._live()); }
   get sigma_min() { return achdSigmaMin(this._live()); }
   get numConstraints() { this._live(); return this._nc; }
@@ -46,6 +54,21 @@ export class Solver extends AchdHandle {
     this._nc = nc;
     this._buffer = null;  // the nu view's length changed
   }
+  // Constraint blocks on links, [{link (a name), alpha: [6-vectors], beta, point}], for the
+  // solves that follow, after the tip's numConstraints columns in nu (copied in; within
+  // the solver's storage, so a solve never allocates).
+  setConstraints(blocks) {
+    const ptr = this._live();
+    const packed = achdPackBlocks(blocks, this._names, achdConstants().max_constraints);
+    achdWithScratch(packed.length, (p) => {
+      achdWasm.module.HEAPF64.set(packed, p);
+      if (achdWasm.module._achd_solver_set_blocks(ptr, blocks.length, 8 * p)) throw achdLastError();
+    });
+    this._blocks = blocks.length;
+    this._blockColumns = blocks.reduce((n, b) => n + b.alpha.length, 0);
+    this._buffer = null;  // the nu and constraint_wrenches views' lengths changed
+  }
+  get numBlocks() { this._live(); return this._blocks; }
   get useExternalWrenches() { this._live(); return this._external; }
   set useExternalWrenches(on) {
     if (typeof on !== 'boolean') throw new Error('useExternalWrenches must be true or false');
@@ -68,17 +91,23 @@ export class Solver extends AchdHandle {
     const rows = achdWasm.module._achd_solver_dropped_rows(ptr), cols = achdWasm.module._achd_solver_dropped_cols(ptr);
     const names = this._bufferNames();
     const copy = (name, n) => achdCopy(achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)), n);
-    return {
+    const model = this._names;
+    const out = {
+      joints: model.jointNames.slice(),
+      links: [model.root, ...model.linkNames],
       qdd: copy('qdd', nj),
       constraint_torques: copy('constraint_torques', nj),
       total_torques: copy('total_torques', nj),
       nu: copy('nu', nc),
       joint_torques: copy('joint_torques', nj),
       constraint_wrench: copy('constraint_wrench', 6),
+      constraint_wrenches: achdChunks(copy('constraint_wrenches', 6 * this._blocks), 6),
       link_accelerations: achdChunks(copy('link_accelerations', 6 * (this.numLinks + 1)), 6),
       rank: achdWasm.module._achd_solver_rank(ptr),
       sigma_min: achdSigmaMin(ptr),
       dropped: rows ? achdChunks(copy('dropped', rows * cols), rows) : [],
     };
+    if (model.lockedJoints.length) out.locked_joints = model.lockedJoints.map((j) => ({ name: j.name, value: j.value }));
+    return out;
   }
 }

@@ -14,12 +14,13 @@ namespace achd::wasm {
 enum SolverBuffer {
   kSolverQ, kSolverQd, kSolverFfTorques, kSolverGravity, kSolverAlpha, kSolverBeta, kSolverFExt,
   kSolverQdd, kSolverNu, kSolverJointTorques, kSolverConstraintTorques, kSolverTotalTorques,
-  kSolverLinkAccelerations, kSolverConstraintWrench, kSolverDropped, kNumSolverBuffers
+  kSolverLinkAccelerations, kSolverConstraintWrench, kSolverDropped, kSolverConstraintWrenches,
+  kNumSolverBuffers
 };
 inline constexpr const char* kSolverBufferNames[] = {
     "q", "qd", "ff_torques", "gravity", "alpha", "beta", "f_ext",
     "qdd", "nu", "joint_torques", "constraint_torques", "total_torques",
-    "link_accelerations", "constraint_wrench", "dropped"};
+    "link_accelerations", "constraint_wrench", "dropped", "constraint_wrenches"};
 static_assert(sizeof kSolverBufferNames / sizeof kSolverBufferNames[0] == kNumSolverBuffers,
               "one name per SolverBuffer");
 

@@ -43,7 +43,8 @@ std::string constants() {
   }
   s += "},\"default_effects\":" + std::to_string(kDefaultEffects) +
        ",\"all_effects\":" + std::to_string(kAllEffects) +
-       ",\"max_constraints\":" + std::to_string(kMaxConstraints);
+       ",\"max_constraints\":" + std::to_string(kMaxConstraints) +
+       ",\"max_constraint_columns\":" + std::to_string(kMaxConstraintColumns);
   s += ",\"integrators\":[";
   first = true;
   for (Integrator i : kIntegrators) {

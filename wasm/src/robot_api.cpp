@@ -32,10 +32,12 @@ std::string number(double x) {
   return buf;
 }
 
-// {"root", "tip", "joints": [{name, type, lower, upper, velocity, effort, damping,
-// friction}], "links": [names after the root]}
+// {"root", "tip" (null for a tree), "joints": [{name, type, lower, upper, velocity,
+// effort, damping, friction}], "links": [names after the root], "locked_joints": [{name,
+// value}]}
 std::string describe(const Model& m) {
-  std::string s = "{\"root\":" + quoted(m.root_name) + ",\"tip\":" + quoted(m.tip_name) + ",\"joints\":[";
+  std::string s = "{\"root\":" + quoted(m.root_name) + ",\"tip\":" + (m.has_tip() ? quoted(m.tip_name) : "null") +
+                  ",\"joints\":[";
   for (int j = 0; j < m.num_joints(); ++j) {
     const Body& b = m.bodies[j];
     s += std::string(j ? "," : "") + "{\"name\":" + quoted(b.joint_name) + ",\"type\":" +
@@ -46,6 +48,10 @@ std::string describe(const Model& m) {
   }
   s += "],\"links\":[";
   for (int l = 0; l < m.num_links(); ++l) s += (l ? "," : "") + quoted(m.links[l].name);
+  s += "],\"locked_joints\":[";
+  for (size_t k = 0; k < m.locked_joints.size(); ++k)
+    s += std::string(k ? "," : "") + "{\"name\":" + quoted(m.locked_joints[k].name) +
+         ",\"value\":" + number(m.locked_joints[k].value) + "}";
   return s + "]}";
 }
 
@@ -56,13 +62,27 @@ Eigen::Map<const Eigen::VectorXd> vec(const double* p, int n) { return {p, n}; }
 
 using achd::wasm::Robot;
 
-// Returns the robot, or null with the reason in achd_last_error(). mimic: an
-// achd::MimicJoints value (0 error, 1 independent).
-ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip, int mimic) {
+// Returns the robot, or null with the reason in achd_last_error(). root, tip: link names,
+// empty = the URDF's root link / the whole tree (achd::load_urdf_string). mimic: an
+// achd::MimicJoints value (0 error, 1 independent); side_branches an achd::SideBranches
+// value (0 merge, 1 ignore); locked: the joints to lock (UrdfOptions::locked), their
+// names one per line in locked_names and their values in locked_values.
+ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip, int mimic,
+                                   int side_branches, const char* locked_names, const double* locked_values) {
   Robot* robot = nullptr;
   achd::wasm::guarded([&] {
     achd::UrdfOptions options;
     options.mimic = static_cast<achd::MimicJoints>(mimic);
+    options.side_branches = static_cast<achd::SideBranches>(side_branches);
+    std::string name;
+    for (const char* p = locked_names; *p; ++p) {
+      if (*p != '\n') {
+        name += *p;
+        continue;
+      }
+      options.locked[name] = *locked_values++;
+      name.clear();
+    }
     auto model = std::make_shared<const achd::Model>(achd::load_urdf_string(xml, root, tip, options));
     robot = new Robot{model, achd::wasm::describe(*model)};
   });

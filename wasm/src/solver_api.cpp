@@ -23,6 +23,8 @@ struct Solver {
     c.beta.setZero(kMaxConstraints);
     c.alpha.resize(6, 0);
     c.beta.resize(0);
+    // Blocks have fixed storage each: with this reserve, setting blocks never allocates.
+    c.constraints.reserve(kMaxConstraintColumns);
     parked_f_ext.assign(model->num_links(), Vector6::Zero());
   }
   std::shared_ptr<const Model> model;
@@ -75,6 +77,8 @@ ACHD_EXPORT double* achd_solver_buffer(Solver* s, int which) {
     case achd::wasm::kSolverLinkAccelerations: return d.link_accelerations.front().data();
     case achd::wasm::kSolverConstraintWrench: return d.constraint_wrench.data();
     case achd::wasm::kSolverDropped: return d.dropped.data();
+    // Reserved for the Data's capacity when it was made: the address never changes.
+    case achd::wasm::kSolverConstraintWrenches: return reinterpret_cast<double*>(d.constraint_wrenches.data());
     default: return nullptr;
   }
 }
@@ -88,6 +92,34 @@ ACHD_EXPORT int achd_solver_set_num_constraints(Solver* s, int nc) {
     s->c.beta.resize(nc);
   });
 }
+
+// The constraint blocks of the solves that follow (Case::constraints), `count` blocks
+// packed in `packed`, each [link index, columns k, point x y z, alpha (6 k, column by
+// column), beta (k)] (the JS wrapper has checked the names and shapes). Within the
+// reserved storage: no allocation.
+ACHD_EXPORT int achd_solver_set_blocks(Solver* s, int count, const double* packed) {
+  return achd::wasm::guarded([&] {
+    if (count < 0 || count > achd::kMaxConstraintColumns)
+      throw achd::Error("constraints: at most " + std::to_string(achd::kMaxConstraintColumns) + " blocks, got " +
+                        std::to_string(count));
+    std::vector<achd::ConstraintBlock>& blocks = s->c.constraints;
+    blocks.resize(static_cast<size_t>(count));
+    for (achd::ConstraintBlock& b : blocks) {
+      b.link = static_cast<int>(*packed++);
+      const int k = static_cast<int>(*packed++);
+      if (k < 0 || k > achd::kMaxConstraints)
+        throw achd::Error("constraints: a block has at most " + std::to_string(achd::kMaxConstraints) + " columns");
+      b.point = achd::Vector3(packed);
+      packed += 3;
+      b.alpha = Eigen::Map<const Eigen::MatrixXd>(packed, 6, k);
+      packed += 6 * k;
+      b.beta = Eigen::Map<const Eigen::VectorXd>(packed, k);
+      packed += k;
+    }
+  });
+}
+
+ACHD_EXPORT int achd_solver_num_blocks(const Solver* s) { return static_cast<int>(s->c.constraints.size()); }
 
 ACHD_EXPORT void achd_solver_use_external_wrenches(Solver* s, int on) {
   if ((on != 0) == !s->c.f_ext.empty()) return;

@@ -26,10 +26,26 @@ export async function usage(): Promise<void> {
   // @ts-expect-error convention is 'physical' or 'kdl'
   robot.solve({ q, gravity: [0, 0, -9.81] }, { convention: 'KDL' });
 
+  // Whole trees, names in and out, constraint blocks on links, locked joints.
+  const tree: Robot = achd.loadURDF(urdf);
+  const chain: Robot = achd.loadURDF(urdf, { tip: 'foot', locked: { knee: 0.5 }, sideBranches: 'ignore' });
+  const tip: string | null = tree.tip;
+  const locked: number = chain.lockedJoints[0].value;
+  const feet: Result = tree.solve({ q: { hip: 0.3 }, gravity: [0, 0, -9.81], f_ext: { foot: [0, 0, 1, 0, 0, 0] },
+    constraints: [{ link: 'foot', alpha: [[0, 0, 1, 0, 0, 0]], beta: [0], point: [0, 0, -0.02] }] });
+  const names: string[] = feet.joints.concat(feet.links);
+  const wrench: number[] = feet.constraint_wrenches[0];
+  // @ts-expect-error a block names its link
+  tree.solve({ q, gravity: [0, 0, -9.81], constraints: [{ alpha: [[0, 0, 1, 0, 0, 0]] }] });
+  // @ts-expect-error sideBranches is 'merge' or 'ignore'
+  achd.loadURDF(urdf, { sideBranches: 'drop' });
+
   // The zero-copy solver: views in, views out.
   const solver: Solver = robot.createSolver({ maxConstraints: 2, effects: achd.Effects.gravity });
   solver.q.set(q);
   solver.numConstraints = 1;
+  solver.setConstraints([{ link: 'foot', alpha: [[1, 0, 0, 0, 0, 0]] }]);
+  const blockWrenches: Float64Array = solver.constraint_wrenches;
   solver.solve();
   const qdd: Float64Array = solver.qdd;
   // @ts-expect-error views are read-only properties (write into them instead)

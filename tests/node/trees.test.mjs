@@ -1,0 +1,298 @@
+// Whole robots in JS (issue 15), against the native CLI (ACHD_CLI, the Release build): the
+// inputs by name give the results of the arrays; results name their joints and links as
+// the CLI's do; bad blocks and names get the CLI's message word for word; loadURDF loads
+// whole trees, locks side joints and ignores side branches as `achd info` reports; and
+// wasm equals native to the bit (the README's claim, as tests/node/parity.test.mjs checks
+// it for chains) on the tree robots and on chains with constraint blocks; the zero-copy
+// solver takes blocks without allocating. The small tree is tests/fixtures/small_tree.urdf.
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+
+import { cliOptionFlags, loadAchd, nativeCli, pool, relativeError, repo, robots, runCli, scratchDir } from './helpers.mjs';
+import { randomChain, randomCase, rng } from './random_chain.mjs';
+
+const TREE = join(repo, 'tests/fixtures/small_tree.urdf');
+const TREE_TEXT = readFileSync(TREE, 'utf8');
+const GRAVITY = [0, 0, -9.81];
+
+let achd, cli, scratch, kukaEntry, kuka;
+before(async () => {
+  achd = await loadAchd();
+  cli = nativeCli();
+  scratch = scratchDir();
+  kukaEntry = robots().find((r) => r.name === 'kuka_lwr4');
+  kuka = achd.loadURDF(kukaEntry.text, { root: kukaEntry.root, tip: kukaEntry.tip });
+});
+after(() => scratch.remove());
+
+// The CLI flags of loadURDF's options.
+function loadFlags(load) {
+  const flags = [];
+  if (load.root !== undefined) flags.push('--root', load.root);
+  if (load.tip !== undefined) flags.push('--tip', load.tip);
+  for (const [name, value] of Object.entries(load.locked || {})) flags.push('--lock', `${name}=${value}`);
+  if (load.sideBranches === 'ignore') flags.push('--convention', 'kdl');
+  return flags;
+}
+
+let files = 0;
+function nativeSolve(urdf, load, c, options) {
+  const casePath = scratch.write(`case${files++}.json`, JSON.stringify(c));
+  return runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath, ...cliOptionFlags(options)])
+    .then((out) => JSON.parse(out));
+}
+async function nativeInfo(urdf, load) {
+  return JSON.parse(await runCli(cli, ['info', urdf, ...loadFlags(load)]));
+}
+// The message of a CLI error, without "achd: error: FILE: ".
+async function nativeError(urdf, load, c) {
+  const casePath = scratch.write(`bad${files++}.json`, JSON.stringify(c));
+  try {
+    await runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath]);
+  } catch (e) {
+    return e.message.slice(e.message.lastIndexOf(`${casePath}: `) + casePath.length + 2).trim();
+  }
+  return null;
+}
+
+// Every field of the wasm result equals the native one: names equal, numbers to the bit
+// (the CLI prints 17 significant digits); the same fields.
+function assertSameResult(wasm, native, what) {
+  assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
+  for (const key of Object.keys(native)) {
+    if (key === 'joints' || key === 'links' || key === 'locked_joints') {
+      assert.deepEqual(wasm[key], native[key], `${what}: ${key}`);
+    } else if (Array.isArray(native[key])) {
+      const w = wasm[key].flat(), n = native[key].flat();
+      assert.equal(w.length, n.length, `${what}: ${key} length`);
+      assert.equal(relativeError(w, n), 0, `${what}: ${key}`);
+    } else {
+      assert.equal(relativeError([wasm[key]], [native[key]]), 0, `${what}: ${key}`);
+    }
+  }
+}
+
+// Each job {urdf, text, load, c, options, what}: wasm == native.
+async function runParity(jobs) {
+  const natives = await pool(jobs.map((j) => () => nativeSolve(j.urdf, j.load, j.c, j.options)));
+  jobs.forEach((j, i) => {
+    const robot = achd.loadURDF(j.text, j.load);
+    try {
+      assertSameResult(robot.solve(j.c, j.options), natives[i], j.what);
+    } finally {
+      robot.delete();
+    }
+  });
+}
+
+const kukaCase = () => ({ q: kukaEntry.q0, gravity: GRAVITY });
+
+test('inputs by name give the results of the arrays (q, qd, ff_torques by joint, f_ext by link)', () => {
+  const names = kuka.jointNames;
+  const byArray = { ...kukaCase(), qd: [0.1, -0.2, 0.3, 0, 0.5, 0, 0.7], ff_torques: [1, 0, 0, 2, 0, 0, 0],
+    f_ext: kuka.linkNames.map((l) => (l === 'lwr_link_7' ? [0, 0, -5, 0.1, 0, 0] : [0, 0, 0, 0, 0, 0])) };
+  const byName = { q: Object.fromEntries(names.map((n, i) => [n, kukaEntry.q0[i]]).reverse()), gravity: GRAVITY,
+    qd: { lwr_joint_1: 0.1, lwr_joint_2: -0.2, lwr_joint_3: 0.3, lwr_joint_5: 0.5, lwr_joint_7: 0.7 },
+    ff_torques: { lwr_joint_4: 2, lwr_joint_1: 1 }, f_ext: { lwr_link_7: [0, 0, -5, 0.1, 0, 0] } };
+  const a = kuka.solve(byArray), n = kuka.solve(byName);
+  assert.deepEqual(n, a);
+  assert.notDeepEqual(a.qdd, kuka.solve(kukaCase()).qdd, 'the inputs mattered');
+  // The other robot methods take q by name too.
+  assert.deepEqual(kuka.massMatrix(byName.q), kuka.massMatrix(kukaEntry.q0));
+});
+
+test('results name their joints and links and carry one wrench per block, as the CLI\'s', async () => {
+  const wasm = kuka.solve(kukaCase());
+  const native = await nativeSolve(kukaEntry.path, { root: kukaEntry.root, tip: kukaEntry.tip }, kukaCase());
+  assert.deepEqual(wasm.joints, kuka.jointNames);
+  assert.deepEqual(wasm.links, [kuka.root, ...kuka.linkNames]);
+  assert.equal(wasm.links.length, wasm.link_accelerations.length);
+  assert.deepEqual(wasm.constraint_wrenches, []);
+  assert.equal('locked_joints' in wasm, false);
+  assertSameResult(wasm, native, 'kuka q0');
+  assert.deepEqual(kuka.lockedJoints, []);
+  assert.equal(kuka.tip, 'lwr_link_7');
+});
+
+test('bad blocks and names: the CLI\'s message, word for word', async () => {
+  const col = [0, 0, 1, 0, 0, 0];
+  const bad = [
+    { constraints: [{ link: 'lwr_link_7', alpha: [col] }, { link: 'x', alpha: [col] }] },
+    { constraints: [{ link: 'lwr_base_link', alpha: [col] }] },
+    { constraints: [{ link: 7, alpha: [col] }] },
+    { constraints: [{ alpha: [col] }] },
+    { constraints: [{ link: 'lwr_link_3' }] },
+    { constraints: [{ link: 'lwr_link_3', alpha: [col], where: 1 }] },
+    { constraints: [{ link: 'lwr_link_3', alpha: [[0, 0, 1, 0, 0]] }] },
+    { constraints: [{ link: 'lwr_link_3', alpha: [[0, 0, 1, 0, 0, 'x']] }] },
+    { constraints: [{ link: 'lwr_link_3', alpha: [col], beta: [1, 2] }] },
+    { constraints: [{ link: 'lwr_link_3', alpha: [col], beta: ['1'] }] },
+    { constraints: [{ link: 'lwr_link_3', alpha: [col], point: [0, 1] }] },
+    { constraints: [{ link: 'lwr_link_3', alpha: Array(7).fill(col) }] },
+    { constraints: [1] },
+    { constraints: 1 },
+    { constraints: Array.from({ length: 7 }, () => ({ link: 'lwr_link_7', alpha: Array(6).fill(col) })) },
+    { q: { lwr_joint_9: 1 } },
+    { qd: { lwr_joint_2: 'fast' } },
+    { ff_torques: 'none' },
+    { f_ext: { lwr_base_link: col } },
+    { f_ext: { lwr_link_9: col } },
+    { f_ext: { lwr_link_2: [0, 0] } },
+  ];
+  const natives = await pool(bad.map((fields) => () =>
+    nativeError(kukaEntry.path, { root: kukaEntry.root, tip: kukaEntry.tip }, { ...kukaCase(), ...fields })));
+  bad.forEach((fields, i) => {
+    const what = JSON.stringify(fields).slice(0, 120);
+    assert.ok(natives[i], `${what}: the CLI accepted it`);
+    assert.throws(() => kuka.solve({ ...kukaCase(), ...fields }), (e) => e.message === natives[i],
+      `${what}: JS should say "${natives[i]}"`);
+  });
+  // ... and the robot keeps working.
+  assert.deepEqual(kuka.solve(kukaCase()).qdd, (await nativeSolve(kukaEntry.path,
+    { root: kukaEntry.root, tip: kukaEntry.tip }, kukaCase())).qdd);
+});
+
+test('loadURDF options are checked, naming the option', () => {
+  const throws = (fn, message) => assert.throws(fn, (e) => e.message === message, message);
+  throws(() => achd.loadURDF(TREE_TEXT, { tip: 'left_foot', locked: { right_knee: '1' } }),
+    "loadURDF: options.locked['right_knee'] must be a finite number, got 1");
+  throws(() => achd.loadURDF(TREE_TEXT, { tip: 'left_foot', locked: { right_knee: NaN } }),
+    "loadURDF: options.locked['right_knee'] must be a finite number, got NaN");
+  throws(() => achd.loadURDF(TREE_TEXT, { locked: [] }), 'loadURDF: options.locked must be an object');
+  throws(() => achd.loadURDF(TREE_TEXT, { sideBranches: 'drop' }),
+    "loadURDF: options.sideBranches: expected 'merge' or 'ignore', got 'drop'");
+  throws(() => achd.loadURDF(TREE_TEXT, { root: 3 }), 'loadURDF: options.root must be a link name');
+  throws(() => achd.loadURDF(TREE_TEXT, { floating: true }), "loadURDF options: unknown field 'floating'");
+});
+
+// Needs the loader of trees (loadURDF without a tip, locked side joints).
+test('loadURDF loads the whole tree, locks side joints and ignores side branches as `achd info` reports', async () => {
+  const cases = [
+    {},
+    { root: 'torso' },
+    { root: 'base', tip: 'left_foot' },
+    { root: 'base', tip: 'left_foot', locked: { right_knee: 0.05, right_hip: -0.3 } },
+    { root: 'base', tip: 'left_foot', sideBranches: 'ignore' },
+  ];
+  for (const load of cases) {
+    const what = JSON.stringify(load);
+    const info = await nativeInfo(TREE, load);
+    const robot = achd.loadURDF(TREE_TEXT, load);
+    try {
+      assert.equal(robot.root, info.root, what);
+      assert.equal(robot.tip, info.tip, what);
+      assert.deepEqual(robot.jointNames, info.joints.map((j) => j.name), what);
+      assert.deepEqual(robot.jointTypes, info.joints.map((j) => j.type), what);
+      assert.deepEqual([robot.root, ...robot.linkNames], info.links.map((l) => l.name), what);
+      assert.deepEqual(robot.lockedJoints, info.locked_joints, what);
+    } finally {
+      robot.delete();
+    }
+  }
+  const tree = achd.loadURDF(TREE_TEXT);
+  assert.equal(tree.tip, null);
+  assert.equal(tree.numJoints, 5);
+  tree.delete();
+  const locked = achd.loadURDF(TREE_TEXT, { root: 'base', tip: 'left_foot', locked: { right_knee: 0.05 } });
+  assert.deepEqual(locked.lockedJoints, [{ name: 'right_hip', value: 0 }, { name: 'right_knee', value: 0.05 }]);
+  assert.throws(() => locked.solve({ q: { right_hip: 0.1 }, gravity: GRAVITY }),
+    /^q: joint 'right_hip' is locked at 0 \(a side joint of the chain; --lock sets its position\)$/);
+  assert.deepEqual(locked.solve({ q: {}, gravity: GRAVITY }).locked_joints, locked.lockedJoints);
+  locked.delete();
+});
+
+// Needs the loader of trees and the solver of constraint blocks.
+test('the small tree and the tree robots of robots/index.json: wasm == native, to the bit', async () => {
+  const r = rng(15);
+  const jobs = [];
+  const treeQ = { torso_yaw: 0.3, left_hip: -0.4, left_knee: 0.9, right_hip: 0.2, right_knee: 0.04 };
+  const feet = [{ link: 'left_foot', alpha: [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]], beta: [0.1, 0, -0.2] },
+    { link: 'right_foot', alpha: [[0, 0, 1, 0, 0, 0]], point: [0.02, 0, -0.01] }];
+  const small = { urdf: TREE, text: TREE_TEXT };
+  jobs.push({ ...small, load: {}, c: { q: treeQ, gravity: GRAVITY }, what: 'small tree' });
+  jobs.push({ ...small, load: {}, c: { q: treeQ, qd: { left_knee: 1, right_hip: -0.5 }, gravity: GRAVITY,
+    f_ext: { camera: [0, 0, -2, 0, 0.1, 0] }, constraints: feet }, what: 'small tree, feet held' });
+  for (const options of [{ convention: 'kdl' }, { policy: 'damped', damping: 1e-6 }])
+    jobs.push({ ...small, load: {}, c: { q: treeQ, gravity: GRAVITY, constraints: feet }, options,
+      what: `small tree, feet held, ${JSON.stringify(options)}` });
+  jobs.push({ ...small, load: { root: 'base', tip: 'left_foot', locked: { right_knee: 0.05 } },
+    c: { q: { left_knee: 0.9 }, gravity: GRAVITY, alpha: [[0, 0, 1, 0, 0, 0]], beta: [0] }, what: 'small tree chain, locked' });
+  jobs.push({ ...small, load: { root: 'base', tip: 'left_foot', sideBranches: 'ignore' },
+    c: { q: { left_knee: 0.9 }, gravity: GRAVITY }, options: { convention: 'kdl' }, what: 'small tree chain, kdl' });
+  // The tree robots (robots/index.json entries without a tip): at their start pose, and
+  // with the quadruped's four feet held in 3D.
+  const trees = robots().filter((e) => !e.tip);
+  for (const entry of trees) {
+    const load = entry.root ? { root: entry.root } : {};
+    const base = { urdf: entry.path, text: entry.text, load };
+    jobs.push({ ...base, c: { q: entry.q0, gravity: GRAVITY }, what: `${entry.name} q0` });
+    const robot = achd.loadURDF(entry.text, load);
+    const c = randomCase(r, robot.numJoints, robot.numLinks, 0);
+    robot.delete();
+    jobs.push({ ...base, c, what: `${entry.name} random state` });
+  }
+  const quadruped = trees.find((e) => e.name === 'quadruped');
+  assert.ok(quadruped, 'robots/index.json lists the quadruped (a tree: no tip)');
+  const xyz = [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]];
+  jobs.push({ urdf: quadruped.path, text: quadruped.text, load: {}, what: 'quadruped, four feet held in 3D',
+    c: { q: quadruped.q0, gravity: GRAVITY,
+      constraints: ['lf_foot', 'rf_foot', 'lh_foot', 'rh_foot'].map((link) => ({ link, alpha: xyz })) } });
+  await runParity(jobs);
+  console.log(`# trees: ${jobs.length} cases (${trees.length} tree robots in robots/index.json)`);
+});
+
+// Needs the solver of constraint blocks.
+test('random chains with constraint blocks on their links: wasm == native, to the bit', async () => {
+  const jobs = [];
+  for (let seed = 1; seed <= 40; ++seed) {
+    const r = rng(5000 + seed);
+    const nj = 2 + Math.floor(r() * 20);
+    const chain = randomChain(seed, nj);
+    const robot = achd.loadURDF(chain.text, { root: chain.root, tip: chain.tip });
+    const links = robot.linkNames;
+    robot.delete();
+    const urdf = scratch.write(`blocks${seed}.urdf`, chain.text);
+    const c = randomCase(r, nj, links.length, seed % 3 === 0 ? 1 : 0);
+    // One or two blocks of one or two columns each on random links: few columns against
+    // the joints, so that the coupling is well conditioned (the README's claim).
+    c.constraints = Array.from({ length: 1 + (seed % 2) }, () => ({
+      link: links[Math.floor(r() * links.length)],
+      alpha: Array.from({ length: 1 + Math.floor(r() * 2) }, () => [0, 0, 0, 0, 0, 0].map(() => 2 * r() - 1)),
+      point: [r() - 0.5, r() - 0.5, r() - 0.5],
+    }));
+    c.constraints.forEach((b) => { b.beta = b.alpha.map(() => r() - 0.5); });
+    jobs.push({ urdf, text: chain.text, load: { root: chain.root, tip: chain.tip }, c,
+      options: [undefined, { convention: 'kdl' }, { policy: 'damped', damping: 1e-6 }][seed % 3],
+      what: `chain seed ${seed} (${nj} joints), ${c.constraints.length} blocks` });
+  }
+  await runParity(jobs);
+});
+
+// Needs the solver of constraint blocks.
+test('the zero-copy solver takes blocks: the result of robot.solve, no allocation per solve', () => {
+  const blocks = [{ link: 'lwr_link_7', alpha: [[0, 0, 1, 0, 0, 0], [0, 0, 0, 1, 0, 0]], beta: [0.2, 0] },
+    { link: 'lwr_link_4', alpha: [[1, 0, 0, 0, 0, 0]], point: [0, 0.05, 0] }];
+  const expected = kuka.solve({ ...kukaCase(), constraints: blocks });
+  const solver = kuka.createSolver();
+  solver.q.set(kukaEntry.q0);
+  solver.setConstraints(blocks);
+  assert.equal(solver.numBlocks, 2);
+  solver.solve();
+  assert.deepEqual(solver.result(), expected);
+  assert.deepEqual(Array.from(solver.nu), expected.nu, 'nu view: the tip\'s columns, then the blocks\'');
+  assert.deepEqual(Array.from(solver.constraint_wrenches), expected.constraint_wrenches.flat());
+  const bytes = achd.memoryBytes();
+  for (let i = 0; i < 2000; ++i) {
+    solver.q[0] = 0.3 + 1e-4 * i;
+    solver.solve();
+  }
+  assert.equal(achd.memoryBytes(), bytes, 'wasm memory grew during the solves');
+  solver.setConstraints([]);
+  solver.solve();
+  assert.deepEqual(solver.result().constraint_wrenches, []);
+  assert.throws(() => solver.setConstraints([{ link: 'nope', alpha: [] }]),
+    /^constraints\[0\]\.link: no link 'nope' on the chain$/);
+  solver.delete();
+});

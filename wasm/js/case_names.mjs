@@ -1,0 +1,115 @@
+// The case's inputs by name, as tools/case_json.cpp reads them and with its messages: q,
+// qd, ff_torques as an object keyed by joint name (joints not named: 0), f_ext as an
+// object keyed by link name (links not named: no wrench), and the constraint blocks
+// {link, alpha, beta, point} packed for achd_solver_set_blocks. `robot` supplies the
+// names: root, tip (null for a tree), jointNames, linkNames (after the root),
+// lockedJoints.
+import { achdCheckVector, achdIsArrayLike } from './validation.mjs';
+
+const ACHD_BLOCK_KEYS = ['link', 'alpha', 'beta', 'point'];
+
+function achdIsPlainObject(v) {
+  return v !== null && typeof v === 'object' && !achdIsArrayLike(v);
+}
+
+function achdNumber(x, where) {
+  if (typeof x !== 'number') throw new Error(`${where} must be a number`);
+  if (!Number.isFinite(x)) throw new Error(`${where} is not finite`);
+  return x;
+}
+
+// Why `name` is not a movable joint of the robot.
+export function achdNoJoint(robot, name) {
+  const locked = robot.lockedJoints.find((j) => j.name === name);
+  if (locked) return `joint '${name}' is locked at ${locked.value} (a side joint of the chain; --lock sets its position)`;
+  if (robot.tip !== null) return `no movable joint '${name}' between the root and the tip`;
+  return `no movable joint '${name}' below the root link '${robot.root}'`;
+}
+
+// Why `name` names no link after the root.
+export function achdNoLink(robot, name) {
+  if (name === robot.root) return `'${name}' is the root link, which is fixed (nothing acts on the model through it)`;
+  return `no link '${name}'${robot.tip !== null ? ' on the chain' : ` below the root link '${robot.root}'`}`;
+}
+
+// q, qd, ff_torques: an object by joint name becomes the array in model order; anything
+// else is returned as given (achdWriteVector checks it).
+export function achdJointValues(value, field, robot) {
+  if (!achdIsPlainObject(value)) {
+    if (value !== undefined && !achdIsArrayLike(value))
+      throw new Error(`${field} must be an array of ${robot.numJoints} numbers or an object {joint name: value}`);
+    return value;
+  }
+  const out = new Array(robot.numJoints).fill(0);
+  // (no destructuring in for-of: Emscripten's JS optimizer drops it)
+  for (const name of Object.keys(value)) {
+    const x = value[name];
+    const i = robot.jointNames.indexOf(name);
+    if (i < 0) throw new Error(`${field}: ${achdNoJoint(robot, name)}`);
+    out[i] = achdNumber(x, `${field}['${name}']`);
+  }
+  return out;
+}
+
+// f_ext: an object by link name becomes the list of one wrench per link after the root.
+export function achdLinkWrenches(value, robot) {
+  if (!achdIsPlainObject(value)) {
+    if (!Array.isArray(value)) throw new Error('f_ext must be an array of 6-element wrenches or an object {link name: wrench}');
+    return value;
+  }
+  const out = robot.linkNames.map(() => [0, 0, 0, 0, 0, 0]);
+  for (const name of Object.keys(value)) {
+    const w = value[name];
+    const l = robot.linkNames.indexOf(name);
+    if (l < 0) throw new Error(`f_ext: ${achdNoLink(robot, name)}`);
+    achdCheckVector(w, `f_ext['${name}']`, 6);
+    out[l] = Array.from(w);
+  }
+  return out;
+}
+
+// Columns alpha (up to `max` 6-vectors) and beta (one per column, absent: zeros) of a
+// block; `prefix` "constraints[b]." names them.
+function achdColumns(block, prefix, max) {
+  const alpha = block.alpha;
+  if (!Array.isArray(alpha)) throw new Error(`${prefix}alpha must be an array of 6-element columns`);
+  if (alpha.length > max) throw new Error(`${prefix}alpha: at most ${max} constraints, got ${alpha.length}`);
+  alpha.forEach((col, k) => achdCheckVector(col, `${prefix}alpha[${k}]`, 6));
+  const k = alpha.length;
+  let beta = new Array(k).fill(0);
+  if (block.beta !== undefined) {
+    if (!achdIsArrayLike(block.beta)) throw new Error(`${prefix}beta must be an array of numbers`);
+    if (block.beta.length !== k)
+      throw new Error(`${prefix}beta: expected ${k} values (one per alpha column), got ${block.beta.length}`);
+    beta = Array.from(block.beta, (x, j) => achdNumber(x, `${prefix}beta[${j}]`));
+  }
+  return { alpha: alpha, beta: beta };
+}
+
+// "constraints": the blocks checked and packed as achd_solver_set_blocks reads them: per
+// block [link index, columns k, point (3), alpha (6 k), beta (k)]. `max`: columns per block.
+export function achdPackBlocks(blocks, robot, max) {
+  if (!Array.isArray(blocks)) throw new Error('constraints must be an array of blocks {link, alpha, beta, point}');
+  const packed = [];
+  blocks.forEach((block, b) => {
+    const where = `constraints[${b}]`;
+    if (!achdIsPlainObject(block)) throw new Error(`${where} must be an object {link, alpha, beta, point}`);
+    for (const key of Object.keys(block))
+      if (!ACHD_BLOCK_KEYS.includes(key)) throw new Error(`${where}: unknown field '${key}'`);
+    if (!('link' in block)) throw new Error(`${where}: missing required field 'link'`);
+    if (!('alpha' in block)) throw new Error(`${where}: missing required field 'alpha'`);
+    if (typeof block.link !== 'string') throw new Error(`${where}.link must be a link name`);
+    const link = robot.linkNames.indexOf(block.link);
+    if (link < 0) throw new Error(`${where}.link: ${achdNoLink(robot, block.link)}`);
+    const columns = achdColumns(block, `${where}.`, max), alpha = columns.alpha;
+    let point = [0, 0, 0];
+    if (block.point !== undefined) {
+      achdCheckVector(block.point, `${where}.point`, 3);
+      point = Array.from(block.point);
+    }
+    packed.push(link, alpha.length, ...point);
+    for (const col of alpha) packed.push(...Array.from(col));
+    packed.push(...columns.beta);
+  });
+  return packed;
+}
