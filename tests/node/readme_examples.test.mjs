@@ -1,7 +1,8 @@
 // The READMEs' examples run as written: every ```js block of README.md from the
 // repository root and of wasm/README.md (the npm package's) with the package installed
 // beside it, taken from the files as they are; every `./build/achd` line of README.md's
-// command-line section (its placeholders ROBOT.urdf, R and T read as the KUKA LWR 4); and
+// command-line section (its placeholders ROBOT.urdf, R and T read as the KUKA LWR 4) and
+// the command-line example of its section on trees (the quadruped, a bash script); and
 // every page link of README.md (`#robot=...`) read by the page's own parser
 // (web/settings.js) and run as the page runs it, from the robot's start pose in
 // robots/index.json, for 60 simulated seconds.
@@ -42,8 +43,8 @@ const runModule = (source, cwd) => run(process.execPath, ['--input-type=module']
 
 test('README.md\'s JavaScript example runs as written and simulates 60 s', async () => {
   const blocks = codeBlocks('README.md', 'js');
-  assert.equal(blocks.length, 1, 'README.md has one JavaScript example');
-  const { code, stdout, stderr } = await runModule(blocks[0], repo);
+  assert.equal(blocks.length, 2, 'README.md has two JavaScript examples: the quadruped\'s, the LWR\'s');
+  const { code, stdout, stderr } = await runModule(blocks[1], repo);
   assert.equal(stderr, '');
   assert.equal(code, 0);
   const m = stdout.match(/^t = (\S+) s, z held within (\S+) m\n$/);
@@ -51,6 +52,49 @@ test('README.md\'s JavaScript example runs as written and simulates 60 s', async
   assert.equal(Number(m[1]), 60);
   assert.ok(Number(m[2]) < 1e-6, `z residual ${m[2]}`);
   console.log(`# ${stdout.trim()}`);
+});
+
+// The quadruped's four feet held in 3D: full rank, the legs still, the feet pressing.
+test('README.md\'s quadruped example (JavaScript) runs as written', async () => {
+  const [block] = codeBlocks('README.md', 'js');
+  assert.match(block, /quadruped/);
+  const { code, stdout, stderr } = await runModule(block, repo);
+  assert.equal(stderr, '');
+  assert.equal(code, 0);
+  const m = stdout.match(/^rank (\d+), max \|qdd\| (\S+), foot z forces (\S+) (\S+) (\S+) (\S+) N\n$/);
+  assert.ok(m, `unexpected output: ${stdout}`);
+  assert.equal(Number(m[1]), 12);
+  assert.ok(Number(m[2]) < 1e-9, `max |qdd| ${m[2]}`);
+  for (const f of m.slice(3)) assert.ok(Number.isFinite(Number(f)) && Number(f) !== 0, `foot force ${f}`);
+  console.log(`# ${stdout.trim()}`);
+});
+
+// The sh block of "## Trees and constraint blocks", run whole by bash in a directory like
+// the repository root: every command exits 0 and prints JSON; the solve holds the four feet.
+test('README.md\'s quadruped example (command line) runs as written', async () => {
+  const text = readFileSync(join(repo, 'README.md'), 'utf8');
+  const section = text.slice(text.indexOf('\n## Trees and constraint blocks\n'));
+  const script = section.match(/^```sh\n([\s\S]*?)^```$/m)[1];
+  assert.match(script, /achd solve robots\/quadruped\.urdf/);
+  const scratch = scratchDir();
+  try {
+    mkdirSync(join(scratch.dir, 'build'));
+    symlinkSync(nativeCli(), join(scratch.dir, 'build/achd'));
+    symlinkSync(join(repo, 'robots'), join(scratch.dir, 'robots'), 'dir');
+    const { code, stdout, stderr } = await run('bash', ['-e', '-c', script], '', scratch.dir);
+    assert.equal(stderr, '');
+    assert.equal(code, 0);
+    // The outputs, one JSON document per command: info's, then solve's.
+    const [info, result] = stdout.split(/\n(?=\{)/).map((doc) => JSON.parse(doc));
+    assert.equal(info.joints.length, 12);
+    assert.equal(info.tip, null);
+    assert.equal(result.nu.length, 12);
+    assert.equal(result.constraint_wrenches.length, 4);
+    assert.equal(result.rank, 12);
+    assert.ok(Math.max(...result.qdd.map(Math.abs)) < 1e-9, `qdd ${result.qdd}`);
+  } finally {
+    scratch.remove();
+  }
 });
 
 test('wasm/README.md\'s example runs as written with the npm package installed', async () => {
