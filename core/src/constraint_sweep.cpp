@@ -87,7 +87,7 @@ void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int 
   s.block = block;
   s.ez = ez;
   // the arm from the body's origin (the root's, for a link fixed to it) to the point
-  const Vector3 in_body = l.offset.p + l.offset.R * point;
+  const Vector3 in_body = point.isZero(0) ? l.offset.p : Vector3(l.offset.p + l.offset.R * point);
   s.arm = s.body < 0 ? in_body : Vector3(d.X0[s.body].R * in_body);
   // E = alpha s moved from the point to the body's origin: [f; n + arm x f]
   for (int k = 0; k < s.columns; ++k) {
@@ -236,7 +236,7 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
 }
 
 void constraint_torques(const Model& model, Data& d) {
-  d.constraint_torques.setZero();
+  // (the inward sweep has set them to 0)
   for (const ConstraintSource& s : d.workspace.sources)
     with_constraint_count(s.columns, [&](auto n) { add_constraint_torques<decltype(n)::value>(model, d, s); });
 }

@@ -25,7 +25,8 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
 void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving);
 
 // The constraint torque of every joint, -S_i^T E nu' = -sum over the blocks whose path
-// holds body i of EZ_i^T nu', into d.constraint_torques (0 off every path).
+// holds body i of EZ_i^T nu', added to d.constraint_torques (which the inward sweep sets
+// to 0: it stays 0 off every path).
 void constraint_torques(const Model& model, Data& d);
 
 // nu_k = s_k nu'_k, and the dropped and damped directions as unit combinations of the

@@ -173,6 +173,7 @@ template <bool P>
 void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
   Data::Workspace& w = d.workspace;
   for (int i = model.num_joints() - 1; i >= 0; --i) {
+    d.constraint_torques[i] = 0;  // constraint_torques() adds each block's share after the solve
     const Body& b = model.bodies[i];
     const JointSubspace S = body_subspace(model, d, i);
     const Matrix6& IA = d.IA[i];
