@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "case_json.hpp"
@@ -173,6 +175,80 @@ TEST_F(CliTrees, BlocksAreReadIntoTheCase) {
   EXPECT_EQ(k.constraints[1].beta[0], 0);
   EXPECT_EQ(k.constraints[1].point, Vector3::Zero());
   EXPECT_EQ(k.num_constraints(), 3);
+}
+
+// A tree built in code (no loader): base -> j0 -> {j1, j2}, a camera riding on j0's body,
+// a locked side joint. Its case reads by name, its result names joints and links and has
+// one constraint wrench per block, alpha nu; the messages speak of a tree.
+Model hand_built_tree() {
+  Model m;
+  m.root_name = "base";
+  const auto body = [&](const std::string& joint, const std::string& link, int parent, const Vector3& p, double angle) {
+    Body b;
+    b.joint_name = joint;
+    b.link_name = link;
+    b.parent = parent;
+    b.X_tree.p = p;
+    b.X_tree.R = Eigen::AngleAxisd(angle, Vector3::UnitX()).toRotationMatrix();
+    b.inertia = spatial_inertia(1.0 + parent, Vector3(0.05, 0, 0.2), 0.01 * Matrix3::Identity());
+    m.bodies.push_back(b);
+    Link l;
+    l.name = link;
+    l.body = static_cast<int>(m.bodies.size()) - 1;
+    m.links.push_back(l);
+  };
+  body("j0", "a", -1, Vector3(0, 0, 0.1), 0);
+  body("j1", "b", 0, Vector3(0.1, 0.1, 0.3), 0.7);
+  body("j2", "c", 0, Vector3(0.1, -0.1, 0.3), -1.1);
+  Link cam;
+  cam.name = "cam";
+  cam.body = 0;
+  cam.offset.p = Vector3(0.05, 0, 0.1);
+  m.links.push_back(cam);
+  m.locked_joints.push_back({"side", 0.25});
+  validate(m);
+  return m;
+}
+
+TEST_F(CliTrees, HandBuiltTreeReadsAndNamesByName) {
+  const Model m = hand_built_tree();
+  json c = {{"q", {{"j2", 0.3}, {"j1", -0.4}}}, {"qd", {{"j0", 0.2}}}, {"gravity", {0, 0, -9.81}},
+            {"f_ext", {{"cam", {0, 0, -1, 0, 0.1, 0}}}},
+            {"constraints", {{{"link", "b"}, {"alpha", {{0, 0, 1, 0, 0, 0}}}, {"point", {0, 0, 0.1}}},
+                             {{"link", "c"}, {"alpha", {{1, 0, 0, 0, 0, 0}, {0, 0, 1, 0, 0, 0}}}, {"beta", {0.1, 0}}}}}};
+  const Case k = cli::case_from_json(c, m, "tree.json");
+  EXPECT_EQ(k.q, Eigen::Vector3d(0, -0.4, 0.3));
+  EXPECT_EQ(k.f_ext[3], (Vector6() << 0, 0, -1, 0, 0.1, 0).finished());
+  EXPECT_EQ(k.f_ext[0], Vector6::Zero());
+  Data d(m);
+  hybrid_dynamics(m, d, k);
+  const json r = json::parse(cli::result_json(m, d, k));
+  EXPECT_EQ(r.at("joints"), json({"j0", "j1", "j2"}));
+  EXPECT_EQ(r.at("links"), json({"base", "a", "b", "c", "cam"}));
+  EXPECT_EQ(r.at("link_accelerations").size(), 5u);
+  EXPECT_EQ(r.at("nu").size(), 3u);
+  ASSERT_EQ(r.at("constraint_wrenches").size(), 2u);
+  EXPECT_EQ(r.at("constraint_wrenches")[0][2].get<double>(), d.constraint_wrenches[0][2]);
+  EXPECT_EQ(r.at("constraint_wrenches")[1][0].get<double>(), d.constraint_wrenches[1][0]);
+  EXPECT_EQ(r.at("locked_joints"), json::parse(R"([{"name": "side", "value": 0.25}])"));
+  const auto error_of = [&](const json& fields) {
+    json bad = {{"q", json::object()}, {"gravity", {0, 0, -9.81}}};
+    bad.update(fields);
+    try {
+      cli::case_from_json(bad, m, "tree.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error_of({{"q", {{"side", 1}}}}),
+            "tree.json: q: joint 'side' is locked at 0.25 (a side joint of the chain; --lock sets its position)");
+  EXPECT_EQ(error_of({{"qd", {{"x", 1}}}}), "tree.json: qd: no movable joint 'x' below the root link 'base'");
+  EXPECT_EQ(error_of({{"constraints", {{{"link", "zz"}, {"alpha", json::array()}}}}}),
+            "tree.json: constraints[0].link: no link 'zz' below the root link 'base'");
+  EXPECT_EQ(error_of({{"f_ext", {{"base", {0, 0, 0, 0, 0, 0}}}}}),
+            "tree.json: f_ext: 'base' is the root link, which is fixed (nothing acts on the model through it)");
+  EXPECT_NE(error_of({{"alpha", {{0, 0, 1, 0, 0, 0}}}}).find("alpha: the model is a tree with no tip"), std::string::npos);
 }
 
 // A block on the tip link at its origin is the tip's alpha: the same solve (needs the

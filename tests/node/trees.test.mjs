@@ -194,7 +194,7 @@ test('loadURDF loads the whole tree, locks side joints and ignores side branches
   const tree = achd.loadURDF(TREE_TEXT);
   assert.equal(tree.tip, null);
   assert.equal(tree.numJoints, 5);
-  assert.throws(() => tree.tipJacobian([0, 0, 0.5, 0, 0]), (e) => /^tipJacobian: the robot is a tree/.test(e.message));
+  assert.throws(() => tree.tipJacobian([0, 0, 0.5, 0, 0]), (e) => /^tip_jacobian: the model is a tree/.test(e.message));
   tree.delete();
   const locked = achd.loadURDF(TREE_TEXT, { root: 'base', tip: 'left_foot', locked: { right_knee: 0.05 } });
   assert.deepEqual(locked.lockedJoints, [{ name: 'right_hip', value: 0 }, { name: 'right_knee', value: 0.05 }]);

@@ -105,11 +105,9 @@ ACHD_EXPORT int achd_robot_forward_kinematics(const Robot* r, const double* q, d
   });
 }
 
-// out: the 6 x nj tip Jacobian, row-major, linear rows first; a tree (no tip) is an error.
+// out: the 6 x nj tip Jacobian, row-major, linear rows first (a tree is an error: no tip).
 ACHD_EXPORT int achd_robot_tip_jacobian(const Robot* r, const double* q, double* out) {
   return achd::wasm::guarded([&] {
-    if (!r->model->has_tip())
-      throw achd::Error("tipJacobian: the robot is a tree, loaded without a tip (load the chain with options.tip)");
     const Eigen::MatrixXd J = achd::tip_jacobian(*r->model, achd::wasm::vec(q, r->model->num_joints()));
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out, J.rows(), J.cols()) = J;
   });
