@@ -328,13 +328,14 @@ export interface Robot {
   readonly linkNames: string[];
   readonly deleted: boolean;
   solve(c: Case, options?: SolveOptions): Result;
-  forwardKinematics(q: Vec): LinkPose[];
+  /** q (and qd, qdd below) as in a Case: in model order or by joint name. */
+  forwardKinematics(q: JointValues): LinkPose[];
   /** 6 rows (linear first) x numJoints: [v; w] of the tip link's origin, base orientation. */
-  tipJacobian(q: Vec): number[][];
+  tipJacobian(q: JointValues): number[][];
   /** M(q), rotor inertia included unless rotorInertia is false. */
-  massMatrix(q: Vec, options?: { rotorInertia?: boolean }): number[][];
+  massMatrix(q: JointValues, options?: { rotorInertia?: boolean }): number[][];
   /** joint torques producing qdd at (q, qd) under gravity (default [0, 0, -9.81]) and f_ext. */
-  rnea(q: Vec, qd: Vec, qdd: Vec, options?: { gravity?: Vec; f_ext?: Vec[]; effects?: Effects | number; frictionVelocity?: number }): number[];
+  rnea(q: JointValues, qd: JointValues, qdd: JointValues, options?: { gravity?: Vec; f_ext?: Vec[] | Record<string, Vec>; effects?: Effects | number; frictionVelocity?: number }): number[];
   createSolver(options?: SolverOptions): Solver;
   createSimulator(options?: SimulatorOptions): Simulator;
   /** solvers and simulators created from the robot stay valid. */

@@ -99,8 +99,10 @@ test('inputs by name give the results of the arrays (q, qd, ff_torques by joint,
   const a = kuka.solve(byArray), n = kuka.solve(byName);
   assert.deepEqual(n, a);
   assert.notDeepEqual(a.qdd, kuka.solve(kukaCase()).qdd, 'the inputs mattered');
-  // The other robot methods take q by name too.
+  // The other robot methods take joints and links by name too.
   assert.deepEqual(kuka.massMatrix(byName.q), kuka.massMatrix(kukaEntry.q0));
+  assert.deepEqual(kuka.rnea(byName.q, byName.qd, { lwr_joint_3: 1 }, { f_ext: byName.f_ext }),
+    kuka.rnea(kukaEntry.q0, byArray.qd, [0, 0, 1, 0, 0, 0, 0], { f_ext: byArray.f_ext }));
 });
 
 test('results name their joints and links and carry one wrench per block, as the CLI\'s', async () => {

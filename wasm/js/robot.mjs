@@ -133,7 +133,8 @@ export class Robot extends AchdHandle {
       return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nj, p + nj + nj * nj)), Math.max(nj, 1));
     });
   }
-  // Inverse dynamics: the joint torques for (q, qd, qdd) under gravity and f_ext.
+  // Inverse dynamics: the joint torques for (q, qd, qdd) under gravity and f_ext (each by
+  // name or in model order, as in solve()).
   rnea(q, qd, qdd, options) {
     const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
     if (options === undefined) options = {};
@@ -144,14 +145,14 @@ export class Robot extends AchdHandle {
     return achdWithScratch(4 * nj + 3 + 6 * nl, (p) => {
       const g = p + 4 * nj, f = g + 3;
       this._q(q, p);
-      achdWriteVector(qd, 'qd', nj, p + nj);
-      achdWriteVector(qdd, 'qdd', nj, p + 2 * nj);
+      achdWriteVector(achdJointValues(qd, 'qd', this), 'qd', nj, p + nj);
+      achdWriteVector(achdJointValues(qdd, 'qdd', this), 'qdd', nj, p + 2 * nj);
       achdWriteVector(options.gravity === undefined ? k.case_gravity : options.gravity, 'gravity', 3, g);
       if (options.f_ext !== undefined) {
-        if (!Array.isArray(options.f_ext) || options.f_ext.length !== nl)
-          throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${
-            Array.isArray(options.f_ext) ? options.f_ext.length : typeof options.f_ext}`);
-        achdWriteSpatialList(options.f_ext, 'f_ext', nl, f, 'wrenches');
+        const f_ext = achdLinkWrenches(options.f_ext, this);
+        if (f_ext.length !== nl)
+          throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${f_ext.length}`);
+        achdWriteSpatialList(f_ext, 'f_ext', nl, f, 'wrenches');
       }
       if (achdWasm.module._achd_robot_rnea(ptr, 8 * p, 8 * (p + nj), 8 * (p + 2 * nj), 8 * g,
         options.f_ext === undefined ? 0 : 8 * f, effects, fv, 8 * (p + 3 * nj))) throw achdLastError();
