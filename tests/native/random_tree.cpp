@@ -139,6 +139,19 @@ std::vector<TreeLink> join_on_root(const std::vector<TreeLink>& a, const std::ve
   return out;
 }
 
+RandomTree random_star(std::mt19937& rng, int arms, int min_bodies, int max_bodies,
+                       std::vector<int>& arm_tips) {
+  RandomTree t;
+  arm_tips.clear();
+  for (int k = 0; k < arms; ++k) {
+    const RandomTree arm = random_tree(rng, uniform_int(rng, min_bodies, max_bodies), true);
+    t.links = join_on_root(t.links, arm.links);
+    arm_tips.push_back(static_cast<int>(t.links.size()) - 1);
+  }
+  t.model = tree_model(t.links);
+  return t;
+}
+
 std::string tree_urdf(const std::vector<TreeLink>& links) {
   std::ostringstream x;
   x.precision(17);
@@ -248,6 +261,25 @@ std::optional<Case> with_random_blocks(std::mt19937& rng, const Model& model, Ca
         b.alpha.col(j) = Vector6::NullaryExpr([&] { return uniform(rng, -1, 1); }).normalized();
       b.beta = ConstraintVector::NullaryExpr(nc, [&] { return uniform(rng, -2, 2); });
       columns += nc;
+      c.constraints.push_back(b);
+    }
+    if (tree_coupling_condition(model, c) < max_condition) return c;
+  }
+  return std::nullopt;
+}
+
+std::optional<Case> with_blocks_on(std::mt19937& rng, const Model& model, Case c,
+                                   const std::vector<int>& links, int columns, double max_condition) {
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    c.constraints.clear();
+    for (const int link : links) {
+      ConstraintBlock b;
+      b.link = link;
+      b.point = uniform3(rng, -0.3, 0.3);
+      b.alpha.resize(6, columns);
+      for (int j = 0; j < columns; ++j)
+        b.alpha.col(j) = Vector6::NullaryExpr([&] { return uniform(rng, -1, 1); }).normalized();
+      b.beta = ConstraintVector::NullaryExpr(columns, [&] { return uniform(rng, -2, 2); });
       c.constraints.push_back(b);
     }
     if (tree_coupling_condition(model, c) < max_condition) return c;

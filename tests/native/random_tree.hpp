@@ -48,6 +48,19 @@ Model tree_model(const std::vector<TreeLink>& links, const std::string& tip = ""
 // likewise), its links on the root staying on the root.
 std::vector<TreeLink> join_on_root(const std::vector<TreeLink>& a, const std::vector<TreeLink>& b);
 
+// `arms` random chains of min_bodies .. max_bodies bodies each, joined on one root
+// (join_on_root): a tree whose arm tips can hold 6 columns each. arm_tips: the Model::links
+// index of each arm's tip.
+RandomTree random_star(std::mt19937& rng, int arms, int min_bodies, int max_bodies,
+                       std::vector<int>& arm_tips);
+
+// `c` with a block of `columns` random unit columns at a random point on each of `links`
+// (random beta), redrawn until the coupling condition number is below max_condition;
+// nullopt after 200 draws.
+std::optional<Case> with_blocks_on(std::mt19937& rng, const Model& model, Case c,
+                                   const std::vector<int>& links, int columns,
+                                   double max_condition = 1e4);
+
 // The tree as URDF text (root link "l0"), every number written with 17 digits, so that a
 // loader builds the same physical tree. Rotor inertia is not a URDF field: set it in code.
 std::string tree_urdf(const std::vector<TreeLink>& links);
