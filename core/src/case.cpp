@@ -66,7 +66,7 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
     if (b.link < 0 || b.link >= model.num_links() || k > kMaxConstraints || b.beta.size() != k) return false;
     s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k);
   }
-  return s == 0 && c.num_constraints() <= capacity;
+  return s == 0 && c.num_constraints() <= capacity && c.constraints.size() <= static_cast<size_t>(capacity);
 }
 
 // Columns alpha (6 x nc) and beta of the tip (field "") or of block b ("constraints[b].").
@@ -117,6 +117,9 @@ void validate(const Model& model, const Case& c, int capacity) {
   if (c.alpha.cols() && !model.has_tip())
     throw Error("alpha: the model is a tree with no tip; constrain its links with constraint blocks");
   check_blocks(model, c);
+  if (c.constraints.size() > static_cast<size_t>(capacity))
+    throw Error("constraints: " + std::to_string(c.constraints.size()) + " blocks, more than the workspace's capacity of " +
+                std::to_string(capacity) + " (Data's constraint_capacity)");
   const int nc = c.num_constraints();
   if (nc > capacity)
     throw Error("constraints: " + std::to_string(nc) + " columns in all, more than the workspace's capacity of " +

@@ -7,30 +7,36 @@
 // overlaps. When NC is odd the second lane of the last pair is 0, and every update keeps
 // it 0; the EZ_i that the inward pass writes therefore have a 0 in that slot, which
 // ConstraintMagnitudes::dot relies on.
-#include <array>
-
 #include "achd/case.hpp"
 #include "joint_subspace.hpp"
 
 namespace achd {
 
-// The unit constraint forces E (6 x NC), rolled from the tip to the base.
+// Where a block of NC columns keeps its EZ_i: 2 NP doubles per body (the last pair's
+// second lane 0 when NC is odd).
+template <int NC>
+constexpr int ez_stride() {
+  return 2 * ((NC + 1) / 2);
+}
+
+// The unit constraint forces E (6 x NC) of one block, rolled from its body to the base.
 template <int NC>
 struct UnitConstraintForces {
   static constexpr int NP = (NC + 1) / 2;
   Pair E[NP][6];  // E[j][row] = (E(row, 2j), E(row, 2j + 1))
 
-  explicit UnitConstraintForces(const ConstraintMatrix& M) {
+  // M: the block's columns, 6 x NC column-major (a column is 6 doubles).
+  explicit UnitConstraintForces(const double* M) {
     for (int j = 0; j < NP; ++j)
       for (int row = 0; row < 6; ++row)
-        E[j][row] = Pair{M(row, 2 * j), 2 * j + 1 < NC ? M(row, 2 * j + 1) : 0.0};
+        E[j][row] = Pair{M[12 * j + row], 2 * j + 1 < NC ? M[12 * j + 6 + row] : 0.0};
   }
 
-  void store(ConstraintMatrix& M) const {
+  void store(double* M) const {
     for (int j = 0; j < NP; ++j)
       for (int row = 0; row < 6; ++row) {
-        M(row, 2 * j) = E[j][row][0];
-        if (2 * j + 1 < NC) M(row, 2 * j + 1) = E[j][row][1];
+        M[12 * j + row] = E[j][row][0];
+        if (2 * j + 1 < NC) M[12 * j + 6 + row] = E[j][row][1];
       }
   }
 
@@ -80,34 +86,34 @@ struct CouplingSums {
     for (int j = 0; j < NP; ++j) G[j] += load_pair(ez + 2 * j) * s;
   }
 
-  // Writes K (both triangles) and G_0; returns K's finite probe (finite_probe.hpp).
-  double store(CouplingMatrix& K_out, ConstraintVector& G_out) const {
-    K_out.resize(NC, NC);
-    G_out.resize(NC);
+  // Writes the block's diagonal block of K (both triangles), rows and columns from `at`,
+  // and its G_0; returns the block's finite probe (finite_probe.hpp).
+  double store(CouplingMatrix& K_out, ConstraintVector& G_out, int at) const {
     Pair probe = splat(0);
     for (int k = 0; k < NC; ++k) {
-      G_out[k] = G[k / 2][k % 2];
-      for (int l = k; l < NC; ++l) K_out(l, k) = K_out(k, l) = K[k][l / 2][l % 2];
+      G_out[at + k] = G[k / 2][k % 2];
+      for (int l = k; l < NC; ++l) K_out(at + l, at + k) = K_out(at + k, at + l) = K[k][l / 2][l % 2];
       for (int j = k / 2; j < NP; ++j) probe += K[k][j] * splat(0);
     }
     return probe[0] + probe[1];
   }
 };
 
-// nc constraint values (such as the magnitudes nu), two to a Pair, 0 past nc.
+// A block's NC constraint values (such as its magnitudes nu), two to a Pair, 0 past NC.
+template <int NC>
 struct ConstraintMagnitudes {
-  Pair x[3] = {splat(0), splat(0), splat(0)};
-  int np;
+  static constexpr int NP = (NC + 1) / 2;
+  Pair x[NP];
 
-  ConstraintMagnitudes(const ConstraintVector& v, int nc) : np((nc + 1) / 2) {
-    for (int k = 0; k < nc; k += 2) x[k / 2] = Pair{v[k], k + 1 < nc ? v[k + 1] : 0.0};
+  explicit ConstraintMagnitudes(const double* v) {
+    for (int k = 0; k < NC; k += 2) x[k / 2] = Pair{v[k], k + 1 < NC ? v[k + 1] : 0.0};
   }
 
   // ez^T x for a body's EZ (two columns at a time: ez's last pair has 0 in its second lane
-  // when nc is odd, as x has).
-  double dot(const std::array<double, kMaxConstraints>& ez) const {
+  // when NC is odd, as x has).
+  double dot(const double* ez) const {
     Pair s = splat(0);
-    for (int j = 0; j < np; ++j) s += load_pair(ez.data() + 2 * j) * x[j];
+    for (int j = 0; j < NP; ++j) s += load_pair(ez + 2 * j) * x[j];
     return s[0] + s[1];
   }
 };

@@ -26,16 +26,19 @@ constexpr double kFactorMinRatio = 1e-11;
 // p(x) = det(T - x 1) started below every eigenvalue, which for a polynomial with real
 // roots rises monotonically and cubically to the smallest one. The start is the larger
 // of Gershgorin's bound and `below`, a lower bound the caller may know (0 if none).
-// (n is a template parameter so that the short loops unroll; see smallest_eigenvalue_of.)
-template <int n>
+// (N is a template parameter so that the short loops unroll, N = 0 for a size known at
+// run time only; see smallest_eigenvalue_of.)
+template <int N>
 double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
-  double A[kMaxConstraints][kMaxConstraints], d[kMaxConstraints] = {0}, e[kMaxConstraints] = {0};
+  constexpr int C = N > 0 ? N : kMaxConstraintColumns;  // storage
+  const int n = N > 0 ? N : static_cast<int>(K.rows());
+  double A[C][C], d[C] = {0}, e[C] = {0};
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) A[i][j] = K(i, j);
   for (int k = 0; k + 2 < n; ++k) {
     // H = 1 - 2 v v^T maps x = A(k+1:, k) to [alpha; 0]; A(k+1:, k+1:) <- H A H
     //   = A - 2 (v w^T + w v^T),  w = A v - (v^T A v) v.
-    double norm2 = 0, v[kMaxConstraints], w[kMaxConstraints];
+    double norm2 = 0, v[C], w[C];
     for (int i = k + 1; i < n; ++i) norm2 += A[i][k] * A[i][k];
     const double alpha = A[k + 1][k] > 0 ? -std::sqrt(norm2) : std::sqrt(norm2);
     e[k] = alpha;
@@ -87,16 +90,25 @@ double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
   return x;
 }
 
-// K = L D L^T for an n x n K (n fixed, so that the loops unroll), L unit lower
-// triangular, D diagonal, kept with the pivots' reciprocals. No square roots: one
-// division per column is the whole sequential part.
-template <int n>
+// K = L D L^T for an n x n K (n = N fixed, so that the loops unroll, or N = 0 and n =
+// K's size), L unit lower triangular, D diagonal, kept with the pivots' reciprocals. No
+// square roots: one division per column is the whole sequential part.
+template <int N>
 struct Ldlt {
-  double L[n][n], Dinv[n];
+  static constexpr int C = N > 0 ? N : kMaxConstraintColumns;  // storage
+  int n_ = N;  // the size when N = 0
+  double L[C][C], Dinv[C];
+
+  int size() const {
+    if constexpr (N > 0) return N;
+    return n_;
+  }
 
   // False if a pivot is not positive (K is not numerically positive definite).
   bool factor(const CouplingMatrix& K) {
-    double W[n][n];  // W[i][k] = L[i][k] d_k
+    if constexpr (N == 0) n_ = static_cast<int>(K.rows());
+    const int n = size();
+    double W[C][C];  // W[i][k] = L[i][k] d_k
     for (int j = 0; j < n; ++j) {
       // d_j = K_jj - sum_k L_jk W_jk;  L_ij = (K_ij - sum_k L_ik W_jk) / d_j
       double d = K(j, j);
@@ -115,7 +127,8 @@ struct Ldlt {
 
   // x = K^-1 b: L y = b, then L^T x = D^-1 y.
   void solve(const ConstraintVector& b, ConstraintVector& x) const {
-    double y[n];
+    const int n = size();
+    double y[C];
     for (int i = 0; i < n; ++i) {
       double s = b[i];
       for (int k = 0; k < i; ++k) s -= L[i][k] * y[k];
@@ -132,9 +145,10 @@ struct Ldlt {
   // trace(K^-1) = sum_ij (L^-1)_ij^2 / d_i, column by column of L^-1 (forward
   // substitution; the columns are independent).
   double inverse_trace() const {
+    const int n = size();
     double t = 0;
     for (int j = 0; j < n; ++j) {
-      double c[n];
+      double c[C];
       t += Dinv[j];
       c[j] = 1;
       for (int i = j + 1; i < n; ++i) {
@@ -150,9 +164,9 @@ struct Ldlt {
 
 // 1 / trace(K^-1) <= lambda_min (trace(K^-1) = sum 1/lambda), within a factor n of it;
 // shrunk by a few ulps to stay below it despite its own round-off.
-template <int n>
-double lower_bound_of_lambda_min(const Ldlt<n>& f) {
-  return (1 - 16 * n * std::numeric_limits<double>::epsilon()) / f.inverse_trace();
+template <int N>
+double lower_bound_of_lambda_min(const Ldlt<N>& f) {
+  return (1 - 16 * f.size() * std::numeric_limits<double>::epsilon()) / f.inverse_trace();
 }
 
 // The fast path of truncate and variable_damping for an n x n K: when the lower bound of
@@ -161,11 +175,12 @@ double lower_bound_of_lambda_min(const Ldlt<n>& f) {
 // the singular region singular_region * trace(K) >= singular_region * sigma_max, nothing
 // is truncated or damped, and nu = K^-1 rhs is accurate by LDL^T. False (nothing written)
 // when K needs the eigen-decomposition.
-template <int n>
+template <int N>
 bool solve_by_ldlt_n(Data& data, const Options& options) {
   const CouplingMatrix& K = data.K;
-  Ldlt<n> f;
+  Ldlt<N> f;
   if (!f.factor(K)) return false;
+  const int n = f.size();
   const double below = lower_bound_of_lambda_min(f);
   const double trace = K.trace();
   double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
@@ -182,19 +197,19 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
 }
 
 bool solve_by_ldlt(Data& data, const Options& options) {
-  return with_constraint_count(static_cast<int>(data.K.rows()),
-                               [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
+  return with_coupling_size(static_cast<int>(data.K.rows()),
+                            [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
 }
 
 // The smallest eigenvalue of the n x n K: by Laguerre's iteration from the LDL^T bound
 // when K is clearly positive definite, else from the eigen-decomposition (round-off
 // negatives count as zero).
-template <int n>
+template <int N>
 double smallest_eigenvalue_of(const CouplingMatrix& K) {
-  Ldlt<n> f;
+  Ldlt<N> f;
   if (f.factor(K)) {
     const double below = lower_bound_of_lambda_min(f);
-    if (below >= kFactorMinRatio * K.trace()) return n == 1 ? K(0, 0) : smallest_eigenvalue_n<n>(K, below);
+    if (below >= kFactorMinRatio * K.trace()) return N == 1 ? K(0, 0) : smallest_eigenvalue_n<N>(K, below);
   }
   return Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().cwiseMax(0.0).minCoeff();
 }
@@ -221,8 +236,8 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
   // w_k = 1/sigma_k outside it (variable damping).
   data.nu.setZero(nc);
   data.rank = 0;
-  bool dropped[kMaxConstraints], damped[kMaxConstraints];
-  double damping[kMaxConstraints];
+  bool dropped[kMaxConstraintColumns], damped[kMaxConstraintColumns];
+  double damping[kMaxConstraintColumns];
   int ndropped = 0, ndamped = 0;
   for (int k = 0; k < nc; ++k) {
     const bool kept = sigma[k] > threshold;
@@ -293,7 +308,7 @@ double variable_damping_gain(double sigma, double eps, double lambda_max) {
 // region itself: then the plain variable damping stands.
 bool solve_held_first(Data& data, const Options& options) {
   const int nc = static_cast<int>(data.K.rows()), ndamped = static_cast<int>(data.damped.cols());
-  bool gives_way[kMaxConstraints] = {false};
+  bool gives_way[kMaxConstraintColumns] = {false};
   int nl = 0;
   for (int j = 0; j < ndamped; ++j) {
     Eigen::Index column = 0;
@@ -303,7 +318,7 @@ bool solve_held_first(Data& data, const Options& options) {
   }
   const int nh = nc - nl;
   if (nl != ndamped || nh == 0) return false;
-  int h[kMaxConstraints], l[kMaxConstraints];
+  int h[kMaxConstraintColumns], l[kMaxConstraintColumns];
   for (int i = 0, a = 0, b = 0; i < nc; ++i) (gives_way[i] ? l[b++] : h[a++]) = i;
   const CouplingMatrix& K = data.K;
   const ConstraintVector& rhs = data.workspace.rhs;
@@ -340,14 +355,14 @@ bool solve_held_first(Data& data, const Options& options) {
   return true;
 }
 
-void solve_variable_damping(Data& data, const Options& options, const ConstraintMatrix& alpha) {
+void solve_variable_damping(Data& data, const Options& options) {
   const int nc = static_cast<int>(data.K.rows());
   const CouplingMatrix K = data.K;
   const ConstraintVector rhs = data.workspace.rhs;
   double largest[2] = {0, 0};  // per kind: 0 force, 1 pure moment
-  int kind[kMaxConstraints];
+  int kind[kMaxConstraintColumns];
   for (int i = 0; i < nc; ++i) {
-    kind[i] = alpha.col(i).head<3>().squaredNorm() == 0;
+    kind[i] = !data.workspace.has_force[i];
     largest[kind[i]] = std::max(largest[kind[i]], K(i, i));
   }
   ConstraintVector scale(nc);
@@ -367,8 +382,8 @@ void solve_variable_damping(Data& data, const Options& options, const Constraint
 
 }  // namespace
 
-void solve_coupling(Data& data, const Options& options, const ConstraintMatrix& alpha) {
-  if (options.policy == SingularityPolicy::VariableDamping) return solve_variable_damping(data, options, alpha);
+void solve_coupling(Data& data, const Options& options) {
+  if (options.policy == SingularityPolicy::VariableDamping) return solve_variable_damping(data, options);
   if (options.policy == SingularityPolicy::Truncate && solve_by_ldlt(data, options)) return;
   solve_by_eigen_decomposition(data, options);
 }
@@ -395,7 +410,7 @@ double sigma_min(const Data& data) {
   const int e = std::min(std::max(std::ilogb(largest), -1022), 1022);
   K *= std::ldexp(1.0, -e);
   const double smallest =
-      with_constraint_count(nc, [&](auto n) { return smallest_eigenvalue_of<decltype(n)::value>(K); });
+      with_coupling_size(nc, [&](auto n) { return smallest_eigenvalue_of<decltype(n)::value>(K); });
   return std::ldexp(smallest, e);
 }
 

@@ -7,8 +7,8 @@
 namespace achd {
 
 // Writes data.nu, data.rank, data.dropped (and for variable_damping data.damped*) from
-// data.K and data.workspace.rhs; alpha (the case's columns) tells variable_damping which
-// columns have a force part. No allocation: every matrix has at most kMaxConstraints rows.
-void solve_coupling(Data& data, const Options& options, const ConstraintMatrix& alpha);
+// data.K and data.workspace.rhs (and has_force: which columns have a force part, for
+// variable_damping). No allocation: every matrix has at most kMaxConstraintColumns rows.
+void solve_coupling(Data& data, const Options& options);
 
 }  // namespace achd

@@ -35,7 +35,10 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   w.D.assign(n, 0.0);
   w.Dinv.assign(n, 0.0);
   w.u.assign(n, 0.0);
-  w.EZ.assign(n, {});
+  w.sources.reserve(constraint_capacity + 1);  // the tip's and one per block with columns
+  // A block of k columns keeps k rounded up to even per body, at most 2 k.
+  w.path.assign(n, 0);
+  w.ez.assign(static_cast<size_t>(n) * 2 * constraint_capacity, 0.0);
 }
 
 }  // namespace achd

@@ -34,18 +34,14 @@
 // without prescribed joints runs the code it ran before.
 #include "achd/hybrid_dynamics.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <iomanip>
 #include <limits>
 #include <sstream>
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
-#include "constraint_count.hpp"
-#include "constraint_pairs.hpp"
+#include "constraint_sweep.hpp"
 #include "coupling_solve.hpp"
 #include "joint.hpp"
 #include "joint_subspace.hpp"
@@ -81,12 +77,6 @@ void joint_forces(const Model& model, Data& d, const Case& c, const Options& o, 
       w.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
 }
 
-// Body i's joint subspace S_i = [0; z_i] (revolute) or [z_i; 0] (prismatic), z_i the
-// body's z axis (once the poses are set).
-inline JointSubspace subspace(const Model& model, const Data& d, int i) {
-  return {d.X0[i].R.col(2), is_rotational(model.bodies[i])};
-}
-
 const SpatialVector kZero{};
 
 // Step 1. Poses (body_poses); IA_i = I_i in base axes;
@@ -105,7 +95,7 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       d.pA[i].setZero();
       continue;
     }
-    const JointSubspace S = subspace(model, d, i);
+    const JointSubspace S = body_subspace(model, d, i);
     const double qd = c.qd[i];
     SpatialVector vp = kZero, kappa = kZero;  // v_p and kappa_p about body i's origin
     if (p >= 0) {
@@ -183,8 +173,9 @@ template <bool P>
 void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
   Data::Workspace& w = d.workspace;
   for (int i = model.num_joints() - 1; i >= 0; --i) {
+    d.constraint_torques[i] = 0;  // constraint_torques() adds each block's share after the solve
     const Body& b = model.bodies[i];
-    const JointSubspace S = subspace(model, d, i);
+    const JointSubspace S = body_subspace(model, d, i);
     const Matrix6& IA = d.IA[i];
     // U = IA S,  D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
     const SpatialVector U = S.inertia_times(IA);
@@ -217,141 +208,29 @@ void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
   }
 }
 
-// floor(log2 x) for a finite x > 0, from its exponent bits (subnormals count as -1023).
-inline int exponent_of(double x) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  return static_cast<int>(bits >> 52) - 1023;  // x > 0: no sign bit
-}
-
-// 2^k for k in [-1022, 1023], from its exponent bits.
-inline double power_of_two(int k) {
-  const std::uint64_t bits = static_cast<std::uint64_t>(k + 1023) << 52;
-  double x;
-  std::memcpy(&x, &bits, sizeof x);
-  return x;
-}
-
-// The power of two s_k = 2^-e, e = round(log2 |alpha_k|), that brings alpha column k to a
-// length in [2^-1/2, 2^1/2). The sweeps solve for the columns alpha_k s_k with beta_k s_k,
-// whose force is nu_k / s_k: multiplying by a power of two is exact, so the solve does not
-// depend on a column's scale (a column and its beta scaled by 2^j give the same qdd and
-// rank to the bit, nu_k scaled by 2^-j), a column of 1e-200 neither underflows K nor drops
-// out, and a unit column (s_k = 1) is untouched. With y = alpha_k 2^-m, 2^m <= max |entry|
-// (so that the squares neither overflow nor underflow): |alpha_k|^2 = |y|^2 4^m, and
-// round(log2 |alpha_k|) = ceil(floor(log2 |alpha_k|^2) / 2) = m + (floor(log2 |y|^2) + 1) / 2
-// (|y|^2 in [1, 24), so the last term is 0, 1 or 2, an integer shift).
-double column_scale(const double* column) {
-  // Every unit column, at the cost of |alpha_k|^2 by pairs: |alpha_k|^2 in [1/2, 2) is e = 0.
-  const double length2 = squared_norm(load_pairs(column));
-  if (length2 >= 0.5 && length2 < 2) return 1;
-  double largest = 0;
-  for (int r = 0; r < 6; ++r) largest = std::max(largest, std::abs(column[r]));
-  if (largest == 0) return 1;
-  const int m = std::min(std::max(exponent_of(largest), -1022), 1022);
-  const double down = power_of_two(-m);
-  double y2 = 0;
-  for (int r = 0; r < 6; ++r) y2 += (column[r] * down) * (column[r] * down);
-  const int e = m + ((exponent_of(y2) + 1) >> 1);
-  return power_of_two(-std::min(std::max(e, -1022), 1022));
-}
-
-// E = alpha s moved from the tip link's origin to the tip body's origin.
-void constraint_forces_at_tip(const Model& model, Data& d, const Case& c, int nc) {
-  Data::Workspace& w = d.workspace;
-  const Link& tip = model.tip();
-  const Vector3 r = d.X0[tip.body].R * tip.offset.p;
-  d.E.resize(6, nc);
-  w.alpha_scale.resize(nc);
-  for (int k = 0; k < nc; ++k) {
-    const double s = column_scale(c.alpha.col(k).data());
-    const Vector3 f = c.alpha.col(k).head<3>() * s;
-    w.alpha_scale[k] = s;
-    d.E.col(k).head<3>() = f;
-    d.E.col(k).tail<3>() = c.alpha.col(k).tail<3>() * s + r.cross(f);
-  }
-}
-
-// Back from the scaled columns to the user's: nu_k = s_k nu'_k, and the dropped
-// directions (combinations of the scaled columns) as unit combinations of the user's.
-// (nu needs no finite probe of its own: alpha nu does, and a non-finite nu_k makes it
-// non-finite, as alpha_k is finite.)
-void unscale_constraint_forces(Data& d, int nc) {
-  Data::Workspace& w = d.workspace;
-  for (int k = 0; k < nc; ++k) d.nu[k] *= w.alpha_scale[k];
-  for (Eigen::Index j = 0; j < d.dropped.cols(); ++j) {
-    for (int k = 0; k < nc; ++k) d.dropped(k, j) *= w.alpha_scale[k];
-    d.dropped.col(j).normalize();
-  }
-  for (Eigen::Index j = 0; j < d.damped.cols(); ++j) {
-    for (int k = 0; k < nc; ++k) d.damped(k, j) *= w.alpha_scale[k];
-    d.damped.col(j).normalize();
-  }
-}
-
-// Step 2 for the nc = NC constraints, after the articulated-body sweep: the unit
-// constraint forces E roll from the tip to the base (constraint_pairs.hpp holds them two
-// columns to a pair), and each body keeps its EZ_i (Vereshchagin eq. c):
-//   EZ_i = E^T S_i;  E <- X_i^T (E - U_i EZ_i^T / D_i).
-template <int NC>
-void constraint_columns(const Model& model, Data& d) {
-  Data::Workspace& w = d.workspace;
-  UnitConstraintForces<NC> E(d.E);
-  for (int i = model.num_joints() - 1; i >= 0; --i)
-    E.pass_to_parent(subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], w.EZ[i].data());
-  E.store(d.E);
-}
-
-// The coupling at the base from the stored EZ_i:
-//   K = -M_0 = sum_i EZ_i EZ_i^T / D_i   (eq. d),   G_0 = sum_i EZ_i u_i / D_i   (eq. e,
-// whose E^T c term vanishes with c = 0). A prescribed joint (Dinv = 0) adds nothing to K,
-// and its known motion S qdd_given adds EZ_i qdd_given to G_0 (eq. e's E^T c with
-// c = S qdd_given). Returns K's finite probe.
-template <int NC, bool P>
-double coupling_terms(const Model& model, Data& d, const Case& c) {
-  Data::Workspace& w = d.workspace;
-  CouplingSums<NC> sums;
-  for (int i = 0; i < model.num_joints(); ++i) {
-    double known = w.u[i] * w.Dinv[i];
-    if constexpr (P) {
-      if (c.prescribed[i]) known = c.qdd_given[i];
-    }
-    sums.add(w.EZ[i].data(), w.Dinv[i], known);
-  }
-  return sums.store(d.K, d.G0);
-}
-
-// Returns K's finite probe.
-template <int NC, bool P>
-double constraint_sweep(const Model& model, Data& d, const Case& c) {
-  constraint_columns<NC>(model, d);
-  return coupling_terms<NC, P>(model, d, c);
-}
-
-double constraint_sweep(const Model& model, Data& d, const Case& c, int nc, bool prescribed) {
-  return with_constraint_count(nc, [&](auto n) {
-    constexpr int NC = decltype(n)::value;
-    return prescribed ? constraint_sweep<NC, true>(model, d, c) : constraint_sweep<NC, false>(model, d, c);
-  });
-}
-
-// Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i - EZ_i^T nu) / D_i;
-// a~_i += S qdd_i. (The chain is in order, parent i - 1: a~ stays in registers.)
+// Step 4. a~_i = a~_p (shifted), a~ = a - kappa;  qdd_i = (u_i - U_i^T a~_i + ct_i) / D_i;
+// a~_i += S qdd_i, with ct_i = -S_i^T E nu the constraint torque (constraint_torques()).
+// (A body whose parent is the body before it, as every body of a chain, takes a~_p from
+// registers; a body that starts a new branch loads its parent's.)
 // Returns the finite probe of the results: a non-finite qdd_i makes every component of
 // a~_i non-finite (S qdd_i, with z_i a unit vector: inf or 0 * inf), and a non-finite
 // component of a~_p stays non-finite in a~_i (the shift and S qdd_i only add to it), so
-// the last body's a~ is finite exactly when every qdd and a~ is (and with them the
-// constraint torques, u and W, which qdd adds); D qdd is probed on its own, and so is a
-// prescribed joint's torque, D qdd_given + U^T a~_p (shifted) - u - ct: what tau (with
-// the passive part, which u holds) must be for the free joint's equation to give qdd_given.
+// the leaves' a~ are finite exactly when every qdd and a~ is (and with them the
+// constraint torques, u and W, which qdd adds); a leaf is a body the next body does not
+// hang from. D qdd is probed on its own, and so is a prescribed joint's torque,
+// D qdd_given + U^T a~_p (shifted) - u - ct: what tau (with the passive part, which u
+// holds) must be for the free joint's equation to give qdd_given.
 template <bool P>
-double outward_accelerations(const Model& model, Data& d, const Case& c, const Vector6& a0, int nc) {
+double outward_accelerations(const Model& model, Data& d, const Case& c, const Vector6& a0) {
   Data::Workspace& w = d.workspace;
-  const ConstraintMagnitudes nu(d.nu, nc);
+  const int n = model.num_joints();
   double probe = 0;
-  SpatialVector a = load_pairs(a0);
-  for (int i = 0; i < model.num_joints(); ++i) {
-    const double ct = -nu.dot(w.EZ[i]);  // KDL's constraint torque -EZ_i^T nu = -S^T E nu
+  const SpatialVector base = load_pairs(a0);
+  SpatialVector a = base;
+  for (int i = 0; i < n; ++i) {
+    const int p = model.bodies[i].parent;
+    if (p != i - 1) a = p < 0 ? base : load_pairs(d.a[p]);
+    const double ct = d.constraint_torques[i];
     // U^T a~_i / D = W^T a~_p with W = X^T U / D (from the inward sweep): the product
     // needs only the parent's acceleration, and the shift of a~ runs beside it
     double qdd;
@@ -368,14 +247,14 @@ double outward_accelerations(const Model& model, Data& d, const Case& c, const V
         probe += torque * 0.0;
       }
     }
-    a = a + subspace(model, d, i).motion(qdd);
+    a = a + body_subspace(model, d, i).motion(qdd);
     store_pairs(d.a[i], a);
     d.qdd[i] = qdd;
-    d.constraint_torques[i] = ct;
     d.total_torques[i] = w.D[i] * qdd;
     probe += d.total_torques[i] * 0.0;
+    if (i + 1 == n || model.bodies[i + 1].parent != i) probe += finite_probe(a);
   }
-  return probe + finite_probe(a);
+  return probe;
 }
 
 // Spatial acceleration of every link at its origin, base orientation: the body's
@@ -400,44 +279,11 @@ double link_accelerations(const Model& model, Data& d, const Vector6& a0, const 
   return probe;
 }
 
-// The constraint wrench alpha nu at the tip link's origin. Returns its finite probe.
-double constraint_wrench(Data& d, const Case& c, int nc) {
-  SpatialVector w = kZero;
-  for (int k = 0; k < nc; ++k) w = w + load_pairs(c.alpha.col(k).data()) * d.nu[k];
-  store_pairs(d.constraint_wrench, w);
-  return finite_probe(w);
-}
-
-// joint_torques = ff - J^T (alpha nu), a prescribed joint's prescribed_torques as its ff:
-// with the tip wrench w = [f; n] = alpha nu at the tip
-// link's origin p_t, tau_i -= z_i . (n + (p_t - p_i) x f) (revolute) or z_i . f
-// (prismatic); each body on its own, from the poses. Returns their finite probe (with no
-// constraints they are the case's ff_torques, finite, or probed prescribed torques).
-double joint_torques(const Model& model, Data& d, const Case& c, int nc, bool prescribed) {
-  if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
-  else d.joint_torques.setZero();
-  if (prescribed)
-    for (int i = 0; i < model.num_joints(); ++i)
-      if (c.prescribed[i]) d.joint_torques[i] = d.prescribed_torques[i];
-  if (!nc) return 0;
-  double probe = 0;
-  const Link& tip = model.tip();
-  const Vector3 f = d.constraint_wrench.head<3>(), n = d.constraint_wrench.tail<3>();
-  const Vector3 p_tip = d.X0[tip.body].p + d.X0[tip.body].R * tip.offset.p;
-  for (int i = 0; i <= tip.body; ++i) {
-    const JointSubspace S = subspace(model, d, i);
-    d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p_tip - d.X0[i].p).cross(f)) : S.z.dot(f);
-    probe += d.joint_torques[i] * 0.0;
-  }
-  return probe;
-}
-
 }  // namespace
 
 void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
   validate(model, c, d.constraint_capacity());
   validate(o);
-  if (!c.constraints.empty()) throw Error("constraints: blocks on links are not solved yet");
   const int nc = (o.effects & kConstraints) ? c.num_constraints() : 0;
   const bool gravity = o.effects & kGravity;
   // Skipped by themselves when their inputs are zero: the result is identical.
@@ -452,40 +298,22 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   if (prescribed) inward_sweep<true>(model, d, c, o.effects & kRotorInertia);
   else inward_sweep<false>(model, d, c, o.effects & kRotorInertia);
   if (nc) {
-    constraint_forces_at_tip(model, d, c, nc);
+    constraint_sources(model, d, c);
     // K must be finite before it is factored (an infinite pivot would pass for a zero).
-    const double K_probe = constraint_sweep(model, d, c, nc, prescribed);
-    if (K_probe != 0) name_the_first_overflow(model, d, nc);
+    const double K_probe = constraint_sweep(model, d, c, prescribed);
+    if (K_probe != 0) name_the_first_overflow(model, d, c, nc);
   }
 
   Vector6 a0 = Vector6::Zero();  // base acceleration: [-g; 0]
   if (gravity) a0.head<3>() = -c.gravity;
   d.nu.setZero(nc);
   if (nc) {
-    // K nu = E_0^T a_0 + G_0 - beta', with beta' = beta_kdl - alpha^T kappa_tip (the
-    // constraint on a~ = a - kappa at the tip link's origin), beta_kdl = beta - alpha_lin^T g
-    // (physical convention) and a_0 = [-g; 0] when gravity is on.
-    const bool physical = o.convention == Convention::Physical;
-    Vector6 kappa_tip = Vector6::Zero();
-    if (moving) {
-      const Link& tip = model.tip();
-      kappa_tip = motion_shift(d.kappa[tip.body], d.X0[tip.body].R * tip.offset.p);
-    }
-    // Every term in the scaled columns: E, G_0 and alpha s (beta s).
-    d.workspace.rhs.resize(nc);
-    for (int k = 0; k < nc; ++k) {
-      const double s = d.workspace.alpha_scale[k];
-      double r = d.G0[k] - c.beta[k] * s;
-      if (moving) r += (c.alpha.col(k) * s).dot(kappa_tip);
-      if (gravity) {
-        const Vector3 e = d.E.col(k).head<3>();
-        r -= e.dot(c.gravity);
-        if (physical) r += (c.alpha.col(k).head<3>() * s).dot(c.gravity);
-      }
-      d.workspace.rhs[k] = r;
-    }
-    solve_coupling(d, o, c.alpha);
+    // K nu = E_0^T a_0 + G_0 - beta' (constraint_sweep.hpp), in the scaled columns.
+    constraint_rhs(d, c, o, moving);
+    solve_coupling(d, o);
   } else {
+    d.workspace.sources.clear();
+    d.E.resize(6, 0);
     d.rank = 0;
     d.K.resize(0, 0);
     d.dropped.resize(0, 0);
@@ -496,16 +324,16 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   // Each step returns the finite probe of what it wrote (0, or NaN if a number is not
   // finite): checked once, at the end, and named only if it fails.
   d.prescribed_torques.setZero();
-  double probe = prescribed ? outward_accelerations<true>(model, d, c, a0, nc)  // with the scaled
-                            : outward_accelerations<false>(model, d, c, a0, nc);  // columns' nu'
-  unscale_constraint_forces(d, nc);
+  constraint_torques(model, d);  // with the scaled columns' nu'
+  double probe = prescribed ? outward_accelerations<true>(model, d, c, a0)
+                            : outward_accelerations<false>(model, d, c, a0);
+  unscale_constraint_forces(d);
 
   Vector6 shift = Vector6::Zero();
   if (o.convention == Convention::Physical && gravity) shift.head<3>() = c.gravity;
   probe += link_accelerations(model, d, a0, shift);
-  probe += constraint_wrench(d, c, nc);
-  probe += joint_torques(model, d, c, nc, prescribed);
-  if (probe != 0) name_the_first_overflow(model, d, nc);
+  probe += constraint_wrenches_and_joint_torques(model, d, c, prescribed);
+  if (probe != 0) name_the_first_overflow(model, d, c, nc);
 }
 
 }  // namespace achd

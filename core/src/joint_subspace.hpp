@@ -3,6 +3,9 @@
 // frame is its joint frame, with z along the joint axis, so body i's subspace is
 // S_i = [0; z_i] (revolute) or [z_i; 0] (prismatic), z_i the body's z axis in base axes.
 // (joint.hpp holds the same products in the body's own axes, where S picks one component.)
+#include "achd/data.hpp"
+#include "achd/model.hpp"
+#include "joint.hpp"
 #include "spatial_pairs.hpp"
 
 namespace achd {
@@ -37,6 +40,12 @@ inline SpatialVector velocity_product_acceleration(const SpatialVector& v_parent
   const Vec3Pair vxz = cross(linear_angular(v_parent), zq);  // rows (v_lin x zq, w x zq)
   if (S.rotational) return from_linear_angular(vxz);
   return {{high_lanes(vxz.r[0], vxz.r[1]), Pair{vxz.r[2][1], 0}, Pair{0, 0}}};
+}
+
+// Body i's joint subspace S_i = [0; z_i] (revolute) or [z_i; 0] (prismatic), z_i the
+// body's z axis (once the sweeps have set the poses).
+inline JointSubspace body_subspace(const Model& model, const Data& d, int i) {
+  return {d.X0[i].R.col(2), is_rotational(model.bodies[i])};
 }
 
 }  // namespace achd

@@ -27,7 +27,7 @@ std::string joint(const Model& model, int i) { return "joint '" + model.bodies[i
 
 }  // namespace
 
-void name_the_first_overflow(const Model& model, const Data& d, int nc) {
+void name_the_first_overflow(const Model& model, const Data& d, const Case& c, int nc) {
   const int n = model.num_joints();
   // Step 1, outward: velocities, velocity-product accelerations, joint torques.
   for (int i = 0; i < n; ++i) {
@@ -50,8 +50,16 @@ void name_the_first_overflow(const Model& model, const Data& d, int nc) {
                                  "f_ext, gravity or velocity products too large for this robot)");
   }
   // Steps 2-3 for the constraints: the coupling K, its right-hand side, the forces nu.
-  const auto column = [](int k) {
-    return "constraint column " + std::to_string(k) + " (alpha[" + std::to_string(k) + "])";
+  // Column k of nu: the tip's (alpha[k]) or column j of a block (constraints[b].alpha[j]).
+  const auto column = [&](int k) {
+    for (const ConstraintSource& s : d.workspace.sources) {
+      if (k >= s.column + s.columns) continue;
+      const int j = k - s.column;
+      if (s.block < 0) return "constraint column " + std::to_string(k) + " (alpha[" + std::to_string(j) + "])";
+      return "constraint column " + std::to_string(k) + " (constraints[" + std::to_string(s.block) + "].alpha[" +
+             std::to_string(j) + "], link '" + model.links[c.constraints[s.block].link].name + "')";
+    }
+    return "constraint column " + std::to_string(k);
   };
   for (int k = 0; k < nc; ++k)
     if (!finite(d.K.col(k).data(), nc))
@@ -73,6 +81,10 @@ void name_the_first_overflow(const Model& model, const Data& d, int nc) {
       overflow("link '" + (l ? model.links[l - 1].name : model.root_name) +
                "': its acceleration (link_accelerations[" + std::to_string(l) + "]) is not finite");
   if (!finite(d.constraint_wrench)) overflow("the constraint wrench alpha nu is not finite");
+  for (size_t b = 0; b < d.constraint_wrenches.size(); ++b)
+    if (!finite(d.constraint_wrenches[b]))
+      overflow("constraints[" + std::to_string(b) + "] (link '" + model.links[c.constraints[b].link].name +
+               "'): the constraint wrench alpha nu is not finite");
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(d.joint_torques[i]))
       overflow(joint(model, i) + ": joint_torques[" + std::to_string(i) + "] = ff - J^T alpha nu is not finite");

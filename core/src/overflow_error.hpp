@@ -10,6 +10,6 @@ namespace achd {
 // Called when a solve's finite probe failed: throws achd::Error naming the first quantity
 // of the sweeps, in the order they computed them, that is not finite (the joint, link or
 // constraint column, and the inputs that feed it).
-[[noreturn]] void name_the_first_overflow(const Model& model, const Data& data, int nc);
+[[noreturn]] void name_the_first_overflow(const Model& model, const Data& data, const Case& c, int nc);
 
 }  // namespace achd

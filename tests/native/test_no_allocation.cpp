@@ -119,6 +119,52 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
   EXPECT_EQ(solves, static_cast<int>(index["robots"].size()) * 7 * 6);
 }
 
+// Constraint blocks on any links: 1 to 6 blocks on random links of every chain robot, up
+// to 36 columns in all (the largest capacity), so that the several-block sweep and the
+// coupling solve of more than 6 columns run, under every policy.
+TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
+  std::ifstream in(kRepo + "/robots/index.json");
+  ASSERT_TRUE(in) << kRepo;
+  const nlohmann::json index = nlohmann::json::parse(in);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int solves = 0;
+  for (const auto& r : index["robots"]) {
+    if (!r.contains("tip")) continue;  // the trees: tests/native/tree_identities.cpp
+    const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
+                                               r["root"].get<std::string>(), r["tip"].get<std::string>());
+    achd::Data d(m);
+    const int n = m.num_joints();
+    achd::Case c = achd::Case::zeros(m);
+    for (int i = 0; i < n; ++i) c.q[i] = r["q0"][i].get<double>();
+    c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    for (int blocks = 1; blocks <= 6; ++blocks) {
+      const int columns = blocks == 6 ? 6 : 1 + static_cast<int>(rng() % 6);
+      c.constraints.assign(blocks, {});
+      for (achd::ConstraintBlock& b : c.constraints) {
+        b.link = static_cast<int>(rng() % m.num_links());
+        b.point = achd::Vector3::NullaryExpr([&] { return U(rng); });
+        b.alpha = achd::ConstraintMatrix::NullaryExpr(6, columns, [&] { return U(rng); });
+        b.beta = achd::ConstraintVector::NullaryExpr(columns, [&] { return U(rng); });
+      }
+      for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::Damped,
+                          achd::SingularityPolicy::VariableDamping}) {
+        achd::Options o;
+        o.policy = policy;
+        o.effects = achd::kAllEffects;
+        EXPECT_EQ(allocations_of_solve(m, d, c, o), 0)
+            << r["name"] << " blocks=" << blocks << " columns=" << c.num_constraints()
+            << " policy=" << static_cast<int>(policy);
+        ASSERT_TRUE(d.qdd.allFinite() && d.nu.allFinite());
+        ASSERT_EQ(d.nu.size(), c.num_constraints());
+        ++solves;
+      }
+    }
+  }
+  EXPECT_GT(solves, 0);
+}
+
 TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
   std::ifstream in(kRepo + "/robots/index.json");
   ASSERT_TRUE(in) << kRepo;

@@ -11,6 +11,20 @@
 
 namespace achd {
 
+// 6 x m unit constraint forces of all columns, m <= kMaxConstraintColumns, fixed storage.
+using ForceColumns = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxConstraintColumns>;
+
+// One block of constraint columns as the sweeps see it: the tip's columns (Case::alpha) or
+// one Case::constraints block.
+struct ConstraintSource {
+  int body = -1;    // the body its link rides on (-1: fixed to the root)
+  int column = 0;   // its first column in nu, K and E
+  int columns = 0;  // how many
+  int block = -1;   // its index in Case::constraints, -1 for the tip's
+  int ez = 0;       // where its EZ_i start in Data::Workspace::ez
+  Vector3 arm = Vector3::Zero();  // from the body's origin to the point it acts at, base axes
+};
+
 using CouplingMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraintColumns,
                                      kMaxConstraintColumns>;
 
@@ -74,8 +88,8 @@ struct Data {
   // ---- the constraint part at the base (nc = the number of constraints) ----
   // The sweeps work on the columns alpha_k s_k, s_k = workspace.alpha_scale[k] (a power of
   // two, see docs/design.md "Column scaling"), whose forces are nu_k / s_k.
-  ConstraintMatrix E;    // unit constraint forces alpha_k s_k (6 x nc), moved from the tip
-                         // to the base (after the solve: E_0)
+  ForceColumns E;        // unit constraint forces alpha_k s_k (6 x nc), each block's moved
+                         // from its point to the base (after the solve: E_0)
   CouplingMatrix K;      // K = -M_0 = sum_i EZ_i EZ_i^T / D_i (nc x nc), the coupling of
                          // the columns alpha_k s_k at the base (sigma_min() reads it)
   ConstraintVector G0;   // G_0 = sum_i EZ_i u_i / D_i, acceleration energy of the bias terms
@@ -89,10 +103,16 @@ struct Data {
                                     // the final outward sweep
     std::vector<double> D, Dinv;    // S^T IA S (+ rotor inertia), 1 / D
     std::vector<double> u;          // tau - S^T pA
-    // E^T S at each body, nc values; when nc is odd the slot after them is 0 (the columns
-    // are held two to a pair: constraint_pairs.hpp)
-    std::vector<std::array<double, kMaxConstraints>> EZ;
+    // The blocks of columns of the last solve (the tip's first), reserved to the capacity.
+    std::vector<ConstraintSource> sources;
+    // EZ_i = E^T S_i of each block at each body on its path to the base: block s's at
+    // ez[s.ez + i * stride], stride its column count rounded up to even, the slot after an
+    // odd count 0 (the columns are held two to a pair: constraint_pairs.hpp)
+    std::vector<double> ez;
+    std::vector<int> path;          // scratch: the bodies from one body to the base
     ConstraintVector alpha_scale;   // s_k: the sweeps use the columns alpha_k s_k
+    // per column: true when alpha_k has a force part (variable_damping's kinds)
+    std::array<bool, kMaxConstraintColumns> has_force;
     ConstraintVector rhs;           // K nu' = rhs: E_0^T a_0 + G_0 - beta' (scaled columns)
   } workspace;
  private:

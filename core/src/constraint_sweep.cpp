@@ -1,0 +1,287 @@
+// Vereshchagin's constraint sweep (1989, eqs. c-f; KDL's E, M, G) on a tree, for blocks of
+// columns on any links. Each block s (the tip's columns or one Case::constraints block)
+// acts at a point of one link, riding on body b_s. Its unit constraint forces E_s start at
+// b_s, moved from the point (arm a_s) to the body's origin, and roll inward along the
+// path P_s = {b_s and its ancestors} to the base, as on a chain:
+//   EZ_s,i = E_s^T S_i;   E_s <- X_i^T (E_s - U_i EZ_s,i^T / D_i)        (eq. c)
+// A body off P_s is not on the way: E_s has no share in its articulated body. The
+// coupling of two blocks therefore sums only over the bodies both pass, from the lowest
+// common ancestor of b_s and b_t to the base:
+//   K_st = -M_0,st = sum_{i in P_s ∩ P_t} EZ_s,i EZ_t,i^T / D_i           (eq. d)
+//   G_s  = sum_{i in P_s} EZ_s,i known_i                                   (eq. e)
+// (known_i = u_i / D_i, or a prescribed joint's qdd_given, which adds nothing to K), and
+// the constraint torque of joint i is -S_i^T E nu = -sum_{s: i in P_s} EZ_s,i^T nu_s.
+// With one block on a chain's tip this is KDL's sweep. Cost: O(m d) for the columns and
+// the torques, O(m^2 d) for K, d the depth of the tree.
+#include "constraint_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "constraint_count.hpp"
+#include "constraint_pairs.hpp"
+#include "finite_probe.hpp"
+#include "joint_subspace.hpp"
+
+namespace achd {
+namespace {
+
+// floor(log2 x) for a finite x > 0, from its exponent bits (subnormals count as -1023).
+inline int exponent_of(double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  return static_cast<int>(bits >> 52) - 1023;  // x > 0: no sign bit
+}
+
+// 2^k for k in [-1022, 1023], from its exponent bits.
+inline double power_of_two(int k) {
+  const std::uint64_t bits = static_cast<std::uint64_t>(k + 1023) << 52;
+  double x;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
+// The power of two s_k = 2^-e, e = round(log2 |alpha_k|), that brings alpha column k to a
+// length in [2^-1/2, 2^1/2). The sweeps solve for the columns alpha_k s_k with beta_k s_k,
+// whose force is nu_k / s_k: multiplying by a power of two is exact, so the solve does not
+// depend on a column's scale (a column and its beta scaled by 2^j give the same qdd and
+// rank to the bit, nu_k scaled by 2^-j), a column of 1e-200 neither underflows K nor drops
+// out, and a unit column (s_k = 1) is untouched. With y = alpha_k 2^-m, 2^m <= max |entry|
+// (so that the squares neither overflow nor underflow): |alpha_k|^2 = |y|^2 4^m, and
+// round(log2 |alpha_k|) = ceil(floor(log2 |alpha_k|^2) / 2) = m + (floor(log2 |y|^2) + 1) / 2
+// (|y|^2 in [1, 24), so the last term is 0, 1 or 2, an integer shift).
+double column_scale(const double* column) {
+  // Every unit column, at the cost of |alpha_k|^2 by pairs: |alpha_k|^2 in [1/2, 2) is e = 0.
+  const double length2 = squared_norm(load_pairs(column));
+  if (length2 >= 0.5 && length2 < 2) return 1;
+  double largest = 0;
+  for (int r = 0; r < 6; ++r) largest = std::max(largest, std::abs(column[r]));
+  if (largest == 0) return 1;
+  const int m = std::min(std::max(exponent_of(largest), -1022), 1022);
+  const double down = power_of_two(-m);
+  double y2 = 0;
+  for (int r = 0; r < 6; ++r) y2 += (column[r] * down) * (column[r] * down);
+  const int e = m + ((exponent_of(y2) + 1) >> 1);
+  return power_of_two(-std::min(std::max(e, -1022), 1022));
+}
+
+// The columns of source s as the case gives them (the tip's or its block's).
+const ConstraintMatrix& alpha_of(const Case& c, const ConstraintSource& s) {
+  return s.block < 0 ? c.alpha : c.constraints[s.block].alpha;
+}
+const ConstraintVector& beta_of(const Case& c, const ConstraintSource& s) {
+  return s.block < 0 ? c.beta : c.constraints[s.block].beta;
+}
+
+// Appends the source of `columns` columns acting on link `link` at `point` (its frame).
+void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int link, const Vector3& point,
+                int block, int& m, int& ez) {
+  Data::Workspace& w = d.workspace;
+  const Link& l = model.links[link];
+  ConstraintSource s;
+  s.body = l.body;
+  s.column = m;
+  s.columns = static_cast<int>(alpha.cols());
+  s.block = block;
+  s.ez = ez;
+  // the arm from the body's origin (the root's, for a link fixed to it) to the point
+  const Vector3 in_body = point.isZero(0) ? l.offset.p : Vector3(l.offset.p + l.offset.R * point);
+  s.arm = s.body < 0 ? in_body : Vector3(d.X0[s.body].R * in_body);
+  // E = alpha s moved from the point to the body's origin: [f; n + arm x f]
+  for (int k = 0; k < s.columns; ++k) {
+    const double scale = column_scale(alpha.col(k).data());
+    const Vector3 f = alpha.col(k).head<3>() * scale;
+    w.alpha_scale[m + k] = scale;
+    w.has_force[m + k] = alpha.col(k).head<3>().squaredNorm() != 0;
+    d.E.col(m + k).head<3>() = f;
+    d.E.col(m + k).tail<3>() = alpha.col(k).tail<3>() * scale + s.arm.cross(f);
+  }
+  w.sources.push_back(s);
+  m += s.columns;
+  ez += model.num_joints() * (s.columns + (s.columns & 1));
+}
+
+template <int NC>
+void roll_to_base(const Model& model, Data& d, const ConstraintSource& s) {
+  Data::Workspace& w = d.workspace;
+  double* column = d.E.col(s.column).data();
+  UnitConstraintForces<NC> E(column);
+  double* ez = w.ez.data() + s.ez;
+  for (int i = s.body; i >= 0; i = model.bodies[i].parent)
+    E.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
+  E.store(column);
+}
+
+// The diagonal block K_ss and G_s of source s, summed from the base outward (so that a
+// chain's K is summed in body order). Returns its finite probe.
+template <int NC, bool P>
+double own_coupling(const Model& model, Data& d, const Case& c, const ConstraintSource& s) {
+  Data::Workspace& w = d.workspace;
+  CouplingSums<NC> sums;
+  const double* ez = w.ez.data() + s.ez;
+  int depth = 0;
+  for (int i = s.body; i >= 0; i = model.bodies[i].parent) w.path[depth++] = i;
+  while (depth > 0) {
+    const int i = w.path[--depth];
+    double known = w.u[i] * w.Dinv[i];
+    if constexpr (P) {
+      if (c.prescribed[i]) known = c.qdd_given[i];
+    }
+    sums.add(ez + i * ez_stride<NC>(), w.Dinv[i], known);
+  }
+  return sums.store(d.K, d.G0, s.column);
+}
+
+// The lowest common ancestor of bodies a and b (-1: the base). Parents come before their
+// children, so the larger index is never an ancestor of the smaller.
+int common_ancestor(const Model& model, int a, int b) {
+  while (a != b) {
+    if (a > b) a = model.bodies[a].parent;
+    else b = model.bodies[b].parent;
+  }
+  return a;
+}
+
+// The off-diagonal block K_st (and K_ts) of two sources: over the common part of their
+// paths. Returns its finite probe.
+double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
+  const Data::Workspace& w = d.workspace;
+  const int ss = s.columns + (s.columns & 1), st = t.columns + (t.columns & 1);
+  double probe = 0;
+  for (int k = 0; k < s.columns; ++k)
+    for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) = 0;
+  for (int i = common_ancestor(model, s.body, t.body); i >= 0; i = model.bodies[i].parent) {
+    const double* es = w.ez.data() + s.ez + i * ss;
+    const double* et = w.ez.data() + t.ez + i * st;
+    for (int k = 0; k < s.columns; ++k) {
+      const double a = es[k] * w.Dinv[i];
+      for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) += a * et[l];
+    }
+  }
+  for (int k = 0; k < s.columns; ++k)
+    for (int l = 0; l < t.columns; ++l) {
+      const double x = d.K(s.column + k, t.column + l);
+      d.K(t.column + l, s.column + k) = x;
+      probe += x * 0.0;
+    }
+  return probe;
+}
+
+template <int NC>
+void add_constraint_torques(const Model& model, Data& d, const ConstraintSource& s) {
+  const Data::Workspace& w = d.workspace;
+  const ConstraintMagnitudes<NC> nu(d.nu.data() + s.column);
+  const double* ez = w.ez.data() + s.ez;
+  for (int i = s.body; i >= 0; i = model.bodies[i].parent) d.constraint_torques[i] -= nu.dot(ez + i * ez_stride<NC>());
+}
+
+}  // namespace
+
+int constraint_sources(const Model& model, Data& d, const Case& c) {
+  Data::Workspace& w = d.workspace;
+  w.sources.clear();
+  const int m = c.num_constraints();
+  d.E.resize(6, m);
+  w.alpha_scale.resize(m);
+  int column = 0, ez = 0;
+  if (c.alpha.cols()) add_source(model, d, c.alpha, model.num_links() - 1, Vector3::Zero(), -1, column, ez);
+  for (size_t b = 0; b < c.constraints.size(); ++b) {
+    const ConstraintBlock& block = c.constraints[b];
+    if (block.alpha.cols()) add_source(model, d, block.alpha, block.link, block.point, static_cast<int>(b), column, ez);
+  }
+  return m;
+}
+
+double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescribed) {
+  const Data::Workspace& w = d.workspace;
+  const int m = static_cast<int>(d.E.cols());
+  d.K.resize(m, m);
+  d.G0.resize(m);
+  double probe = 0;
+  for (const ConstraintSource& s : w.sources)
+    probe += with_constraint_count(s.columns, [&](auto n) {
+      constexpr int NC = decltype(n)::value;
+      roll_to_base<NC>(model, d, s);
+      return prescribed ? own_coupling<NC, true>(model, d, c, s) : own_coupling<NC, false>(model, d, c, s);
+    });
+  for (size_t s = 0; s < w.sources.size(); ++s)
+    for (size_t t = s + 1; t < w.sources.size(); ++t) probe += mutual_coupling(model, d, w.sources[s], w.sources[t]);
+  return probe;
+}
+
+void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
+  Data::Workspace& w = d.workspace;
+  const bool gravity = o.effects & kGravity, physical = o.convention == Convention::Physical;
+  w.rhs.resize(d.E.cols());
+  for (const ConstraintSource& s : w.sources) {
+    // kappa at the point: what its acceleration would be with qdd = 0 and no gravity
+    Vector6 kappa = Vector6::Zero();
+    if (moving && s.body >= 0) kappa = motion_shift(d.kappa[s.body], s.arm);
+    const ConstraintMatrix& alpha = alpha_of(c, s);
+    const ConstraintVector& beta = beta_of(c, s);
+    for (int k = 0; k < s.columns; ++k) {
+      const int col = s.column + k;
+      const double scale = w.alpha_scale[col];
+      double r = d.G0[col] - beta[k] * scale;
+      if (moving) r += (alpha.col(k) * scale).dot(kappa);
+      if (gravity) {
+        r -= d.E.col(col).head<3>().dot(c.gravity);
+        if (physical) r += (alpha.col(k).head<3>() * scale).dot(c.gravity);
+      }
+      w.rhs[col] = r;
+    }
+  }
+}
+
+void constraint_torques(const Model& model, Data& d) {
+  // (the inward sweep has set them to 0)
+  for (const ConstraintSource& s : d.workspace.sources)
+    with_constraint_count(s.columns, [&](auto n) { add_constraint_torques<decltype(n)::value>(model, d, s); });
+}
+
+void unscale_constraint_forces(Data& d) {
+  const Data::Workspace& w = d.workspace;
+  const int m = static_cast<int>(d.nu.size());
+  for (int k = 0; k < m; ++k) d.nu[k] *= w.alpha_scale[k];
+  for (Eigen::Index j = 0; j < d.dropped.cols(); ++j) {
+    for (int k = 0; k < m; ++k) d.dropped(k, j) *= w.alpha_scale[k];
+    d.dropped.col(j).normalize();
+  }
+  for (Eigen::Index j = 0; j < d.damped.cols(); ++j) {
+    for (int k = 0; k < m; ++k) d.damped(k, j) *= w.alpha_scale[k];
+    d.damped.col(j).normalize();
+  }
+}
+
+double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c, bool prescribed) {
+  if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
+  else d.joint_torques.setZero();
+  if (prescribed)
+    for (int i = 0; i < model.num_joints(); ++i)
+      if (c.prescribed[i]) d.joint_torques[i] = d.prescribed_torques[i];
+  d.constraint_wrench.setZero();
+  d.constraint_wrenches.assign(c.constraints.size(), Vector6::Zero());
+  double probe = 0;
+  for (const ConstraintSource& s : d.workspace.sources) {
+    // the wrench w = [f; n] = alpha nu at the point p; tau_i -= z_i . (n + (p - p_i) x f)
+    // (revolute) or z_i . f (prismatic), for each body on the path
+    const ConstraintMatrix& alpha = alpha_of(c, s);
+    SpatialVector wrench{};
+    for (int k = 0; k < s.columns; ++k) wrench = wrench + load_pairs(alpha.col(k).data()) * d.nu[s.column + k];
+    Vector6& out = s.block < 0 ? d.constraint_wrench : d.constraint_wrenches[s.block];
+    store_pairs(out, wrench);
+    probe += finite_probe(wrench);
+    const Vector3 f = out.head<3>(), n = out.tail<3>();
+    const Vector3 p = s.body < 0 ? s.arm : Vector3(d.X0[s.body].p + s.arm);
+    for (int i = s.body; i >= 0; i = model.bodies[i].parent) {
+      const JointSubspace S = body_subspace(model, d, i);
+      d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
+      probe += d.joint_torques[i] * 0.0;
+    }
+  }
+  return probe;
+}
+
+}  // namespace achd
