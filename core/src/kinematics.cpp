@@ -182,6 +182,7 @@ Eigen::MatrixXd link_jacobian(const Model& model, const Eigen::VectorXd& q, int 
 void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& ws,
                   Eigen::MatrixXd& J) {
   check_workspace_call("tip_jacobian", model, ws, q);
+  if (!model.has_tip()) throw Error("tip_jacobian: the model is a tree (loaded without a tip); use link_jacobian");
   body_poses(model, q, ws.X0, ws.r);
   const Link& tip = model.tip();
   const Vector3 p_tip = tip.body < 0 ? tip.offset.p : (ws.X0[tip.body] * tip.offset).p;

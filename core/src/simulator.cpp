@@ -108,12 +108,12 @@ const char* integrator_name(Integrator integrator) {
 Simulator::Simulator(const Model& model, const SimulatorOptions& options)
     : model_(model),
       options_(options),
-      data_{{Data(model_), Data(model_)}},
-      stage_data_(model_),
+      data_{{Data(model_, kMaxConstraints), Data(model_, kMaxConstraints)}},  // the tip's directions
+      stage_data_(model_, kMaxConstraints),
       case_(Case::zeros(model_)),
       events_(std::make_unique<DirectionEventLog>(kMaxDirectionEvents)),
       implicit_model_(model_),
-      limit_data_(model_) {
+      limit_data_(model_, kMaxConstraints) {
   const int n = model_.num_joints();
   q = qd = ff_torques = Eigen::VectorXd::Zero(n);
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
@@ -171,6 +171,9 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
 
 void Simulator::set_direction(int index, DirectionMode mode, double setpoint) {
   check_direction(index);
+  if (!model_.has_tip())
+    throw Error(std::string("direction ") + kDirectionNames[index] +
+                ": the model is a tree (loaded without a tip); the simulator's directions act on a chain's tip");
   if (!std::isfinite(setpoint))
     throw Error(std::string("direction ") + kDirectionNames[index] + ": setpoint is not finite");
   held_.mode[index] = mode;
