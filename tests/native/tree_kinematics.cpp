@@ -1,9 +1,10 @@
 // achd's kinematics and dynamics on random kinematic trees (random_tree.hpp) against the
 // test references, which walk parent[i] with their own formulas (reference_kinematics.hpp,
 // reference_dynamics.hpp): forward_kinematics, link_velocities, link_jacobian at a point,
-// rnea and crba. Relative errors as docs/design.md section 4.6.
+// rnea and crba; and tree_urdf's text loads as the same tree. Relative errors as docs/design.md section 4.6.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "random_chain.hpp"
@@ -78,6 +79,69 @@ TEST(TreeKinematics, RneaAndCrbaMatchTheReference) {
     worst_M = std::max(worst_M, e_M);
   });
   std::printf("  max rel error rnea %.3g, crba %.3g\n", worst_tau, worst_M);
+}
+
+// tree_urdf writes the tree the Model was built from: the URDF loader gives the same mass
+// matrix, RNEA torques (every effect) and link poses, joints and links matched by name
+// (the loader orders a tree's bodies depth-first). Returns the largest relative error.
+double loaded_model_error(const RandomTree& t, const Model& loaded, std::mt19937& rng) {
+  const Model& m = t.model;
+  EXPECT_EQ(loaded.num_joints(), m.num_joints());
+  EXPECT_EQ(loaded.num_links(), m.num_links());
+  if (loaded.num_joints() != m.num_joints() || loaded.num_links() != m.num_links()) return INFINITY;
+  const int n = m.num_joints();
+  std::vector<int> joint(n), link(m.num_links());
+  for (int i = 0; i < n; ++i)
+    if ((joint[i] = loaded.joint_index(m.bodies[i].joint_name)) < 0) return INFINITY;
+  for (int l = 0; l < m.num_links(); ++l)
+    if ((link[l] = loaded.link_index(m.links[l].name)) < 0) return INFINITY;
+  const Case c = random_tree_inputs(rng, m);
+  const Eigen::VectorXd& qdd = c.ff_torques;  // any numbers
+  Eigen::VectorXd q(n), qd(n), qdd_loaded(n);
+  for (int i = 0; i < n; ++i) q[joint[i]] = c.q[i], qd[joint[i]] = c.qd[i], qdd_loaded[joint[i]] = qdd[i];
+  std::vector<Vector6> f_ext(m.num_links());
+  for (int l = 0; l < m.num_links(); ++l) f_ext[link[l]] = c.f_ext[l];
+  const Eigen::MatrixXd M = crba(m, c.q), M_loaded = crba(loaded, q);
+  const Eigen::VectorXd tau = rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05);
+  const Eigen::VectorXd tau_loaded = rnea(loaded, q, qd, qdd_loaded, c.gravity, f_ext, kAllEffects, 0.05);
+  const std::vector<Transform> poses = forward_kinematics(m, c.q), poses_loaded = forward_kinematics(loaded, q);
+  double e = 0;
+  for (int i = 0; i < n; ++i) {
+    e = std::max(e, std::abs(tau[i] - tau_loaded[joint[i]]) / std::max(1.0, tau.cwiseAbs().maxCoeff()));
+    for (int j = 0; j < n; ++j)
+      e = std::max(e, std::abs(M(i, j) - M_loaded(joint[i], joint[j])) / std::max(1.0, M.cwiseAbs().maxCoeff()));
+  }
+  for (int l = 0; l < m.num_links(); ++l)
+    e = std::max({e, (poses[l].R - poses_loaded[link[l]].R).cwiseAbs().maxCoeff(),
+                  (poses[l].p - poses_loaded[link[l]].p).cwiseAbs().maxCoeff()});
+  return e;
+}
+
+TEST(TreeUrdf, ChainLoadsAsTheSameChain) {
+  std::mt19937 rng(1504);
+  double worst = 0;
+  for (int k = 0; k < 20; ++k) {
+    const RandomTree t = random_tree(rng, k == 0 ? 1 : std::uniform_int_distribution<int>(1, 60)(rng), true);
+    const std::string urdf = tree_urdf(t.links);
+    SCOPED_TRACE(urdf);
+    const double e = loaded_model_error(t, load_urdf_string(urdf, "l0", t.model.tip_name), rng);
+    EXPECT_LE(e, 1e-12);
+    worst = std::max(worst, e);
+  }
+  std::printf("  max rel error of the loaded chains' M, RNEA and link poses %.3g\n", worst);
+}
+
+// Needs the loader of whole trees (an empty tip).
+TEST(TreeUrdf, WholeTreeLoadsAsTheSameTree) {
+  double worst = 0;
+  for_random_trees(1505, 20, [&](const RandomTree& t, std::mt19937& rng) {
+    const std::string urdf = tree_urdf(t.links);
+    SCOPED_TRACE(urdf);
+    const double e = loaded_model_error(t, load_urdf_string(urdf, "l0", ""), rng);
+    EXPECT_LE(e, 1e-12);
+    worst = std::max(worst, e);
+  });
+  std::printf("  max rel error of the loaded trees' M, RNEA and link poses %.3g\n", worst);
 }
 
 TEST(TreeKinematics, LinkJacobianNamesALinkOutOfRange) {
