@@ -94,6 +94,36 @@ TEST(FastPathTrees, EqualsPvReference) {
   worst.print("hybrid_dynamics vs pv_reference on trees", cases);
 }
 
+// Every effect mask (gravity, velocity products, external wrenches, damping, friction,
+// rotor inertia, constraints on or off, drawn at random) in both conventions, and
+// absolute tolerances: the fast path still equals pv_reference.
+TEST(FastPathTrees, EqualsPvReferenceUnderEveryEffectMaskAndConvention) {
+  Comparison worst;
+  std::mt19937 draw(1524);
+  const int cases = for_tree_cases(1525, [&](const Model& m, const Case& c) {
+    Options o;
+    o.effects = std::uniform_int_distribution<std::uint32_t>(0, kAllEffects)(draw) & kAllEffects;
+    o.convention = draw() % 2 ? Convention::Kdl : Convention::Physical;
+    if (draw() % 2) {
+      o.absolute_tolerance = true;
+      o.tolerance = 1e-14;
+    }
+    const Solution ref = reference(m, c, o);
+    Solution fast;
+    try {
+      fast = fast_path(m, c, o);
+    } catch (const Error& e) {
+      ADD_FAILURE() << "hybrid_dynamics: " << e.what();
+      return;
+    }
+    const Comparison e = compare(fast, ref);
+    EXPECT_LE(e.max(), 1e-12) << "effects " << o.effects << " qdd " << e.qdd << " nu " << e.nu;
+    EXPECT_EQ(fast.rank, ref.rank);
+    worst.add(e);
+  });
+  worst.print("hybrid_dynamics vs pv_reference, random effects and conventions", cases);
+}
+
 // Random unit tip columns (nc of them) and beta, redrawn until the coupling condition
 // number is below 1e4; false after 200 draws.
 bool draw_tip_constraints(std::mt19937& rng, const Model& m, Case& c, int nc) {
