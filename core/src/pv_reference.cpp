@@ -1,11 +1,12 @@
 // The Popov-Vereshchagin solver on a kinematic tree, written plainly to be read beside
 // Featherstone's listings (RBDA table 7.1, the articulated-body algorithm; 9.2 for
-// prescribed joints) and spatial_v2's HD.m, with Vereshchagin's constraint sweep as on a
-// tree (Popov-Vereshchagin 1979/1989; Shakhimardanov and Sathya's PV on trees):
+// prescribed joints) and spatial_v2's HD.m, with Vereshchagin's constraint sweep (1989)
+// carried over to a tree as in spatial_v2's PV_tree.m (Sathya's fork) and Pinocchio's pv:
 //
 //   pass 1, outward (i = 0 .. n-1):  Xup_i, v_i = Xup_i v_p + S_i qd_i,  c_i = v_i x S_i qd_i,
 //           IA_i = I_i,  pA_i = v_i x* I_i v_i - f_ext_i
-//   pass 2, inward (i = n-1 .. 0):   U_i = IA_i S_i,  D_i = S_i^T U_i,  u_i = tau_i - S_i^T pA_i,
+//   pass 2, inward (i = n-1 .. 0):   U_i = IA_i S_i,  D_i = S_i^T U_i (+ rotor inertia),
+//           u_i = tau_i - S_i^T pA_i,
 //           Ia = IA_i - U_i U_i^T / D_i,  pa = pA_i + Ia c_i + U_i u_i / D_i,
 //           IA_p += Xup_i^T Ia Xup_i,  pA_p += Xup_i^T pa
 //   constraint sweep, inward:  E_i (6 x m) holds the unit constraint forces alpha of the

@@ -287,6 +287,10 @@ std::optional<Case> with_blocks_on(std::mt19937& rng, const Model& model, Case c
   return std::nullopt;
 }
 
+std::optional<Case> random_tree_case(std::mt19937& rng, const Model& model, int max_blocks) {
+  return with_random_blocks(rng, model, random_tree_inputs(rng, model), max_blocks);
+}
+
 void prescribe_random_joints(std::mt19937& rng, const Model& model, Case& c, double share) {
   const int n = model.num_joints();
   c.prescribed.assign(n, false);

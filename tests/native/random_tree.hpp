@@ -77,6 +77,10 @@ std::optional<Case> with_random_blocks(std::mt19937& rng, const Model& model, Ca
                                        int max_blocks = 6, int max_columns = kMaxConstraintColumns,
                                        double max_condition = 1e4);
 
+// random_tree_inputs with random blocks (with_random_blocks, defaults): the random tree
+// case of the suites and benchmarks; nullopt when no well-conditioned blocks were drawn.
+std::optional<Case> random_tree_case(std::mt19937& rng, const Model& model, int max_blocks = 6);
+
 // Marks each joint prescribed with probability `share` (at least one stays free), with a
 // random qdd_given in [-3, 3].
 void prescribe_random_joints(std::mt19937& rng, const Model& model, Case& c, double share);

@@ -41,12 +41,16 @@ int for_tree_cases(unsigned seed, F f) {
     Model m = t.model;
     for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
     for (int variant = 0; variant < 3; ++variant) {
-      Case c = random_tree_inputs(rng, m);
-      if (variant == 1) prescribe_random_joints(rng, m, c, arm_tips.empty() ? 0.3 : 0.05);
-      const std::optional<Case> blocks =
-          variant == 2 ? std::optional<Case>(c)
-          : arm_tips.empty() ? with_random_blocks(rng, m, c)
-                             : with_blocks_on(rng, m, c, arm_tips, kMaxConstraints);
+      std::optional<Case> blocks;
+      if (variant == 0 && arm_tips.empty()) {
+        blocks = random_tree_case(rng, m);
+      } else {
+        Case c = random_tree_inputs(rng, m);
+        if (variant == 1) prescribe_random_joints(rng, m, c, arm_tips.empty() ? 0.3 : 0.05);
+        blocks = variant == 2 ? std::optional<Case>(c)
+                 : arm_tips.empty() ? with_random_blocks(rng, m, c)
+                                    : with_blocks_on(rng, m, c, arm_tips, kMaxConstraints);
+      }
       if (!blocks) continue;
       SCOPED_TRACE(tree_urdf(t.links));
       f(m, *blocks);
