@@ -34,7 +34,7 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
   constexpr int kBlock = 8;
   double sines[kBlock], cosines[kBlock];
   const int n = model.num_joints();
-  Mat3p R;  // the last body's axes, the next one's parent (the chain is in order)
+  Mat3p R;  // the last body's axes: the next one's parent in a chain (a tree reloads them)
   for (int i0 = 0; i0 < n; i0 += kBlock) {
     const int m = std::min(kBlock, n - i0);
     for (int j = 0; j < m; j += 2) {
@@ -53,6 +53,7 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
         T = load_columns(b.X_tree.R);
         ri = load3(b.X_tree.p.data());
       } else {
+        if (p != i - 1) R = load_columns(X0[p].R);  // a branch starts: its parent's axes
         T = product(R, b.X_tree.R.data());
         ri = times(R, b.X_tree.p.data());
       }
@@ -144,6 +145,40 @@ std::vector<Vector6> link_velocities(const Model& model, const Eigen::VectorXd& 
   return velocities;
 }
 
+void link_jacobian(const Model& model, const Eigen::VectorXd& q, int link, const Vector3& point,
+                   ChainWorkspace& ws, Eigen::MatrixXd& J) {
+  check_workspace_call("link_jacobian", model, ws, q);
+  if (link < 0 || link >= model.num_links())
+    throw Error("link_jacobian: link index " + std::to_string(link) + " is not in the model (" +
+                std::to_string(model.num_links()) + " links after the root)");
+  body_poses(model, q, ws.X0, ws.r);
+  const Link& l = model.links[link];
+  J.setZero(6, model.num_joints());
+  if (l.body < 0) return;  // fixed to the root: no joint moves it
+  const Transform& X = ws.X0[l.body];
+  const Vector3 p = X.p + X.R * (l.offset.p + l.offset.R * point);  // the point, base frame
+  // Column i, for the bodies from the link's up to the root: joint i's unit motion seen
+  // at the point. Revolute: [z x (p - p_i); z]; prismatic: [z; 0], with z the joint axis
+  // (the body's z) in base orientation.
+  for (int i = l.body; i >= 0; i = model.bodies[i].parent) {
+    const Vector3 z = ws.X0[i].R.col(2);
+    if (is_rotational(model.bodies[i])) {
+      J.col(i).head<3>() = z.cross(p - ws.X0[i].p);
+      J.col(i).tail<3>() = z;
+    } else {
+      J.col(i).head<3>() = z;
+    }
+  }
+}
+
+Eigen::MatrixXd link_jacobian(const Model& model, const Eigen::VectorXd& q, int link,
+                              const Vector3& point) {
+  ChainWorkspace ws(model);
+  Eigen::MatrixXd J(6, model.num_joints());
+  link_jacobian(model, q, link, point, ws, J);
+  return J;
+}
+
 void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& ws,
                   Eigen::MatrixXd& J) {
   check_workspace_call("tip_jacobian", model, ws, q);
@@ -154,7 +189,7 @@ void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& 
   J.setZero(6, model.num_joints());
   // Column i: joint i's unit motion seen at the tip. Revolute: [z x (p_tip - p_i); z];
   // prismatic: [z; 0], with z the joint axis (the body's z) in base orientation.
-  for (int i = 0; i <= tip.body; ++i) {
+  for (int i = tip.body; i >= 0; i = model.bodies[i].parent) {
     const Body& b = model.bodies[i];
     const Vector3 z = ws.X0[i].R.col(2);
     if (is_rotational(b)) {

@@ -9,7 +9,6 @@
 #include <Eigen/SVD>
 
 namespace achd::test {
-namespace {
 
 double uniform(std::mt19937& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
@@ -33,8 +32,6 @@ Matrix3 random_inertia(std::mt19937& rng, double mass) {
   const Matrix3 R = random_rotation(rng);
   return R * Vector3(a, b, c).asDiagonal() * R.transpose();
 }
-
-}  // namespace
 
 RandomChain random_chain(std::mt19937& rng, int num_links, bool allow_fixed) {
   static const char* kMovable[] = {"revolute", "continuous", "prismatic"};

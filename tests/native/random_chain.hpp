@@ -12,6 +12,14 @@
 
 namespace achd::test {
 
+// Drawing helpers shared with random_tree.cpp: a uniform number, a vector of three, a
+// uniformly random rotation, and a physical inertia about the COM (principal moments
+// obeying the triangle inequality, randomly rotated) for `mass`.
+double uniform(std::mt19937& rng, double lo, double hi);
+Vector3 uniform3(std::mt19937& rng, double lo, double hi);
+Matrix3 random_rotation(std::mt19937& rng);
+Matrix3 random_inertia(std::mt19937& rng, double mass);
+
 struct RandomChain {
   std::string urdf;
   std::string root = "l0", tip;  // links l0 (root) .. lN

@@ -2,8 +2,8 @@
 // while it runs, for every robot of robots/index.json, every constraint count 0..6, with
 // qd, f_ext and ff torques nonzero, in both conventions and both singularity policies,
 // without and with prescribed joints.
-// Nor do the workspace forms of rnea, crba, forward_kinematics, link_velocities and
-// tip_jacobian, once their outputs have their sizes.
+// Nor do the workspace forms of rnea, crba, forward_kinematics, link_velocities,
+// tip_jacobian and link_jacobian, once their outputs have their sizes.
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -193,6 +193,7 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
       achd::forward_kinematics(m, q, ws, poses);
       achd::link_velocities(m, q, qd, ws, velocities);
       achd::tip_jacobian(m, q, ws, J);
+      achd::link_jacobian(m, q, m.num_links() - 1, achd::Vector3(0.1, 0.2, 0.3), ws, J);
     }
     g_counting = false;
     EXPECT_EQ(g_allocations, 0) << r["name"];

@@ -8,6 +8,7 @@
 #include "achd/kinematics.hpp"
 #include "achd/model.hpp"
 #include "achd/options.hpp"
+#include "achd/pv_reference.hpp"
 #include "achd/simulator.hpp"
 #include "achd/spatial.hpp"
 #include "achd/urdf.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Forward kinematics, link velocities and the tip Jacobian, each in two forms: one that
+// Forward kinematics, link velocities, the tip Jacobian and any link's Jacobian, each in two forms: one that
 // returns a new value, and one that writes into caller-owned storage with a
 // ChainWorkspace and allocates nothing (for loops: sizes stay those of the first call).
 #include <vector>
@@ -11,7 +11,7 @@
 namespace achd {
 
 // Scratch storage of the workspace forms of forward_kinematics, link_velocities,
-// tip_jacobian (kinematics.hpp), rnea and crba (dynamics.hpp): every vector holds one
+// tip_jacobian, link_jacobian (kinematics.hpp), rnea and crba (dynamics.hpp): every vector holds one
 // entry per body, sized by the constructor for `model`. One workspace per thread; its
 // contents between calls mean nothing.
 struct ChainWorkspace {
@@ -43,6 +43,18 @@ Eigen::MatrixXd tip_jacobian(const Model& model, const Eigen::VectorXd& q);
 // The same into `J`, resized to 6 x nj if it is not that size already.
 void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& ws,
                   Eigen::MatrixXd& J);
+
+// Jacobian (6 x nj) of link `link` (Model::links index) at `point` (in the link's frame):
+// rows [linear velocity of the point; angular velocity], base orientation, so that
+// [v_point; w_link] = J qd. Column j is joint j's unit motion seen at the point
+// ([z_j x (p_point - p_j); z_j] revolute, [z_j; 0] prismatic) for the joints on the path
+// from the root to the link, zero for every other joint (other branches of a tree, and
+// all of them for a link fixed to the root). Throws achd::Error on a link index out of range.
+Eigen::MatrixXd link_jacobian(const Model& model, const Eigen::VectorXd& q, int link,
+                              const Vector3& point = Vector3::Zero());
+// The same into `J`, resized to 6 x nj if it is not that size already.
+void link_jacobian(const Model& model, const Eigen::VectorXd& q, int link, const Vector3& point,
+                   ChainWorkspace& ws, Eigen::MatrixXd& J);
 
 // Joint transform of one body at q: parent body frame -> body frame.
 Transform joint_transform(const Body& body, double q);
