@@ -6,11 +6,13 @@
 // it for chains) on the tree robots and on chains with constraint blocks; the zero-copy
 // solver takes blocks without allocating. The small tree is tests/fixtures/small_tree.urdf.
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 
-import { cliOptionFlags, loadAchd, nativeCli, pool, relativeError, repo, robots, runCli, scratchDir } from './helpers.mjs';
+import { execFileSync } from 'node:child_process';
+
+import { cliOptionFlags, loadAchd, nativeCli, pool, randomTreeFiles, relativeError, repo, robots, runCli, scratchDir } from './helpers.mjs';
 import { randomChain, randomCase, rng } from './random_chain.mjs';
 
 const TREE = join(repo, 'tests/fixtures/small_tree.urdf');
@@ -244,6 +246,28 @@ test('the small tree and the tree robots of robots/index.json: wasm == native, t
       constraints: ['lf_foot', 'rf_foot', 'lh_foot', 'rh_foot'].map((link) => ({ link, alpha: xyz })) } });
   await runParity(jobs);
   console.log(`# trees: ${jobs.length} cases (${trees.length} tree robots in robots/index.json)`);
+});
+
+// The random trees of the C++ suites (tests/native/random_tree.hpp: 1 to 60 bodies,
+// branching at random, every joint type, random inputs and well-conditioned blocks of up to
+// 36 columns), written as files by tests/native/random_tree_files. Needs the loader of
+// trees (a URDF loaded without a tip).
+test('300 random trees of the C++ suites, with constraint blocks: wasm == native, to the bit', async () => {
+  const COUNT = 300;
+  const dir = join(scratch.dir, 'random_trees');
+  mkdirSync(dir);
+  execFileSync(randomTreeFiles(), [dir, '15', String(COUNT)]);
+  const jobs = [];
+  let blocks = 0;
+  for (let k = 0; k < COUNT; ++k) {
+    const urdf = join(dir, `tree${k}.urdf`);
+    const c = JSON.parse(readFileSync(join(dir, `case${k}.json`), 'utf8'));
+    if (c.constraints.length) ++blocks;
+    jobs.push({ urdf, text: readFileSync(urdf, 'utf8'), load: {}, c, what: `random tree ${k}` });
+  }
+  assert.ok(blocks >= COUNT / 2, `only ${blocks} of ${COUNT} trees have constraint blocks`);
+  await runParity(jobs);
+  console.log(`# random trees: ${COUNT} (${blocks} with constraint blocks)`);
 });
 
 // Needs the solver of constraint blocks.
