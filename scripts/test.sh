@@ -44,13 +44,14 @@ native() {
   ctest --test-dir build --output-on-failure -j"$jobs"
 }
 
-# The native CLI alone, for the Node tests when the native stage did not run.
+# The native CLI alone (and the writer of the random trees they share with the C++
+# suites), for the Node tests when the native stage did not run.
 native_cli() {
   [ -n "${done_steps[native]:-}" ] && return 0
   once native_cli || return 0
   stage "native achd CLI (for the Node tests)"
   native_configure
-  cmake --build build -j"$jobs" --target achd_cli
+  cmake --build build -j"$jobs" --target achd_cli random_tree_files
 }
 
 wasm() {
