@@ -1,0 +1,131 @@
+// bench_trees: what trees and constraint blocks cost, every number a ratio of two solves
+// timed side by side in one run (interleaved rounds, medians of per-round ratios):
+//   - the quadruped holding its four feet in 3D (m = 12) over its unconstrained solve;
+//   - the dual-arm torso holding both hands in 6D (m = 12) over its unconstrained solve;
+//   - a random tree of 200 bodies over one of 100, both with two blocks of 6 columns
+//     (cost linear in n at fixed m);
+//   - an unconstrained random tree over a random chain with as many joints.
+// Prints a markdown table, then one JSON line.
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "random_chain.hpp"
+#include "random_tree.hpp"
+#include "timing.hpp"
+
+namespace {
+
+using namespace achd;
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Median per-round ratio t(a) / t(b), and both medians, of two solves timed side by side.
+struct Ratio {
+  double a_ns, b_ns, ratio;
+};
+
+Ratio side_by_side(const Model& ma, const Case& ca, const Model& mb, const Case& cb) {
+  Data da(ma), db(mb);
+  const std::vector<std::function<void()>> fns = {[&] { hybrid_dynamics(ma, da, ca); },
+                                                  [&] { hybrid_dynamics(mb, db, cb); }};
+  std::vector<long> iterations;
+  for (const auto& f : fns) iterations.push_back(cli::calibrate_iterations(f, 5e6));
+  const std::vector<std::vector<double>> ns = cli::sample_ns(fns, iterations, 51);
+  return {cli::median(ns[0]), cli::median(ns[1]), cli::median_ratio(ns[0], ns[1])};
+}
+
+// The robot's index.json default pose, every other input of random_tree_inputs.
+Case robot_case(const Model& m, const nlohmann::json& entry, std::mt19937& rng) {
+  Case c = test::random_tree_inputs(rng, m);
+  c.gravity = Vector3(0, 0, -9.81);
+  for (int i = 0; i < m.num_joints(); ++i) c.q[i] = entry["q0"][i].get<double>();  // model order
+  return c;
+}
+
+// Blocks of `columns` unit columns (the first `columns` of the identity: 3 = the point's
+// position, 6 = its pose) at the origins of `links`.
+Case held(const Model& m, Case c, const std::vector<std::string>& links, int columns) {
+  for (const std::string& name : links) {
+    ConstraintBlock b;
+    b.link = m.link_index(name);
+    b.alpha = ConstraintMatrix::Identity(6, columns);
+    b.beta = ConstraintVector::Zero(columns);
+    c.constraints.push_back(b);
+  }
+  return c;
+}
+
+}  // namespace
+
+int main() {
+  const std::string robots = bench::robots_dir();
+  const nlohmann::json index = nlohmann::json::parse(read(robots + "/index.json"));
+  auto entry = [&](const std::string& name) {
+    for (const auto& r : index["robots"])
+      if (r["name"] == name) return r;
+    throw std::runtime_error("robots/index.json has no " + name);
+  };
+  std::mt19937 rng(15);
+  struct Line {
+    std::string measure, target;
+    Ratio r;
+    double limit;
+  };
+  std::vector<Line> lines;
+
+  for (const auto& [name, links, columns] :
+       std::vector<std::tuple<std::string, std::vector<std::string>, int>>{
+           {"quadruped", {"lf_foot", "rf_foot", "lh_foot", "rh_foot"}, 3},
+           {"dual_arm_torso", {"left_hand", "right_hand"}, 6}}) {
+    const nlohmann::json e = entry(name);
+    const Model m = load_urdf_string(read(robots + "/../" + e["urdf"].get<std::string>()), e["root"], "");
+    const Case free = robot_case(m, e, rng), constrained = held(m, free, links, columns);
+    lines.push_back({name + " holding " + std::to_string(links.size()) + " links (m = " +
+                         std::to_string(constrained.num_constraints()) + ") / unconstrained",
+                     "<= 2", side_by_side(m, constrained, m, free), 2});
+  }
+
+  // Two blocks of 6 columns on the last links of two random trees of 100 and 200 bodies.
+  std::vector<Model> trees;
+  std::vector<Case> cases;
+  for (int n : {200, 100}) {
+    test::RandomTree t = test::random_tree(rng, n);
+    const int last = t.model.num_links() - 1;
+    int other = last - 1;
+    while (other > 0 && t.model.links[other].body < 0) --other;
+    std::optional<Case> c =
+        test::with_blocks_on(rng, t.model, test::random_tree_inputs(rng, t.model), {other, last}, 6, 1e8);
+    if (!c) throw std::runtime_error("no well-conditioned blocks on the random tree of " + std::to_string(n));
+    trees.push_back(t.model);
+    cases.push_back(*c);
+  }
+  lines.push_back({"random tree, 200 bodies / 100 bodies, m = 12", "<= 2.3",
+                   side_by_side(trees[0], cases[0], trees[1], cases[1]), 2.3});
+
+  // An unconstrained random tree against a random chain with as many joints.
+  test::RandomTree tree = test::random_tree(rng, 60), chain = test::random_tree(rng, 60, true);
+  lines.push_back({"random tree / random chain, 60 joints, unconstrained", "<= 1.3",
+                   side_by_side(tree.model, test::random_tree_inputs(rng, tree.model), chain.model,
+                                test::random_tree_inputs(rng, chain.model)),
+                   1.3});
+
+  nlohmann::json out;
+  std::printf("| measure | ns | reference ns | ratio | target |\n|---|---|---|---|---|\n");
+  for (const Line& l : lines) {
+    std::printf("| %s | %.0f | %.0f | %.3f | %s |\n", l.measure.c_str(), l.r.a_ns, l.r.b_ns, l.r.ratio,
+                l.target.c_str());
+    out["rows"].push_back({{"measure", l.measure}, {"ns", l.r.a_ns}, {"reference_ns", l.r.b_ns},
+                           {"ratio", l.r.ratio}, {"limit", l.limit}});
+  }
+  std::printf("\n%s\n", out.dump().c_str());
+  return 0;
+}
