@@ -32,6 +32,7 @@ after(() => scratch.remove());
 // The CLI flags of loadURDF's options.
 function loadFlags(load) {
   const flags = [];
+  if (load.mimic !== undefined) flags.push('--mimic', load.mimic);
   if (load.root !== undefined) flags.push('--root', load.root);
   if (load.tip !== undefined) flags.push('--tip', load.tip);
   for (const [name, value] of Object.entries(load.locked || {})) flags.push('--lock', `${name}=${value}`);
@@ -87,6 +88,12 @@ async function runParity(jobs) {
       robot.delete();
     }
   });
+}
+
+// Every entry of robots/index.json, trees (no tip) included, with its URDF text.
+function indexRobots() {
+  const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
+  return index.robots.map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8') }));
 }
 
 const kukaCase = () => ({ q: kukaEntry.q0, gravity: GRAVITY });
@@ -226,24 +233,27 @@ test('the small tree and the tree robots of robots/index.json: wasm == native, t
     c: { q: { left_knee: 0.9 }, gravity: GRAVITY, alpha: [[0, 0, 1, 0, 0, 0]], beta: [0] }, what: 'small tree chain, locked' });
   jobs.push({ ...small, load: { root: 'base', tip: 'left_foot', sideBranches: 'ignore' },
     c: { q: { left_knee: 0.9 }, gravity: GRAVITY }, options: { convention: 'kdl' }, what: 'small tree chain, kdl' });
-  // The tree robots (robots/index.json entries without a tip): at their start pose, and
-  // with the quadruped's four feet held in 3D.
-  const trees = robots().filter((e) => !e.tip);
+  // The tree robots (robots/index.json entries without a tip): at their start pose, at a
+  // random state, and with their default constraint links (the quadruped's four feet) held
+  // in 3D.
+  const trees = indexRobots().filter((e) => !e.tip);
+  const xyz = [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]];
   for (const entry of trees) {
-    const load = entry.root ? { root: entry.root } : {};
+    const load = { root: entry.root };
+    if (entry.mimic) load.mimic = entry.mimic;
     const base = { urdf: entry.path, text: entry.text, load };
     jobs.push({ ...base, c: { q: entry.q0, gravity: GRAVITY }, what: `${entry.name} q0` });
     const robot = achd.loadURDF(entry.text, load);
     const c = randomCase(r, robot.numJoints, robot.numLinks, 0);
     robot.delete();
     jobs.push({ ...base, c, what: `${entry.name} random state` });
+    if (entry.constraints)
+      jobs.push({ ...base, what: `${entry.name}, ${entry.constraints.join(', ')} held in 3D`,
+        c: { q: entry.q0, gravity: GRAVITY, constraints: entry.constraints.map((link) => ({ link, alpha: xyz })) } });
   }
   const quadruped = trees.find((e) => e.name === 'quadruped');
   assert.ok(quadruped, 'robots/index.json lists the quadruped (a tree: no tip)');
-  const xyz = [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]];
-  jobs.push({ urdf: quadruped.path, text: quadruped.text, load: {}, what: 'quadruped, four feet held in 3D',
-    c: { q: quadruped.q0, gravity: GRAVITY,
-      constraints: ['lf_foot', 'rf_foot', 'lh_foot', 'rh_foot'].map((link) => ({ link, alpha: xyz })) } });
+  assert.deepEqual(quadruped.constraints, ['lf_foot', 'rf_foot', 'lh_foot', 'rh_foot']);
   await runParity(jobs);
   console.log(`# trees: ${jobs.length} cases (${trees.length} tree robots in robots/index.json)`);
 });
