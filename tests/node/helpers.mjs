@@ -30,18 +30,6 @@ export function nativeCli() {
   return cli;
 }
 
-// tests/native/random_tree_files (the C++ suites' random trees as files), from the build
-// of the native CLI: beside $ACHD_CLI, else in build/, built there first if absent.
-export function randomTreeFiles() {
-  const cli = nativeCli();
-  const tool = join(dirname(cli), 'tests/native/random_tree_files');
-  if (!existsSync(tool)) {
-    if (process.env.ACHD_CLI) throw new Error(`${tool} is missing: build the target random_tree_files beside ${cli}`);
-    execFileSync('cmake', ['--build', 'build', '--target', 'random_tree_files', '-j2'], { cwd: repo, stdio: 'inherit' });
-  }
-  return tool;
-}
-
 export function robots() {
   const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
   return index.robots.map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8') }));
@@ -97,4 +85,16 @@ export async function pool(jobs, width = 2) {
   };
   await Promise.all(Array.from({ length: Math.min(width, jobs.length) }, worker));
   return results;
+}
+
+// tests/native/random_tree_files (the C++ suites' random trees as files), from the build
+// of the native CLI: beside $ACHD_CLI, else in build/, built there first if absent.
+export function randomTreeFiles() {
+  const cli = nativeCli();
+  const tool = join(dirname(cli), 'tests/native/random_tree_files');
+  if (!existsSync(tool)) {
+    if (process.env.ACHD_CLI) throw new Error(`${tool} is missing: build the target random_tree_files beside ${cli}`);
+    execFileSync('cmake', ['--build', 'build', '--target', 'random_tree_files', '-j2'], { cwd: repo, stdio: 'inherit' });
+  }
+  return tool;
 }
