@@ -45,6 +45,15 @@ namespace {
 
 static_assert(sizeof(Vector6) == 6 * sizeof(double), "f_ext is checked as one array");
 
+// Driver weights: none, or one per column, each in [0, 1] (NaN fails the test).
+bool weights_valid(const ConstraintVector& w, Eigen::Index nc) {
+  if (w.size() == 0) return true;
+  if (w.size() != nc) return false;
+  for (Eigen::Index j = 0; j < nc; ++j)
+    if (!(w[j] >= 0 && w[j] <= 1)) return false;
+  return true;
+}
+
 // The common case, in one pass: right sizes and every number finite.
 bool plainly_valid(const Model& model, const Case& c, int capacity) {
   const Eigen::Index nj = model.num_joints();
@@ -61,12 +70,25 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
              finite_probe(c.gravity.data(), 3) + finite_probe(c.alpha.data(), 6 * nc) +
              finite_probe(c.beta.data(), nc) + finite_probe(c.qdd_given.data(), c.qdd_given.size());
   if (!c.f_ext.empty()) s += finite_probe(c.f_ext[0].data(), 6 * Eigen::Index(c.f_ext.size()));
+  if (!weights_valid(c.w_fext, nc) || !weights_valid(c.w_ff, nc)) return false;
   for (const ConstraintBlock& b : c.constraints) {
     const Eigen::Index k = b.alpha.cols();
     if (b.link < 0 || b.link >= model.num_links() || k > kMaxConstraints || b.beta.size() != k) return false;
+    if (!weights_valid(b.w_fext, k) || !weights_valid(b.w_ff, k)) return false;
     s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k);
   }
   return s == 0 && c.num_constraints() <= capacity && c.constraints.size() <= static_cast<size_t>(capacity);
+}
+
+// Driver weights of nc columns: empty, or nc numbers in [0, 1].
+void check_weights(const ConstraintVector& w, int nc, const std::string& field) {
+  if (w.size() == 0) return;
+  if (w.size() != nc)
+    throw Error(field + ": expected " + std::to_string(nc) + " values (one per alpha column) or none, got " +
+                std::to_string(w.size()));
+  for (int j = 0; j < nc; ++j)
+    if (!(w[j] >= 0 && w[j] <= 1))
+      throw Error(field + "[" + std::to_string(j) + "] must be in [0, 1], got " + std::to_string(w[j]));
 }
 
 // Columns alpha (6 x nc) and beta of the tip (field "") or of block b ("constraints[b].").
@@ -99,6 +121,8 @@ void check_blocks(const Model& model, const Case& c) {
         throw Error(field + "point[" + std::to_string(k) + "] (link '" + model.links[block.link].name +
                     "') is not finite");
     check_columns(block.alpha, block.beta, field);
+    check_weights(block.w_fext, static_cast<int>(block.alpha.cols()), field + "w_fext");
+    check_weights(block.w_ff, static_cast<int>(block.alpha.cols()), field + "w_ff");
   }
 }
 
@@ -114,6 +138,8 @@ void validate(const Model& model, const Case& c, int capacity) {
     if (!std::isfinite(c.gravity[k]))
       throw Error("gravity[" + std::to_string(k) + "] is not finite");
   check_columns(c.alpha, c.beta, "");
+  check_weights(c.w_fext, static_cast<int>(c.alpha.cols()), "w_fext");
+  check_weights(c.w_ff, static_cast<int>(c.alpha.cols()), "w_ff");
   if (c.alpha.cols() && !model.has_tip())
     throw Error("alpha: the model is a tree with no tip; constrain its links with constraint blocks");
   check_blocks(model, c);

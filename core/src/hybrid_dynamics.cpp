@@ -43,6 +43,7 @@
 #include "achd/kinematics.hpp"
 #include "constraint_sweep.hpp"
 #include "coupling_solve.hpp"
+#include "driver_priorities.hpp"
 #include "joint.hpp"
 #include "joint_subspace.hpp"
 #include "overflow_error.hpp"
@@ -310,6 +311,7 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   if (nc) {
     // K nu = E_0^T a_0 + G_0 - beta' (constraint_sweep.hpp), in the scaled columns.
     constraint_rhs(d, c, o, moving);
+    if (has_driver_weights(c)) weigh_drivers(model, d, c, o, prescribed);
     solve_coupling(d, o);
   } else {
     d.workspace.sources.clear();

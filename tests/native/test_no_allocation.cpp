@@ -121,7 +121,7 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
 
 // Constraint blocks on any links: 1 to 6 blocks on random links of every chain robot, up
 // to 36 columns in all (the largest capacity), so that the several-block sweep and the
-// coupling solve of more than 6 columns run, under every policy.
+// coupling solve of more than 6 columns run, under every policy, with driver weights.
 TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
   std::ifstream in(kRepo + "/robots/index.json");
   ASSERT_TRUE(in) << kRepo;
@@ -139,6 +139,8 @@ TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
     for (int i = 0; i < n; ++i) c.q[i] = r["q0"][i].get<double>();
     c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
     c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.f_ext.assign(m.num_links(), achd::Vector6::Zero());
+    for (auto& w : c.f_ext) w = achd::Vector6::NullaryExpr([&] { return U(rng); });
     for (int blocks = 1; blocks <= 6; ++blocks) {
       const int columns = blocks == 6 ? 6 : 1 + static_cast<int>(rng() % 6);
       c.constraints.assign(blocks, {});
@@ -147,6 +149,11 @@ TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
         b.point = achd::Vector3::NullaryExpr([&] { return U(rng); });
         b.alpha = achd::ConstraintMatrix::NullaryExpr(6, columns, [&] { return U(rng); });
         b.beta = achd::ConstraintVector::NullaryExpr(columns, [&] { return U(rng); });
+        // driver priorities on every other block (driver_priorities.cpp runs)
+        if (blocks % 2) {
+          b.w_fext = achd::ConstraintVector::NullaryExpr(columns, [&] { return (U(rng) + 1) / 2; });
+          b.w_ff = achd::ConstraintVector::NullaryExpr(columns, [&] { return (U(rng) + 1) / 2; });
+        }
       }
       for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::Damped,
                           achd::SingularityPolicy::VariableDamping}) {

@@ -30,6 +30,7 @@ struct ConstraintBlock {
   Vector3 point = Vector3::Zero();   // where the constraint acts, in the link's frame
   ConstraintMatrix alpha = ConstraintMatrix(6, 0);  // unit constraint forces, columns
   ConstraintVector beta = ConstraintVector(0);      // one per column of alpha
+  ConstraintVector w_fext, w_ff;  // driver priorities per column (Case::w_fext, w_ff)
 };
 
 struct Case {
@@ -40,6 +41,13 @@ struct Case {
   // The tip's constraints (chains, KDL's alpha and beta): a block on the tip link's origin.
   ConstraintMatrix alpha = ConstraintMatrix(6, 0);  // unit constraint forces, columns
   ConstraintVector beta = ConstraintVector(0);      // one per column of alpha
+  // Driver priorities, one per column in [0, 1] (empty: all 1): how far the column resists
+  // the external wrenches f_ext (w_fext) and the feed-forward torques ff_torques (w_ff).
+  // 1, KDL's behaviour: the driver cannot change alpha^T a. Below 1, the share 1 - w of
+  // the driver's own unconstrained effect along the column passes through:
+  //   alpha_k^T a = beta_k + (1 - w_fext,k) (A M^-1 J^T f_ext)_k + (1 - w_ff,k) (A M^-1 ff)_k
+  // (driver_priorities.cpp).
+  ConstraintVector w_fext, w_ff;
   // Constraints on any links, after the tip's: nu holds the tip's columns, then each
   // block's in order. Set once and reuse: a solve reads the blocks and never resizes them.
   std::vector<ConstraintBlock> constraints;

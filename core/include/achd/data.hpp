@@ -110,6 +110,10 @@ struct Data {
     // odd count 0 (the columns are held two to a pair: constraint_pairs.hpp)
     std::vector<double> ez;
     std::vector<int> path;          // scratch: the bodies from one body to the base
+    // Driver priorities (driver_priorities.cpp): per body the bias of f_ext alone and of
+    // ff_torques alone (6 + 6), and their u / D (2 per body).
+    std::vector<Eigen::Matrix<double, 12, 1>> driver_bias;
+    std::vector<double> driver_qdd;
     ConstraintVector alpha_scale;   // s_k: the sweeps use the columns alpha_k s_k
     // per column: true when alpha_k has a force part (variable_damping's kinds)
     std::array<bool, kMaxConstraintColumns> has_force;
