@@ -70,6 +70,10 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
              finite_probe(c.gravity.data(), 3) + finite_probe(c.alpha.data(), 6 * nc) +
              finite_probe(c.beta.data(), nc) + finite_probe(c.qdd_given.data(), c.qdd_given.size());
   if (!c.f_ext.empty()) s += finite_probe(c.f_ext[0].data(), 6 * Eigen::Index(c.f_ext.size()));
+  if (!c.f_virtual.empty()) {
+    if (static_cast<int>(c.f_virtual.size()) != model.num_links()) return false;
+    s += finite_probe(c.f_virtual[0].data(), 6 * Eigen::Index(c.f_virtual.size()));
+  }
   if (!weights_valid(c.w_fext, nc) || !weights_valid(c.w_ff, nc)) return false;
   for (const ConstraintBlock& b : c.constraints) {
     const Eigen::Index k = b.alpha.cols();
@@ -158,6 +162,16 @@ void validate(const Model& model, const Case& c, int capacity) {
       for (int r = 0; r < 6; ++r)
         if (!std::isfinite(c.f_ext[i][r]))
           throw Error("f_ext[" + std::to_string(i) + "][" + std::to_string(r) + "] is not finite");
+  }
+  if (!c.f_virtual.empty()) {
+    if (static_cast<int>(c.f_virtual.size()) != model.num_links())
+      throw Error("f_virtual: expected " + std::to_string(model.num_links()) +
+                  " wrenches (one per link after the root), got " + std::to_string(c.f_virtual.size()));
+    for (int i = 0; i < model.num_links(); ++i)
+      for (int r = 0; r < 6; ++r)
+        if (!std::isfinite(c.f_virtual[i][r]))
+          throw Error("f_virtual[" + std::to_string(i) + "][" + std::to_string(r) + "] (link '" +
+                      model.links[i].name + "') is not finite");
   }
   // Prescribed joints: qdd_given and its mask come together, one per joint.
   const size_t n = static_cast<size_t>(nj);

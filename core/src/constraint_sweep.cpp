@@ -258,6 +258,7 @@ void unscale_constraint_forces(Data& d) {
 double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c, bool prescribed) {
   if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
   else d.joint_torques.setZero();
+  if (!c.f_virtual.empty()) d.joint_torques += d.virtual_torques;
   if (prescribed)
     for (int i = 0; i < model.num_joints(); ++i)
       if (c.prescribed[i]) d.joint_torques[i] = d.prescribed_torques[i];

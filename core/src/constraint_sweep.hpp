@@ -34,8 +34,9 @@ void constraint_torques(const Model& model, Data& d);
 void unscale_constraint_forces(Data& d);
 
 // The wrenches alpha nu (the tip's into constraint_wrench, one per Case::constraints block
-// into constraint_wrenches, at their points) and joint_torques = ff - sum_k J_k^T alpha_k
-// nu_k (a prescribed joint's prescribed_torques as its ff). Returns their finite probe.
+// into constraint_wrenches, at their points) and joint_torques = ff + virtual_torques -
+// sum_k J_k^T alpha_k nu_k (a prescribed joint's prescribed_torques in place of the first
+// two). Returns their finite probe.
 double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c, bool prescribed);
 
 }  // namespace achd

@@ -11,7 +11,8 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
     throw Error("constraint capacity must be in [0, " + std::to_string(kMaxConstraintColumns) + "], got " +
                 std::to_string(constraint_capacity));
   const int n = model.num_joints();
-  qdd = constraint_torques = total_torques = joint_torques = prescribed_torques = Eigen::VectorXd::Zero(n);
+  qdd = constraint_torques = total_torques = joint_torques = prescribed_torques = virtual_torques =
+      Eigen::VectorXd::Zero(n);
   nu.resize(0);
   constraint_wrench.setZero();
   constraint_wrenches.reserve(constraint_capacity);  // a block has at least one column
@@ -40,6 +41,7 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   w.path.assign(n, 0);
   w.driver_bias.assign(n, Eigen::Matrix<double, 12, 1>::Zero());
   w.driver_qdd.assign(2 * n, 0.0);
+  w.virtual_force.assign(n, Vector6::Zero());
   w.ez.assign(static_cast<size_t>(n) * 2 * constraint_capacity, 0.0);
 }
 

@@ -56,7 +56,8 @@ void driver_sweeps(const Model& model, Data& d, const Case& c, const Options& o,
     const JointSubspace S = body_subspace(model, d, i);
     const Vector6 pf = w.driver_bias[i].head<6>(), pff = w.driver_bias[i].tail<6>();
     const bool given = prescribed && c.prescribed[i];
-    const double ff = (c.ff_torques.size() && !given) ? c.ff_torques[i] : 0.0;
+    // the feed-forward torques: ff_torques and the virtual wrenches' torques
+    const double ff = given ? 0.0 : (c.ff_torques.size() ? c.ff_torques[i] : 0.0) + d.virtual_torques[i];
     const double uf = -S.z.dot(S.rotational ? pf.tail<3>() : pf.head<3>());
     const double uff = ff - S.z.dot(S.rotational ? pff.tail<3>() : pff.head<3>());
     w.driver_qdd[2 * i] = uf * w.Dinv[i];  // Dinv = 0 for a prescribed joint

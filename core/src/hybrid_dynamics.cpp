@@ -47,6 +47,7 @@
 #include "joint.hpp"
 #include "joint_subspace.hpp"
 #include "overflow_error.hpp"
+#include "virtual_wrenches.hpp"
 #include "spatial_pairs.hpp"
 
 namespace achd {
@@ -294,6 +295,13 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
 
   joint_forces(model, d, c, o, prescribed);
   outward_kinematics(model, d, c, moving);
+  if (!c.f_virtual.empty()) {
+    virtual_torques(model, d, c);  // added to the ff torques (a prescribed joint ignores both)
+    for (int i = 0; i < model.num_joints(); ++i)
+      if (!prescribed || !c.prescribed[i]) d.workspace.tau[i] += d.virtual_torques[i];
+  } else {
+    d.virtual_torques.setZero();
+  }
   if (wrenches) add_external_wrenches(model, d, c);
 
   if (prescribed) inward_sweep<true>(model, d, c, o.effects & kRotorInertia);

@@ -37,8 +37,8 @@ void name_the_first_overflow(const Model& model, const Data& d, const Case& c, i
       overflow(joint(model, i) + ": the velocity products (Coriolis, centrifugal) are not finite "
                                  "(qd too large for this robot)");
     if (!std::isfinite(d.workspace.tau[i]))
-      overflow(joint(model, i) + ": the applied joint torque (ff_torques less damping and friction) "
-                                 "is not finite");
+      overflow(joint(model, i) + ": the applied joint torque (ff_torques and the torques of f_virtual, "
+                                 "less damping and friction) is not finite");
   }
   // Step 2, inward from the tip: articulated inertias and bias forces.
   for (int i = n - 1; i >= 0; --i) {

@@ -51,7 +51,12 @@ struct Case {
   // Constraints on any links, after the tip's: nu holds the tip's columns, then each
   // block's in order. Set once and reuse: a solve reads the blocks and never resizes them.
   std::vector<ConstraintBlock> constraints;
-  std::vector<Vector6> f_ext;  // empty = none, else one per link after the root
+  std::vector<Vector6> f_ext;
+  // Virtual wrenches: empty = none, else one per link after the root (at the link's
+  // origin, base axes, as f_ext): wrenches a controller wants on the links, applied by the
+  // joints as torques J^T f_virtual (Data::virtual_torques) added to ff_torques, so they
+  // count in joint_torques and fall under w_ff. Unlike f_ext, nothing external acts.
+  std::vector<Vector6> f_virtual;  // empty = none, else one per link after the root
   // Prescribed joints (Featherstone's hybrid dynamics): joint i with prescribed[i] true has
   // the acceleration qdd_given[i] instead of a torque (its ff_torques[i] is ignored); the
   // solve returns the torque it needs in Data::prescribed_torques. Both empty = no joint

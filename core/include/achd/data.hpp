@@ -41,6 +41,8 @@ struct Data {
   Eigen::VectorXd total_torques;       // KDL's D qdd
   Eigen::VectorXd joint_torques;       // ff - J^T alpha nu = RNEA(q, qd, qdd), with a
                                        // prescribed joint's prescribed_torques as its ff
+  Eigen::VectorXd virtual_torques;     // J^T f_virtual, the joint torques of the virtual
+                                       // wrenches (0 without), part of the ff torques
   Eigen::VectorXd prescribed_torques;  // per joint: for a prescribed joint (Case::prescribed)
                                        // the actuator torque its given qdd needs while the
                                        // constraint forces act (the ff_torques that, with the
@@ -114,6 +116,7 @@ struct Data {
     // ff_torques alone (6 + 6), and their u / D (2 per body).
     std::vector<Eigen::Matrix<double, 12, 1>> driver_bias;
     std::vector<double> driver_qdd;
+    std::vector<Vector6> virtual_force;  // per body: the virtual wrenches of its subtree
     ConstraintVector alpha_scale;   // s_k: the sweeps use the columns alpha_k s_k
     // per column: true when alpha_k has a force part (variable_damping's kinds)
     std::array<bool, kMaxConstraintColumns> has_force;
