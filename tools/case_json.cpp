@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 namespace achd::cli {
 namespace {
@@ -92,24 +93,40 @@ Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Mode
   return out;
 }
 
-// "f_ext": an array of one wrench per link after the root, or an object keyed by link
-// name (links not named: no wrench).
-void external_wrenches(const json& f, const Model& model, Case& c) {
+// "f_ext" and "f_virtual" (`field`): an array of one wrench per link after the root, or an
+// object keyed by link name (links not named: no wrench).
+void link_wrenches(const json& f, const Model& model, const std::string& field, std::vector<Vector6>& out) {
   const int nl = model.num_links();
   if (f.is_object()) {
-    c.f_ext.assign(nl, Vector6::Zero());
+    out.assign(nl, Vector6::Zero());
     for (const auto& item : f.items()) {
       const int l = model.link_index(item.key());
-      if (l < 0) throw Error("f_ext: " + no_link(model, item.key()));
-      c.f_ext[l] = spatial(item.value(), "f_ext['" + item.key() + "']");
+      if (l < 0) throw Error(field + ": " + no_link(model, item.key()));
+      out[l] = spatial(item.value(), field + "['" + item.key() + "']");
     }
     return;
   }
-  if (!f.is_array()) throw Error("f_ext must be an array of 6-element wrenches or an object {link name: wrench}");
+  if (!f.is_array()) throw Error(field + " must be an array of 6-element wrenches or an object {link name: wrench}");
   if (static_cast<int>(f.size()) != nl)
-    throw Error("f_ext: expected " + std::to_string(nl) + " wrenches (one per link after the root), got " +
+    throw Error(field + ": expected " + std::to_string(nl) + " wrenches (one per link after the root), got " +
                 std::to_string(f.size()));
-  for (size_t i = 0; i < f.size(); ++i) c.f_ext.push_back(spatial(f[i], at("f_ext", i)));
+  for (size_t i = 0; i < f.size(); ++i) out.push_back(spatial(f[i], at(field, i)));
+}
+
+// "w_fext" / "w_ff" of the tip (prefix "") or of a block: one weight per alpha column.
+void driver_weights(const json& j, const std::string& prefix, int nc, ConstraintVector& w_fext,
+                    ConstraintVector& w_ff) {
+  for (auto [name, out] : {std::pair<const char*, ConstraintVector*>{"w_fext", &w_fext}, {"w_ff", &w_ff}}) {
+    if (!j.contains(name)) continue;
+    const json& v = j[name];
+    const std::string field = prefix + name;
+    if (!v.is_array()) throw Error(field + " must be an array of numbers in [0, 1], one per alpha column");
+    if (static_cast<int>(v.size()) != nc)
+      throw Error(field + ": expected " + std::to_string(nc) + " values (one per alpha column), got " +
+                  std::to_string(v.size()));
+    out->resize(nc);
+    for (int k = 0; k < nc; ++k) (*out)[k] = number(v[k], at(field, k));
+  }
 }
 
 // Constraint columns: `alpha` (up to kMaxConstraints 6-element columns) and `beta` (one
@@ -146,7 +163,8 @@ void constraint_blocks(const json& cs, const Model& model, Case& c) {
     const std::string where = at("constraints", b);
     if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point}");
     for (const auto& item : j.items())
-      if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point")
+      if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point" &&
+          item.key() != "w_fext" && item.key() != "w_ff")
         throw Error(where + ": unknown field '" + item.key() + "'");
     if (!j.contains("link")) throw Error(where + ": missing required field 'link'");
     if (!j.contains("alpha")) throw Error(where + ": missing required field 'alpha'");
@@ -156,6 +174,7 @@ void constraint_blocks(const json& cs, const Model& model, Case& c) {
     block.link = model.link_index(name);
     if (block.link < 0) throw Error(where + ".link: " + no_link(model, name));
     columns(j, where + ".", block.alpha, block.beta);
+    driver_weights(j, where + ".", static_cast<int>(block.alpha.cols()), block.w_fext, block.w_ff);
     if (j.contains("point")) block.point = vector(j["point"], where + ".point", 3);
     c.constraints.push_back(block);
   }
@@ -197,8 +216,8 @@ std::string quoted(const std::string& s) { return json(s).dump(); }
 Case case_from_json(const json& j, const Model& model, const std::string& source) {
   try {
     if (!j.is_object()) throw Error("the case must be a JSON object");
-    static const char* known[] = {"q",     "qd",         "gravity",   "alpha",      "beta",
-                                  "f_ext", "ff_torques", "qdd_given", "constraints"};
+    static const char* known[] = {"q",          "qd",        "gravity",     "alpha",     "beta", "f_ext",
+                                  "ff_torques", "qdd_given", "constraints", "f_virtual", "w_fext", "w_ff"};
     for (const auto& item : j.items()) {
       bool ok = false;
       for (const char* k : known) ok = ok || item.key() == k;
@@ -212,8 +231,10 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
     if (j.contains("qd")) c.qd = joint_vector(j["qd"], "qd", model);
     if (j.contains("ff_torques")) c.ff_torques = joint_vector(j["ff_torques"], "ff_torques", model);
     columns(j, "", c.alpha, c.beta);
+    driver_weights(j, "", static_cast<int>(c.alpha.cols()), c.w_fext, c.w_ff);
     if (j.contains("constraints")) constraint_blocks(j["constraints"], model, c);
-    if (j.contains("f_ext")) external_wrenches(j["f_ext"], model, c);
+    if (j.contains("f_ext")) link_wrenches(j["f_ext"], model, "f_ext", c.f_ext);
+    if (j.contains("f_virtual")) link_wrenches(j["f_virtual"], model, "f_virtual", c.f_virtual);
     if (j.contains("qdd_given")) prescribed_joints(j["qdd_given"], model, c);
     validate(model, c);
     return c;
@@ -244,6 +265,7 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
   s += "  \"total_torques\": " + array(d.total_torques) + ",\n";
   s += "  \"nu\": " + array(d.nu) + ",\n";
   s += "  \"joint_torques\": " + array(d.joint_torques) + ",\n";
+  if (!c.f_virtual.empty()) s += "  \"virtual_torques\": " + array(d.virtual_torques) + ",\n";
   if (c.any_prescribed()) {  // null where the joint is not prescribed, as in qdd_given
     s += "  \"prescribed_torques\": [";
     for (int i = 0; i < model.num_joints(); ++i)
