@@ -19,6 +19,27 @@ void direction_columns(const HeldDirections& h, ConstraintMatrix& alpha) {
   }
 }
 
+void direction_weights(const HeldDirections& h, ConstraintVector& w_fext, ConstraintVector& w_ff) {
+  w_fext.resize(0);
+  w_ff.resize(0);
+  if (!yielding_directions(h)) return;
+  w_fext.resize(h.count());
+  w_ff.resize(h.count());
+  int col = 0;
+  for (int k = 0; k < kNumDirections; ++k) {
+    if (!h.active(k)) continue;
+    w_fext[col] = h.w_fext[k];
+    w_ff[col++] = h.w_ff[k];
+  }
+}
+
+unsigned yielding_directions(const HeldDirections& h) {
+  unsigned bits = 0;
+  for (int k = 0; k < kNumDirections; ++k)
+    if (h.active(k) && (h.w_fext[k] < 1 || h.w_ff[k] < 1)) bits |= 1u << k;
+  return bits;
+}
+
 double direction_error(const HeldDirections& h, int k, const TipState& tip) {
   if (h.mode[k] != DirectionMode::Hold) return 0;
   if (is_linear_direction(k)) return direction_axis(k).dot(tip.pose.p) - h.target[k];

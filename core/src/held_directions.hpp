@@ -18,6 +18,13 @@ inline bool is_linear_direction(int k) { return k < 3; }
 // the tip origin) for x, y, z and [0; e] (moment about e) for rx, ry, rz.
 void direction_columns(const HeldDirections& h, ConstraintMatrix& alpha);
 
+// The driver weights of the active directions' columns (same order as direction_columns),
+// or none (empty) when every weight is 1.
+void direction_weights(const HeldDirections& h, ConstraintVector& w_fext, ConstraintVector& w_ff);
+
+// Bit k set for each held direction that yields to a driver (a weight below 1).
+unsigned yielding_directions(const HeldDirections& h);
+
 // Held quantity minus its target: e . p_tip - target (linear) or the held angle.
 double direction_error(const HeldDirections& h, int k, const TipState& tip);
 

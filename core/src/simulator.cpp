@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
@@ -160,8 +161,13 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   steps_taken_ = 0;
   substeps_ = rejected_substeps_ = 0;
   substep_ = 0;
+  // a reset releases every direction; their driver weights stay
+  const HeldDirections before = held_;
   held_ = HeldDirections{};
+  held_.w_fext = before.w_fext;
+  held_.w_ff = before.w_ff;
   direction_columns(held_, case_.alpha);
+  direction_weights(held_, case_.w_fext, case_.w_ff);
   max_residual_.fill(0);
   limit_hits_.clear();
   limit_stop_.assign(n, 0);
@@ -185,6 +191,7 @@ void Simulator::set_direction(int index, DirectionMode mode, double setpoint) {
   max_residual_[index] = 0;
   events_->forget(index);
   direction_columns(held_, case_.alpha);
+  direction_weights(held_, case_.w_fext, case_.w_ff);
 }
 
 DirectionMode Simulator::direction_mode(int index) const {
@@ -330,7 +337,20 @@ void Simulator::step(double dt) {
   t = t_origin_ + static_cast<double>(t_steps_) * dt;
   t_written_ = t;
   apply_limits();
-  if (resumed) resume_from_tip(resumed);
+  // resumed directions, and held ones that yield to a driver, continue from where the tip is
+  const unsigned anchored = resumed | yielding_directions(held_);
+  if (anchored) resume_from_tip(anchored);
+}
+
+void Simulator::set_direction_weights(int index, double w_fext, double w_ff) {
+  check_direction(index);
+  for (const auto& [name, w] : {std::pair<const char*, double>{"w_fext", w_fext}, {"w_ff", w_ff}})
+    if (!(w >= 0 && w <= 1))
+      throw Error(std::string("direction ") + kDirectionNames[index] + ": " + name + " must be in [0, 1], got " +
+                  number(w));
+  held_.w_fext[index] = w_fext;
+  held_.w_ff[index] = w_ff;
+  direction_weights(held_, case_.w_fext, case_.w_ff);
 }
 
 // A released Hold direction resumes where the tip is (linear: target = e . p_tip;

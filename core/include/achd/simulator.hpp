@@ -55,6 +55,9 @@ struct HeldDirections {
   std::array<double, kNumDirections> setpoint{};  // Accelerate: classical acceleration
   std::array<double, kNumDirections> target{};    // Hold, linear: e . p_tip when set
   std::array<double, kNumDirections> angle{};     // Hold, angular: integral of e . w_tip
+  // Driver priorities of each direction's column (Case::w_fext, w_ff): 1 = the direction
+  // resists f_ext / ff_torques fully; below 1 that share of the driver passes through.
+  std::array<double, kNumDirections> w_fext{1, 1, 1, 1, 1, 1}, w_ff{1, 1, 1, 1, 1, 1};
 
   bool active(int k) const { return mode[k] != DirectionMode::Free; }
   int count() const;
@@ -143,6 +146,11 @@ class Simulator {
   void reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0);
   void set_direction(int index, DirectionMode mode, double setpoint = 0);
   DirectionMode direction_mode(int index) const;
+  // The driver priorities of direction `index` (each in [0, 1], default 1; kept when its
+  // mode changes). A held direction with a weight below 1 yields to that driver: after
+  // every step its target is re-anchored where the tip is (linear: e . p_tip; angular:
+  // held angle 0), so that the yielding shows and the stabilisation does not pull it back.
+  void set_direction_weights(int index, double w_fext, double w_ff);
   // One step of dt. A step whose solve fails (an achd::Error from the solver) or whose
   // state is not finite is undone: q, qd, t, the held angles and data() stay those of
   // the last good step, and an achd::Error names the step, the time, the integrator
