@@ -88,6 +88,24 @@ void directions(const json& j, Scene& s) {
   }
 }
 
+// "direction_weights": {"z": {"w_fext": 0, "w_ff": 1}, ...}, each weight in [0, 1]
+// (default 1; Simulator::set_direction_weights).
+void direction_weights(const json& j, Scene& s) {
+  if (!j.is_object()) throw Error("direction_weights must be an object (x y z rx ry rz)");
+  for (const auto& item : j.items()) {
+    const int k = index_of_direction(item.key());
+    const std::string field = "direction_weights." + item.key();
+    if (k < 0) throw Error("unknown field '" + field + "' (directions are x y z rx ry rz)");
+    if (!item.value().is_object()) throw Error(field + " must be an object {\"w_fext\": w, \"w_ff\": w}");
+    for (const auto& w : item.value().items()) {
+      if (w.key() != "w_fext" && w.key() != "w_ff") throw Error("unknown field '" + field + "." + w.key() + "'");
+      const double value = number(w.value(), field + "." + w.key());
+      if (!(value >= 0 && value <= 1)) throw Error(field + "." + w.key() + " must be in [0, 1]");
+      (w.key() == "w_fext" ? s.w_fext : s.w_ff)[k] = value;
+    }
+  }
+}
+
 void f_ext(const json& j, Scene& s) {
   if (!j.is_object()) throw Error("f_ext must be an object {link name: [fx, fy, fz, tx, ty, tz]}");
   s.f_ext.assign(s.model.num_links(), Vector6::Zero());
@@ -158,7 +176,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
       throw Error(std::string("invalid JSON: ") + e.what());
     }
     if (!j.is_object()) throw Error("the scene must be a JSON object");
-    only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions",
+    only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions", "direction_weights",
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
                        "rotor_inertia", "mimic", "rtol", "atol", "policy",
@@ -185,6 +203,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     if (j.contains("f_ext")) f_ext(j["f_ext"], s);
     if (j.contains("effects")) s.options.effects = effects(j["effects"]);
     if (j.contains("directions")) directions(j["directions"], s);
+    if (j.contains("direction_weights")) direction_weights(j["direction_weights"], s);
     if (j.contains("integrator")) s.options.integrator = integrator(j["integrator"]);
     if (j.contains("limits")) s.options.limits = limits(j["limits"]);
     if (j.contains("gravity")) s.options.gravity = vector(j["gravity"], "gravity", 3);
@@ -216,8 +235,10 @@ void start_scene(const Scene& scene, Simulator& sim) {
   sim.reset(scene.q0, scene.qd0);
   sim.ff_torques = scene.ff_torques;
   sim.f_ext = scene.f_ext;
-  for (int k = 0; k < kNumDirections; ++k)
+  for (int k = 0; k < kNumDirections; ++k) {
+    sim.set_direction_weights(k, scene.w_fext[k], scene.w_ff[k]);
     if (scene.modes[k] != DirectionMode::Free) sim.set_direction(k, scene.modes[k], scene.setpoints[k]);
+  }
 }
 
 }  // namespace achd::cli

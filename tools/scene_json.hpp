@@ -24,6 +24,8 @@ struct Scene {
   SimulatorOptions options;
   std::array<DirectionMode, kNumDirections> modes{};
   std::array<double, kNumDirections> setpoints{};
+  // "direction_weights": {"z": {"w_fext": 0, "w_ff": 1}}: driver priorities per direction
+  std::array<double, kNumDirections> w_fext{1, 1, 1, 1, 1, 1}, w_ff{1, 1, 1, 1, 1, 1};
   double dt = 0, duration = 0;
 
   // duration / dt, a whole number checked when the scene is parsed (steps_for_duration).
