@@ -160,7 +160,7 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   // ---- pass 1, outward: transforms, poses, velocities, bias terms ----
   std::vector<Matrix6> Xup(n), IA(n);
   std::vector<Pose> X0(n);  // body poses in the base, for points given in base coordinates
-  std::vector<Vector6> S(n), v(n), cc(n), pA(n);
+  std::vector<Vector6> S(n), v(n), cc(n), pA(n);  // cc: the c_i above (c is the case)
   for (int i = 0; i < n; ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
