@@ -290,6 +290,10 @@ export interface Simulator {
   reset(q: Vec, qd?: Vec): void;
   /** 'hold' keeps the tip where it is along the base axis; a number prescribes the classical tip acceleration; 'free' releases. */
   setDirection(name: Direction, mode: 'hold' | 'free' | number): void;
+  /** Driver priorities of a direction, each in [0, 1] (default 1): below 1 the direction
+   *  yields to external wrenches (wFext) or feed-forward torques (wFf) and is re-anchored
+   *  where the tip is after every step. */
+  setDirectionWeights(name: Direction, weights: { wFext?: number; wFf?: number }): void;
   /** held-direction residuals in m or rad; null for directions not held (free or accelerated). */
   residuals(): Record<Direction, number | null>;
   energy(): { kinetic: number; potential: number; total: number };

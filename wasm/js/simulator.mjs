@@ -85,6 +85,16 @@ export class Simulator extends AchdHandle {
     else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${mode}`);
     if (achdWasm.module._achd_sim_set_direction(ptr, index, code, setpoint)) throw achdLastError();
   }
+  // Driver priorities of a direction, each in [0, 1] (default 1): how far it resists the
+  // external wrenches (wFext) and the feed-forward torques (wFf). A held direction with a
+  // weight below 1 yields to that driver and is re-anchored where the tip is every step.
+  setDirectionWeights(name, { wFext = 1, wFf = 1 } = {}) {
+    const ptr = this._live();
+    const directions = achdConstants().directions;
+    const index = directions.indexOf(name);
+    if (index < 0) throw new Error(`setDirectionWeights: unknown direction '${name}' (${directions.join(', ')})`);
+    if (achdWasm.module._achd_sim_set_direction_weights(ptr, index, Number(wFext), Number(wFf))) throw achdLastError();
+  }
   // Held-direction residuals (m or rad); null for directions that are not held (free
   // or accelerated: neither has a position or angle to keep).
   residuals() {

@@ -85,6 +85,11 @@ ACHD_EXPORT int achd_sim_set_direction(achd::Simulator* sim, int index, int mode
       [&] { sim->set_direction(index, static_cast<achd::DirectionMode>(mode), setpoint); });
 }
 
+// Driver priorities of a direction (Simulator::set_direction_weights).
+ACHD_EXPORT int achd_sim_set_direction_weights(achd::Simulator* sim, int index, double w_fext, double w_ff) {
+  return achd::wasm::guarded([&] { sim->set_direction_weights(index, w_fext, w_ff); });
+}
+
 ACHD_EXPORT int achd_sim_direction_mode(const achd::Simulator* sim, int index) {
   return static_cast<int>(sim->direction_mode(index));
 }
