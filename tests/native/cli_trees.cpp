@@ -376,14 +376,16 @@ TEST_F(CliTrees, LockedSideJointsAreReported) {
   const json locked = json::parse(R"([{"name": "right_hip", "value": 0.0}, {"name": "right_knee", "value": 0.05}])");
   EXPECT_EQ(i.at("locked_joints"), locked);
   EXPECT_EQ(i.at("joints").size(), 3u);
-  EXPECT_EQ(i.at("links").size(), 9u);  // no link dropped: the side links ride on the torso
+  // A chain's links are its path's; the side links' mass rides on the torso's body.
+  EXPECT_EQ(i.at("links").size(), 5u);
   const json c = {{"q", {{"left_knee", 0.8}}}, {"gravity", {0, 0, -9.81}}};
   const json r = solve(kTree, chain, c);
   ASSERT_TRUE(r.is_object());
   EXPECT_EQ(r.at("locked_joints"), locked);
-  // The locked value moves the merged mass: another value, another solve.
+  // The locked value moves the merged mass: the right leg swung sideways about the hip
+  // changes the torso's inertia about its yaw axis, and so the solve.
   std::vector<std::string> other = chain;
-  other.back() = "right_knee=-0.05";
+  other.insert(other.end(), {"--lock", "right_hip=0.4"});
   EXPECT_NE(solve(kTree, other, c).at("qdd"), r.at("qdd"));
   json bad = c;
   bad["q"]["right_hip"] = 0.1;
@@ -397,6 +399,8 @@ TEST_F(CliTrees, LockedSideJointsAreReported) {
   ASSERT_TRUE(kdl.is_object());
   EXPECT_EQ(kdl.at("locked_joints"), json::array());
   EXPECT_EQ(kdl.at("links").size(), 5u);  // base, torso, left_thigh, left_shank, left_foot
+  EXPECT_NE(solve(kTree, {"--root", "base", "--tip", "left_foot", "--convention", "kdl"}, c).at("qdd"), r.at("qdd"))
+      << "ignoring the side branches drops their mass";
 }
 
 // achd bench takes every case achd solve takes (names, blocks, a tree); --against kdl
