@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   const std::string dir = bench::robots_dir();
   const nlohmann::json index = nlohmann::json::parse(read(dir + "/index.json"));
   for (const auto& r : index["robots"]) {
+    if (!r.contains("tip")) continue;  // the chains: a tree entry has no tip
     const std::string file = r["urdf"].get<std::string>();
     const std::string urdf = read(dir + "/" + file.substr(file.rfind('/') + 1));
     const Model m = load_urdf_string(urdf, r["root"], r["tip"]);

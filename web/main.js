@@ -381,6 +381,7 @@ async function loadModule() {
 // The index and the first robot's URDF load while the wasm module compiles.
 async function readIndexAndRobot() {
   const index = JSON.parse(await fetchText('robots/index.json'));
+  index.robots = index.robots.filter((r) => r.tip);  // the page shows chains; a tree entry has no tip
   const problems = [];
   let robot = hashRobot(location.hash, index.default);
   if (!index.robots.some((r) => r.name === robot)) {

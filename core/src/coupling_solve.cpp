@@ -93,31 +93,52 @@ double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
 // K = L D L^T for an n x n K (n = N fixed, so that the loops unroll, or N = 0 and n =
 // K's size), L unit lower triangular, D diagonal, kept with the pivots' reciprocals. No
 // square roots: one division per column is the whole sequential part.
+// With N = 0 (more than 6 columns, several blocks) the factor skips K's envelope: row i's
+// entries left of first(i), its first nonzero, are exact zeros that stay zero in L, so
+// every sum starts at first(i) (blocks on different limbs of a fixed-base tree couple
+// nothing: K is block diagonal and costs the sum of its blocks). Skipping exact zeros
+// changes no result.
 template <int N>
 struct Ldlt {
   static constexpr int C = N > 0 ? N : kMaxConstraintColumns;  // storage
-  int n_ = N;  // the size when N = 0
+  int n_ = N;        // the size when N = 0
+  int first_[C]{};   // N = 0: the first nonzero column of each row of K's lower triangle
   double L[C][C], Dinv[C];
 
   int size() const {
     if constexpr (N > 0) return N;
     return n_;
   }
+  int first(int i) const {
+    if constexpr (N > 0) return 0;
+    return first_[i];
+  }
 
   // False if a pivot is not positive (K is not numerically positive definite).
   bool factor(const CouplingMatrix& K) {
-    if constexpr (N == 0) n_ = static_cast<int>(K.rows());
+    if constexpr (N == 0) {
+      n_ = static_cast<int>(K.rows());
+      for (int i = 0; i < n_; ++i) {
+        int f = 0;
+        while (f < i && K(i, f) == 0) ++f;
+        first_[i] = f;
+      }
+    }
     const int n = size();
     double W[C][C];  // W[i][k] = L[i][k] d_k
     for (int j = 0; j < n; ++j) {
       // d_j = K_jj - sum_k L_jk W_jk;  L_ij = (K_ij - sum_k L_ik W_jk) / d_j
       double d = K(j, j);
-      for (int k = 0; k < j; ++k) d -= L[j][k] * W[j][k];
+      for (int k = first(j); k < j; ++k) d -= L[j][k] * W[j][k];
       if (!(d > 0)) return false;
       Dinv[j] = 1 / d;
       for (int i = j + 1; i < n; ++i) {
+        if (first(i) > j) {  // outside the envelope: exactly 0
+          W[i][j] = L[i][j] = 0;
+          continue;
+        }
         double w = K(i, j);
-        for (int k = 0; k < j; ++k) w -= L[i][k] * W[j][k];
+        for (int k = std::max(first(i), first(j)); k < j; ++k) w -= L[i][k] * W[j][k];
         W[i][j] = w;
         L[i][j] = w * Dinv[j];
       }
@@ -131,7 +152,7 @@ struct Ldlt {
     double y[C];
     for (int i = 0; i < n; ++i) {
       double s = b[i];
-      for (int k = 0; k < i; ++k) s -= L[i][k] * y[k];
+      for (int k = first(i); k < i; ++k) s -= L[i][k] * y[k];
       y[i] = s;
     }
     x.resize(n);
@@ -143,7 +164,8 @@ struct Ldlt {
   }
 
   // trace(K^-1) = sum_ij (L^-1)_ij^2 / d_i, column by column of L^-1 (forward
-  // substitution; the columns are independent).
+  // substitution; the columns are independent). In column j, `reach` is the last row
+  // whose entry may be nonzero: a row whose envelope starts after it has an exact 0.
   double inverse_trace() const {
     const int n = size();
     double t = 0;
@@ -151,11 +173,17 @@ struct Ldlt {
       double c[C];
       t += Dinv[j];
       c[j] = 1;
+      int reach = j;
       for (int i = j + 1; i < n; ++i) {
+        if (first(i) > reach) {
+          c[i] = 0;
+          continue;
+        }
         double s = -L[i][j];
-        for (int k = j + 1; k < i; ++k) s -= L[i][k] * c[k];
+        for (int k = std::max(j + 1, first(i)); k < i; ++k) s -= L[i][k] * c[k];
         c[i] = s;
         t += s * s * Dinv[i];
+        reach = i;
       }
     }
     return t;

@@ -2,13 +2,13 @@
 // energy of the bodies after joint i when it turns (or slides) at unit rate and the
 // later joints move as they like, so D_i = 0 exactly when some rates of the later joints
 // leave every body moving in a way its inertia does not resist. Those motions of body i
-// ("free motions", F_i, a subspace of its spatial velocities) follow from the tip:
-//   F_{n-1} = N_{n-1},   F_i = N_i ∩ X_{i+1}^-1 (F_{i+1} + span S_{i+1}),
+// ("free motions", F_i, a subspace of its spatial velocities) follow from the leaves:
+//   F_leaf = N_leaf,   F_i = N_i ∩ (∩ over the children c of i of X_c^-1 (F_c + span S_c)),
 //   joint i moves nothing  <=>  S_i ∈ F_i,
 // N_i being the null space of body i's spatial inertia: every motion for a massless body,
 // the rotations about its centre of mass for a point mass, the spin about its axis for a
 // rod, none for a body with mass and a positive definite rotational inertia (almost every
-// real link), where F_i = {0} and the chain before it depends on nothing after it.
+// real link), where F_i = {0} and the tree before it depends on nothing after it.
 //
 // Why not the size of D: an exact zero comes out of the sweeps as round-off, so "D = 0"
 // needs a bound on D's round-off. The bound n eps M_ii used before (M_ii, the composite
@@ -124,30 +124,35 @@ int joint_moving_nothing(const Model& model, const Eigen::VectorXd& q) {
     if (m > 0) L = std::max(L, centre_of_mass(model.bodies[i].inertia, m).norm());
   }
   if (!(L > 0)) L = 1;
-  Basis F(6, 0);      // free motions of body i + 1
-  double bound = 0;   // round-off bound of F, relative
+  // Free motions of each body and their round-off bounds, relative; a body's are complete
+  // when the loop reaches its parent (children come after their parents).
+  std::vector<Basis> F(n, Basis(6, 0));
+  std::vector<double> bound(n, 0);
+  std::vector<std::vector<int>> children(n);
+  for (int i = 0; i < n; ++i)
+    if (model.bodies[i].parent >= 0) children[model.bodies[i].parent].push_back(i);
   for (int i = n - 1; i >= 0; --i) {
     const Basis N = null_space(model.bodies[i].inertia, L);
-    if (N.cols() == 0) {  // no free motion: exact, the next body starts afresh
-      F.resize(6, 0);
-      bound = 0;
-      continue;
+    if (N.cols() == 0) continue;  // no free motion: exact, its parent starts afresh
+    // The motions of body i that the joints after it take up: the intersection over its
+    // children c of X_c^-1 (F_c + span S_c); a leaf: every motion.
+    F[i] = N;
+    if (children[i].empty()) {
+      bound[i] = kStepRoundOff;
+      F[i] = intersect(N, Basis::Identity(6, 6), kMargin * bound[i]);
     }
-    Basis G(6, 0);  // motions of body i the joints after it take up
-    if (i == n - 1) {
-      G = Basis::Identity(6, 6);
-      bound = kStepRoundOff;
-    } else {
-      const Transform Xs{X[i + 1].R, X[i + 1].p / L};
-      bound += kStepRoundOff * (2 + Xs.p.norm());
-      Basis after = F;
-      add_direction(after, joint_direction(model.bodies[i + 1]), kMargin * bound);
-      for (int k = 0; k < after.cols(); ++k)
-        add_direction(G, Xs.motion_to_parent(after.col(k)), kMargin * bound);
+    for (const int c : children[i]) {
+      const Transform Xs{X[c].R, X[c].p / L};
+      const double bound_c = bound[c] + kStepRoundOff * (2 + Xs.p.norm());
+      bound[i] = std::max(bound[i], bound_c);
+      Basis after = F[c];
+      add_direction(after, joint_direction(model.bodies[c]), kMargin * bound_c);
+      Basis G(6, 0);
+      for (int k = 0; k < after.cols(); ++k) add_direction(G, Xs.motion_to_parent(after.col(k)), kMargin * bound_c);
+      F[i] = intersect(F[i], G, kMargin * bound_c);
     }
-    F = intersect(N, G, kMargin * bound);
     const Vector6 S = joint_direction(model.bodies[i]);
-    if (F.cols() > 0 && (S - F * (F.transpose() * S)).norm() <= kMargin * bound) return i;
+    if (F[i].cols() > 0 && (S - F[i] * (F[i].transpose() * S)).norm() <= kMargin * bound[i]) return i;
   }
   return -1;
 }

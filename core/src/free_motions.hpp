@@ -1,6 +1,6 @@
 #pragma once
-// Which joint, if any, moves nothing: decided from the structure of the chain (which
-// motions each body's inertia resists, which motions the later joints can take up), not
+// Which joint, if any, moves nothing: decided from the structure of the tree (which
+// motions each body's inertia resists, which motions the joints after it can take up), not
 // from the size of D = S^T IA S, so that neither the length of the chain nor the ratio of
 // its masses enters the decision. See free_motions.cpp.
 #include <Eigen/Core>
@@ -9,7 +9,8 @@
 
 namespace achd {
 
-// The index of the joint nearest the tip that moves nothing at configuration q, or -1.
+// The highest index of a joint that moves nothing at configuration q, or -1 (on a chain,
+// the one nearest the tip).
 // The model's inertias and origins must be finite.
 int joint_moving_nothing(const Model& model, const Eigen::VectorXd& q);
 

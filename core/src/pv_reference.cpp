@@ -160,7 +160,7 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   // ---- pass 1, outward: transforms, poses, velocities, bias terms ----
   std::vector<Matrix6> Xup(n), IA(n);
   std::vector<Pose> X0(n);  // body poses in the base, for points given in base coordinates
-  std::vector<Vector6> S(n), v(n), cc(n), pA(n);
+  std::vector<Vector6> S(n), v(n), cc(n), pA(n);  // cc: the c_i above (c is the case)
   for (int i = 0; i < n; ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
@@ -241,12 +241,12 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
           force_transform(X0[col.body].R, X0[col.body].p - col.point) * col.alpha;
   }
 
-  // ---- the constraint sweep, inward ----
+  // ---- the constraint sweep, inward (nothing to sweep without columns) ----
   std::vector<Matrix6X> E = E0;
   std::vector<Eigen::VectorXd> EZ(n);
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m, m);
   Eigen::VectorXd G = Eigen::VectorXd::Zero(m);
-  for (int i = n - 1; i >= 0; --i) {
+  for (int i = n - 1; m > 0 && i >= 0; --i) {
     EZ[i] = E[i].transpose() * S[i];  // EZ_i = E_i^T S_i
     Matrix6X E_reduced;               // what the parent sees: E_i - U_i EZ_i^T / D_i
     if (prescribed(i)) {
@@ -266,8 +266,9 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   // beta - alpha_lin^T g in the physical convention, beta itself in KDL's.
   Vector6 a0 = Vector6::Zero();
   if (gravity) a0.head<3>() = -c.gravity;
-  Eigen::VectorXd rhs = E_base.transpose() * a0 + G;
+  Eigen::VectorXd rhs = G;
   for (int j = 0; j < m; ++j) {
+    rhs[j] += E_base.col(j).dot(a0);
     double beta = columns[j].beta;
     if (gravity && physical) beta -= columns[j].alpha.head<3>().dot(c.gravity);
     rhs[j] -= beta;
@@ -287,6 +288,14 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
     }
   }
 
+  // The constraint forces on each articulated body, E_i nu, and on each body itself,
+  // E0_i nu (the wrenches alpha nu at its points, moved to its origin).
+  std::vector<Vector6> E_nu(n, Vector6::Zero()), E0_nu(n, Vector6::Zero());
+  for (int i = 0; m > 0 && i < n; ++i) {
+    E_nu[i] = E[i] * out.nu;
+    E0_nu[i] = E0[i] * out.nu;
+  }
+
   // ---- pass 3, outward: accelerations ----
   out.qdd.resize(n);
   out.prescribed_torques = Eigen::VectorXd::Zero(n);
@@ -298,11 +307,12 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
       out.qdd[i] = c.qdd_given[i];
       a[i] = a_in + S[i] * out.qdd[i];
       // S^T f_i, f_i = IA_i a_i + pA_i + E_i nu (+ rotor qdd), less the passive torques
-      out.prescribed_torques[i] = S[i].dot(IA[i] * a[i] + pA[i] + E[i] * out.nu) +
+      out.prescribed_torques[i] = S[i].dot(IA[i] * a[i] + pA[i] + E_nu[i]) +
                                   (rotor ? model.bodies[i].rotor_inertia * out.qdd[i] : 0.0) -
                                   passive[i];
     } else {
-      out.qdd[i] = (u[i] - U[i].dot(a_in) - EZ[i].dot(out.nu)) / D[i];
+      // EZ_i^T nu = S_i^T E_i nu
+      out.qdd[i] = (u[i] - U[i].dot(a_in) - S[i].dot(E_nu[i])) / D[i];
       a[i] = a_in + S[i] * out.qdd[i];
     }
   }
@@ -333,8 +343,7 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   out.joint_torques = ff;
   for (int i = 0; i < n; ++i)
     if (prescribed(i)) out.joint_torques[i] = out.prescribed_torques[i];
-  std::vector<Vector6> F(n);
-  for (int i = 0; i < n; ++i) F[i] = E0[i] * out.nu;
+  std::vector<Vector6> F = E0_nu;
   for (int i = n - 1; i >= 0; --i) {
     out.joint_torques[i] -= S[i].dot(F[i]);
     const int p = model.bodies[i].parent;

@@ -1,5 +1,6 @@
-// URDF -> Model through urdfdom: walk from the tip up to the root, then build the
-// chain root -> tip, merging links behind fixed joints into the body before them.
+// URDF -> Model through urdfdom: the tree below the root walked depth first, or the chain
+// root -> tip found from the tip up and built from the root down, then what hangs off
+// it; links behind fixed (or locked) joints are merged into the body before them.
 #include "achd/urdf.hpp"
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 #include <console_bridge/console.h>
@@ -16,6 +18,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "achd/error.hpp"
+#include "achd/kinematics.hpp"
 #include "console_capture.hpp"
 #include "sin_cos.hpp"
 #include "xml_depth.hpp"
@@ -47,8 +50,11 @@ bool finite3(double x, double y, double z) {
 // cos, whose last bits differ between glibc (native) and musl (wasm): the two builds would
 // load a URDF into models an ulp apart, which a long chain amplifies past 1e-12. With the
 // angles themselves, the loader builds every rotation with achd's sin_cos instead.
+// The joints' positions in the file are read with them: the order in which the tree's
+// children are walked.
 struct OriginAngles {
   std::map<std::string, urdf::Vector3> joint, inertial;  // by joint / link name
+  std::map<std::string, int> joint_position;             // by joint name: 0, 1, ... in the file
 };
 
 OriginAngles read_origin_angles(const std::string& xml) {
@@ -64,6 +70,7 @@ OriginAngles read_origin_angles(const std::string& xml) {
   };
   for (auto* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
     urdf::Vector3 rpy;
+    if (j->Attribute("name")) angles.joint_position.emplace(j->Attribute("name"), static_cast<int>(angles.joint_position.size()));
     if (j->Attribute("name") && rpy_of(j->FirstChildElement("origin"), rpy)) angles.joint[j->Attribute("name")] = rpy;
   }
   for (auto* l = robot->FirstChildElement("link"); l; l = l->NextSiblingElement("link")) {
@@ -170,15 +177,15 @@ Vector3 unit_axis(const Vector3& a, const std::string& where) {
   return scaled.normalized();
 }
 
-// The body of movable joint j, its frame the joint frame with z along the axis: X_tree
-// is the URDF joint origin (from the previous body's frame) turned by R_axis =
+// The body of movable joint j below body `parent`, its frame the joint frame with z along
+// the axis: X_tree is the URDF joint origin (from the parent body's frame) turned by R_axis =
 // frame_with_z_along(axis), which is returned as well.
-Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3& R_axis) {
+Body make_body(const urdf::Joint& j, const Transform& X_tree, int parent, Matrix3& R_axis) {
   const std::string where = "joint '" + j.name + "'";
   Body b;
   b.joint_name = j.name;
   b.link_name = j.child_link_name;
-  b.parent = index - 1;
+  b.parent = parent;
   b.X_tree = X_tree;
   switch (j.type) {
     case urdf::Joint::REVOLUTE: b.type = JointType::Revolute; break;
@@ -217,18 +224,203 @@ Body make_body(const urdf::Joint& j, const Transform& X_tree, int index, Matrix3
   return b;
 }
 
+// What the walk knows of a link once it has placed it: the body it rides on (-1: the
+// root) and its frame relative to that body's frame.
+struct Placed {
+  int body = -1;
+  Transform offset;
+};
+
+// The links below the root, placed one by one from their parents (a link is placed
+// after its parent): through a movable joint a link starts a body of its own; through a
+// fixed joint, or a movable side joint that is locked, it rides on its parent's body,
+// whose inertia takes its mass.
+class Walk {
+ public:
+  Walk(const urdf::ModelInterface& urdf_model, const OriginAngles& angles, const UrdfOptions& options,
+       Model& model)
+      : urdf_(urdf_model), angles_(angles), options_(options), model_(model) {
+    placed_[model.root_name] = Placed{};
+  }
+
+  // The child joints of a link in the order of the file (urdfdom orders them by name).
+  std::vector<urdf::JointConstSharedPtr> children(const urdf::Link& link) const {
+    std::vector<urdf::JointConstSharedPtr> out(link.child_joints.begin(), link.child_joints.end());
+    auto position = [&](const urdf::JointConstSharedPtr& j) {
+      const auto it = angles_.joint_position.find(j->name);
+      return it == angles_.joint_position.end() ? -1 : it->second;
+    };
+    std::stable_sort(out.begin(), out.end(), [&](const auto& a, const auto& b) { return position(a) < position(b); });
+    return out;
+  }
+
+  // Places j's child link as a link of the model: a body of its own if j is movable,
+  // riding on its parent's body if j is fixed; appends it to Model::links.
+  void add_link(const urdf::Joint& j) {
+    const std::string where = "joint '" + j.name + "'";
+    if (j.mimic && j.type != urdf::Joint::FIXED && options_.mimic == MimicJoints::Error)
+      throw Error(where + ": <mimic> of joint '" + j.mimic->joint_name +
+                  "': achd has no coupled joints; load with the mimic option 'independent' "
+                  "(CLI --mimic independent) to make it a joint of its own, as KDL does");
+    const Placed& parent = placed_.at(j.parent_link_name);
+    const int body = parent.body;
+    const Transform X = origin(j, parent);
+    const Matrix6 inertia = child_inertia(j);
+    Placed child;
+    if (j.type == urdf::Joint::FIXED) {
+      child = Placed{body, X};  // the child rides on the parent's body
+      add_inertia(j, child, inertia);
+    } else {
+      Matrix3 R_axis;
+      model_.bodies.push_back(make_body(j, X, body, R_axis));
+      child.body = model_.num_joints() - 1;
+      // The child link's frame in the body (joint) frame is R_axis^T, constant as the
+      // joint turns about or slides along z.
+      child.offset = Transform{R_axis.transpose(), Vector3::Zero()};
+      model_.bodies[child.body].inertia = inertia_to_parent(child.offset, inertia);
+    }
+    placed_[j.child_link_name] = child;
+    model_.links.push_back({j.child_link_name, child.body, child.offset});
+  }
+
+  // Places j's child link rigidly on its parent's body, j (if movable) locked at its
+  // options.locked value or 0 and listed in Model::locked_joints; the link is not a link
+  // of the model (a chain's links are its path's).
+  void add_side_link(const urdf::Joint& j) {
+    const Placed& parent = placed_.at(j.parent_link_name);
+    Transform X = origin(j, parent);
+    const Matrix6 inertia = child_inertia(j);
+    if (j.type != urdf::Joint::FIXED) {
+      const std::string where = "joint '" + j.name + "'";
+      Matrix3 R_axis;
+      const Body b = make_body(j, X, parent.body, R_axis);
+      const auto given = options_.locked.find(j.name);
+      const double value = given == options_.locked.end() ? 0.0 : given->second;
+      if (!std::isfinite(value)) throw Error("locked " + where + ": value is not finite");
+      if (value < b.limits.lower || value > b.limits.upper)
+        throw Error("locked " + where + ": value " + std::to_string(value) + " is outside its limits [" +
+                    std::to_string(b.limits.lower) + ", " + std::to_string(b.limits.upper) + "]");
+      X = joint_transform(b, value) * Transform{R_axis.transpose(), Vector3::Zero()};
+      if (!X.p.allFinite()) throw Error(where + ": origin overflows: its locked position is not finite");
+      model_.locked_joints.push_back({j.name, value});
+    }
+    const Placed child{parent.body, X};
+    add_inertia(j, child, inertia);
+    placed_[j.child_link_name] = child;
+  }
+
+ private:
+  // The frame of j relative to the body its parent link rides on.
+  Transform origin(const urdf::Joint& j, const Placed& parent) const {
+    const std::string where = "joint '" + j.name + "'";
+    const Transform X = parent.offset * to_transform(j.parent_to_joint_origin_transform,
+                                                     find_angles(angles_.joint, j.name), where);
+    // Behind fixed joints, origins add up: their sum can overflow although each is finite.
+    if (!X.p.allFinite())
+      throw Error(where + ": origin overflows: its position from " +
+                  (parent.body >= 0 ? "joint '" + model_.bodies[parent.body].joint_name + "'"
+                                    : "the root link '" + model_.root_name + "'") +
+                  " is not finite");
+    return X;
+  }
+
+  Matrix6 child_inertia(const urdf::Joint& j) const {
+    const auto child = urdf_.getLink(j.child_link_name);
+    return link_inertia(*child, find_angles(angles_.inertial, child->name));
+  }
+
+  // Adds a rigidly riding link's inertia to its body (nothing on the root, which does
+  // not move; a massless link adds nothing, wherever it is).
+  void add_inertia(const urdf::Joint& j, const Placed& link, const Matrix6& inertia) {
+    if (link.body < 0 || inertia.isZero(0)) return;
+    Body& body = model_.bodies[link.body];
+    body.inertia += inertia_to_parent(link.offset, inertia);
+    if (!body.inertia.allFinite())
+      throw Error("joint '" + j.name + "': origin overflows: link '" + j.child_link_name + "' moved by it to joint '" +
+                  body.joint_name + "' has an inertia that is not finite");
+  }
+
+  const urdf::ModelInterface& urdf_;
+  const OriginAngles& angles_;
+  const UrdfOptions& options_;
+  Model& model_;
+  std::map<std::string, Placed> placed_;  // by link name
+};
+
+// Every link below `from` in depth-first order (a link, then each child joint's subtree in
+// the order of the file) except those whose names are in `skip` (and their subtrees): their
+// parent joints. Refuses a cycle, which urdfdom accepts when it does not reach its root.
+std::vector<urdf::JointConstSharedPtr> subtree_joints(const urdf::ModelInterface& urdf_model, const Walk& walk,
+                                                      const urdf::Link& from, const std::set<std::string>& skip) {
+  std::vector<urdf::JointConstSharedPtr> out;
+  std::set<std::string> seen = {from.name};
+  std::vector<urdf::JointConstSharedPtr> stack;  // explicit: a long chain must not recurse
+  auto push_children = [&](const urdf::Link& link) {
+    const auto children = walk.children(link);
+    for (auto it = children.rbegin(); it != children.rend(); ++it)
+      if (!skip.count((*it)->child_link_name)) stack.push_back(*it);
+  };
+  push_children(from);
+  while (!stack.empty()) {
+    const urdf::JointConstSharedPtr j = stack.back();
+    stack.pop_back();
+    if (!seen.insert(j->child_link_name).second)
+      throw Error("the links form a cycle through link '" + j->child_link_name + "'");
+    out.push_back(j);
+    const auto child = urdf_model.getLink(j->child_link_name);
+    if (child) push_children(*child);
+  }
+  return out;
+}
+
+// A `locked` entry must name a movable side joint of the chain.
+void check_locked_names(const urdf::ModelInterface& urdf_model, const Model& model, const UrdfOptions& options) {
+  for (const auto& entry : options.locked) {
+    const std::string& name = entry.first;
+    bool locked = false;
+    for (const LockedJoint& l : model.locked_joints) locked = locked || l.name == name;
+    if (locked) continue;
+    const auto joint = urdf_model.getJoint(name);
+    const std::string what =
+        !joint ? "there is no joint of that name"
+        : model.joint_index(name) >= 0 ? "it is a joint of the model, not locked"
+        : joint->type == urdf::Joint::FIXED ? "it is a fixed joint"
+        : !model.has_tip() ? "only a chain's side joints are locked (the tree has no side branches)"
+        : options.side_branches == SideBranches::Ignore ? "side branches are ignored (the KDL convention)"
+                                                        : "it does not hang off the chain from '" + model.root_name +
+                                                              "' to '" + model.tip_name + "'";
+    throw Error("locked joint '" + name + "': not a movable side joint of the chain (" + what + ")");
+  }
+}
+
 Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
-            const std::string& root, const std::string& tip, const UrdfOptions& options,
+            const std::string& root_given, const std::string& tip, const UrdfOptions& options,
             const std::string& source) {
+  if (root_given.empty() && !urdf_model.getRoot())
+    throw Error(source + ": the URDF has no root link");
+  const std::string root = root_given.empty() ? urdf_model.getRoot()->name : root_given;
   const auto root_link = urdf_model.getLink(root);
   if (!root_link) throw Error(source + ": unknown root link '" + root + "'");
+
+  Model model;
+  model.root_name = root;
+  model.tip_name = tip;
+  Walk walk(urdf_model, angles, options, model);
+  if (tip.empty()) {
+    // The whole tree below the root: every link in depth-first order, so that each body's
+    // subtree is the range of bodies after it.
+    for (const auto& j : subtree_joints(urdf_model, walk, *root_link, {})) walk.add_link(*j);
+    check_locked_names(urdf_model, model, options);
+    validate(model);
+    return model;
+  }
+
   const auto tip_link = urdf_model.getLink(tip);
   if (!tip_link) throw Error(source + ": unknown tip link '" + tip + "'");
   if (root == tip) throw Error(source + ": root and tip are the same link '" + root + "'");
-
   // Joints from the tip up to the root.
   std::vector<urdf::JointConstSharedPtr> joints;
-  std::set<std::string> seen = {tip};
+  std::set<std::string> path = {tip};
   for (auto link = tip_link; link->name != root;) {
     if (!link->parent_joint)
       throw Error(source + ": tip link '" + tip + "' is not below root link '" + root + "'");
@@ -236,50 +428,27 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
     link = urdf_model.getLink(link->parent_joint->parent_link_name);
     if (!link)
       throw Error(source + ": tip link '" + tip + "' is not below root link '" + root + "'");
-    if (!seen.insert(link->name).second)
+    if (!path.insert(link->name).second)
       throw Error(source + ": the links form a cycle through link '" + link->name + "'");
   }
-
-  Model model;
-  model.root_name = root;
-  model.tip_name = tip;
-  Transform offset;  // current link's frame relative to the current body (or the root)
-  int body = -1;
-  for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
-    const urdf::Joint& j = **it;
-    const std::string where = "joint '" + j.name + "'";
-    if (j.mimic && j.type != urdf::Joint::FIXED && options.mimic == MimicJoints::Error)
-      throw Error(where + ": <mimic> of joint '" + j.mimic->joint_name +
-                  "': achd has no coupled joints; load with the mimic option 'independent' "
-                  "(CLI --mimic independent) to make it a joint of its own, as KDL does");
-    const Transform X = offset * to_transform(j.parent_to_joint_origin_transform,
-                                              find_angles(angles.joint, j.name), where);
-    // Behind fixed joints, origins add up: their sum can overflow although each is finite.
-    if (!X.p.allFinite())
-      throw Error(where + ": origin overflows: its position from " +
-                  (body >= 0 ? "joint '" + model.bodies[body].joint_name + "'" : "the root link '" + root + "'") +
-                  " is not finite");
-    const auto child = urdf_model.getLink(j.child_link_name);
-    const Matrix6 inertia = link_inertia(*child, find_angles(angles.inertial, child->name));
-    if (j.type == urdf::Joint::FIXED) {
-      offset = X;  // the child rides on the current body
-      if (body >= 0 && !inertia.isZero(0)) {  // a massless link adds nothing, wherever it is
-        model.bodies[body].inertia += inertia_to_parent(offset, inertia);
-        if (!model.bodies[body].inertia.allFinite())
-          throw Error(where + ": origin overflows: link '" + child->name + "' moved by it to joint '" +
-                      model.bodies[body].joint_name + "' has an inertia that is not finite");
+  // The path root -> tip: its bodies and links.
+  for (auto it = joints.rbegin(); it != joints.rend(); ++it) walk.add_link(**it);
+  // What hangs off the path (below the root, off the path, the tip's children included),
+  // path link by path link from the root: merged into the body it hangs from.
+  if (options.side_branches == SideBranches::Merge) {
+    std::vector<urdf::LinkConstSharedPtr> path_links = {root_link};
+    for (auto it = joints.rbegin(); it != joints.rend(); ++it)
+      path_links.push_back(urdf_model.getLink((*it)->child_link_name));
+    for (const auto& link : path_links)
+      for (const auto& side : walk.children(*link)) {
+        if (path.count(side->child_link_name)) continue;
+        walk.add_side_link(*side);
+        const auto side_link = urdf_model.getLink(side->child_link_name);
+        if (!side_link) continue;
+        for (const auto& j : subtree_joints(urdf_model, walk, *side_link, {})) walk.add_side_link(*j);
       }
-    } else {
-      Matrix3 R_axis;
-      model.bodies.push_back(make_body(j, X, static_cast<int>(model.bodies.size()), R_axis));
-      body = model.num_joints() - 1;
-      // The child link's frame in the body (joint) frame is R_axis^T, constant as the
-      // joint turns about or slides along z.
-      offset = Transform{R_axis.transpose(), Vector3::Zero()};
-      model.bodies[body].inertia = inertia_to_parent(offset, inertia);
-    }
-    model.links.push_back({child->name, body, offset});
   }
+  check_locked_names(urdf_model, model, options);
   validate(model);
   return model;
 }

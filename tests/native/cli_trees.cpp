@@ -376,14 +376,15 @@ TEST_F(CliTrees, LockedSideJointsAreReported) {
   const json locked = json::parse(R"([{"name": "right_hip", "value": 0.0}, {"name": "right_knee", "value": 0.05}])");
   EXPECT_EQ(i.at("locked_joints"), locked);
   EXPECT_EQ(i.at("joints").size(), 3u);
-  // A chain's links are its path's; the side links' mass rides on the torso's body.
+  // a chain's links are its path (root link first); the side links' mass rides on the torso
   EXPECT_EQ(i.at("links").size(), 5u);
   const json c = {{"q", {{"left_knee", 0.8}}}, {"gravity", {0, 0, -9.81}}};
   const json r = solve(kTree, chain, c);
   ASSERT_TRUE(r.is_object());
   EXPECT_EQ(r.at("locked_joints"), locked);
-  // The locked value moves the merged mass: the right leg swung sideways about the hip
-  // changes the torso's inertia about its yaw axis, and so the solve.
+  // The locked value moves the merged mass: another value, another solve. (The hip
+  // swings the leg sideways, which changes the torso's inertia about its yaw axis; the
+  // prismatic knee slides the shank along that axis, which does not.)
   std::vector<std::string> other = chain;
   other.insert(other.end(), {"--lock", "right_hip=0.4"});
   EXPECT_NE(solve(kTree, other, c).at("qdd"), r.at("qdd"));

@@ -4,6 +4,7 @@
 // without and with prescribed joints.
 // Nor do the workspace forms of rnea, crba, forward_kinematics, link_velocities,
 // tip_jacobian and link_jacobian, once their outputs have their sizes.
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -81,6 +82,7 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
   std::uniform_real_distribution<double> U(-1, 1);
   int solves = 0;
   for (const auto& r : index["robots"]) {
+    if (!r.contains("tip")) continue;  // the trees: tests/native/tree_identities.cpp
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
     achd::Data d(m);
@@ -116,7 +118,9 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
         }
     }
   }
-  EXPECT_EQ(solves, static_cast<int>(index["robots"].size()) * 7 * 6);
+  const auto chains = std::count_if(index["robots"].begin(), index["robots"].end(),
+                                    [](const nlohmann::json& r) { return r.contains("tip"); });
+  EXPECT_EQ(solves, static_cast<int>(chains) * 7 * 6);
 }
 
 // Constraint blocks on any links: 1 to 6 blocks on random links of every chain robot, up
@@ -172,6 +176,54 @@ TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
   EXPECT_GT(solves, 0);
 }
 
+// The tree robots of robots/index.json (no tip) with their default held links held in 6D
+// and in 3D, every policy, with driver weights and virtual wrenches.
+TEST(NoAllocation, HybridDynamicsOnTheTreeRobotsHoldingTheirDefaultLinks) {
+  std::ifstream in(kRepo + "/robots/index.json");
+  ASSERT_TRUE(in) << kRepo;
+  const nlohmann::json index = nlohmann::json::parse(in);
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int solves = 0;
+  for (const auto& r : index["robots"]) {
+    if (r.contains("tip")) continue;
+    achd::UrdfOptions options;
+    if (r.contains("mimic")) options.mimic = achd::mimic_joints_from_name(r["mimic"], "mimic");
+    const achd::Model m =
+        achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(), r["root"].get<std::string>(), "", options);
+    achd::Data d(m);
+    const int n = m.num_joints();
+    achd::Case c = achd::Case::zeros(m);
+    for (int i = 0; i < n; ++i) c.q[i] = r["q0"][i].get<double>();
+    c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.f_ext.assign(m.num_links(), achd::Vector6::Zero());
+    for (auto& w : c.f_ext) w = achd::Vector6::NullaryExpr([&] { return U(rng); });
+    c.f_virtual = c.f_ext;
+    for (int columns : {3, 6}) {
+      c.constraints.clear();
+      for (const auto& link : r["constraints"]) {
+        achd::ConstraintBlock b;
+        b.link = m.link_index(link.get<std::string>());
+        b.alpha = achd::ConstraintMatrix::Identity(6, columns);
+        b.beta = achd::ConstraintVector::Zero(columns);
+        b.w_fext = achd::ConstraintVector::Constant(columns, 0.5);
+        c.constraints.push_back(b);
+      }
+      for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::Damped,
+                          achd::SingularityPolicy::VariableDamping}) {
+        achd::Options o;
+        o.policy = policy;
+        o.effects = achd::kAllEffects;
+        EXPECT_EQ(allocations_of_solve(m, d, c, o), 0) << r["name"] << " columns=" << columns;
+        ASSERT_TRUE(d.qdd.allFinite() && d.nu.allFinite());
+        ++solves;
+      }
+    }
+  }
+  EXPECT_EQ(solves, 3 * 2 * 3);  // quadruped, dual-arm torso, Panda with fingers
+}
+
 TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
   std::ifstream in(kRepo + "/robots/index.json");
   ASSERT_TRUE(in) << kRepo;
@@ -179,6 +231,7 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> U(-1, 1);
   for (const auto& r : index["robots"]) {
+    if (!r.contains("tip")) continue;  // the trees: tests/native/tree_identities.cpp
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
     const int n = m.num_joints();

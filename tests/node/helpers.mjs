@@ -30,9 +30,10 @@ export function nativeCli() {
   return cli;
 }
 
+// The chains of robots/index.json (entries with a tip; a tree entry has none), with their URDF text.
 export function robots() {
   const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
-  return index.robots.map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8') }));
+  return index.robots.filter((r) => r.tip).map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8') }));
 }
 
 // max|a - b| / max(1, max|b|) over flat arrays of equal length.
