@@ -400,6 +400,8 @@ TEST_F(CliTrees, LockedSideJointsAreReported) {
   ASSERT_TRUE(kdl.is_object());
   EXPECT_EQ(kdl.at("locked_joints"), json::array());
   EXPECT_EQ(kdl.at("links").size(), 5u);  // base, torso, left_thigh, left_shank, left_foot
+  EXPECT_NE(solve(kTree, {"--root", "base", "--tip", "left_foot", "--convention", "kdl"}, c).at("qdd"), r.at("qdd"))
+      << "ignoring the side branches drops their mass";
 }
 
 // achd bench takes every case achd solve takes (names, blocks, a tree); --against kdl
