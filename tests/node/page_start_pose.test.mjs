@@ -13,8 +13,6 @@ const achd = await loadAchd();
 
 // Singular values of the whole tip Jacobian (6 rows), largest first.
 const sigmas = (robot, q) => singularValues(robot.tipJacobian(q));
-// The page simulates chains (a tip to hold): the robots of robots/index.json with a tip.
-const chains = () => robots().filter((entry) => entry.tip);
 
 test('singular values of small matrices', () => {
   assert.deepEqual(singularValues([[3, 0], [0, -2], [0, 0]]), [3, 2]);
@@ -32,7 +30,7 @@ test('singular values of small matrices', () => {
 });
 
 test('every robot starts inside its limits, away from a singularity', () => {
-  for (const entry of chains()) {
+  for (const entry of robots()) {
     const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
     const { q, score } = startPose(robot);
     assert.equal(q.length, robot.numJoints);
@@ -52,7 +50,7 @@ test('every robot starts inside its limits, away from a singularity', () => {
 
 // The listed robots start from their q0 on the page: those must be good start poses too.
 test('every q0 of robots/index.json is inside the limits and away from a singularity', () => {
-  for (const entry of chains()) {
+  for (const entry of robots()) {
     const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
     robot.limits.forEach((l, j) => assert.ok(entry.q0[j] > l.lower && entry.q0[j] < l.upper,
       `${entry.name} ${robot.jointNames[j]}: ${entry.q0[j]} outside (${l.lower}, ${l.upper})`));

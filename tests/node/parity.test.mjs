@@ -77,12 +77,12 @@ function wellConditionedCase(r, robot, nc) {
 
 const OPTION_SETS = [undefined, { convention: 'kdl' }, { policy: 'damped', damping: 1e-6 }];
 
-// The chains; the trees (entries without a tip) are compared in trees.test.mjs, with
+// The chains (robots() lists them); the trees are compared in trees.test.mjs, with
 // constraint blocks in place of the tip's alpha.
 test('every chain robot in robots/index.json: wasm == native', async () => {
   const r = rng(7);
   const jobs = [];
-  for (const entry of robots().filter((e) => e.tip)) {
+  for (const entry of robots()) {
     const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
     const base = { robot, urdf: entry.path, root: entry.root, tip: entry.tip };
     jobs.push({ ...base, c: { q: entry.q0, gravity: [0, 0, -9.81] }, what: `${entry.name} q0` });
