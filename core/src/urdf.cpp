@@ -250,7 +250,12 @@ class Walk {
       const auto it = angles_.joint_position.find(j->name);
       return it == angles_.joint_position.end() ? -1 : it->second;
     };
-    std::stable_sort(out.begin(), out.end(), [&](const auto& a, const auto& b) { return position(a) < position(b); });
+    // (joints the file position map lacks, -1, keep urdfdom's order by name: a total order,
+    // so std::sort needs no temporary buffer, which stable_sort would allocate)
+    std::sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
+      const int pa = position(a), pb = position(b);
+      return pa != pb ? pa < pb : a->name < b->name;
+    });
     return out;
   }
 
