@@ -11,7 +11,8 @@ namespace achd {
 
 Case Case::zeros(const Model& model) {
   Case c;
-  c.q = Eigen::VectorXd::Zero(model.num_joints());
+  c.q = Eigen::VectorXd::Zero(model.num_positions());
+  if (model.floating) c.q[6] = 1;  // the identity orientation, qw = 1
   return c;
 }
 
@@ -54,18 +55,28 @@ bool weights_valid(const ConstraintVector& w, Eigen::Index nc) {
   return true;
 }
 
+// A floating base: its quaternion nonzero (q is finite), its six entries prescribed
+// all or none (the rotation mixes them: free_joint.hpp).
+bool free_joint_valid(const Case& c) {
+  if (!(c.q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0)) return false;
+  for (int k = 1; k < 6 && !c.prescribed.empty(); ++k)
+    if (c.prescribed[k] != c.prescribed[0]) return false;
+  return true;
+}
+
 // The common case, in one pass: right sizes and every number finite.
 bool plainly_valid(const Model& model, const Case& c, int capacity) {
   const Eigen::Index nj = model.num_joints();
   const int nc = static_cast<int>(c.alpha.cols());
   if (nc && !model.has_tip()) return false;
-  if (c.q.size() != nj || (c.qd.size() && c.qd.size() != nj) ||
+  if (c.q.size() != model.num_positions() || (c.qd.size() && c.qd.size() != nj) ||
       (c.ff_torques.size() && c.ff_torques.size() != nj) || nc > kMaxConstraints ||
       c.beta.size() != nc || (!c.f_ext.empty() && static_cast<int>(c.f_ext.size()) != model.num_links()) ||
       (c.qdd_given.size() && c.qdd_given.size() != nj) ||
       c.prescribed.size() != static_cast<size_t>(c.qdd_given.size()))
     return false;
-  double s = finite_probe(c.q.data(), nj) + finite_probe(c.qd.data(), c.qd.size()) +
+  if (model.floating && !free_joint_valid(c)) return false;
+  double s = finite_probe(c.q.data(), c.q.size()) + finite_probe(c.qd.data(), c.qd.size()) +
              finite_probe(c.ff_torques.data(), c.ff_torques.size()) +
              finite_probe(c.gravity.data(), 3) + finite_probe(c.alpha.data(), 6 * nc) +
              finite_probe(c.beta.data(), nc) + finite_probe(c.qdd_given.data(), c.qdd_given.size());
@@ -135,7 +146,9 @@ void check_blocks(const Model& model, const Case& c) {
 void validate(const Model& model, const Case& c, int capacity) {
   if (plainly_valid(model, c, capacity)) return;
   const int nj = model.num_joints();
-  check_vector(c.q, nj, "q", false);
+  check_vector(c.q, model.num_positions(), "q", false);
+  if (model.floating && !(c.q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0))
+    throw Error("q[3..6]: the floating base's orientation quaternion (qx, qy, qz, qw) is zero");
   check_vector(c.qd, nj, "qd", true);
   check_vector(c.ff_torques, nj, "ff_torques", true);
   for (int k = 0; k < 3; ++k)
@@ -184,6 +197,9 @@ void validate(const Model& model, const Case& c, int capacity) {
   if (c.prescribed.empty() != (c.qdd_given.size() == 0))
     throw Error(c.prescribed.empty() ? "qdd_given is set but prescribed (which joints it prescribes) is empty"
                                      : "prescribed is set but qdd_given (their accelerations) is empty");
+  if (model.floating && !free_joint_valid(c))
+    throw Error("prescribed: the floating base's six entries (joint '" + model.root_name +
+                "') must be prescribed together or not at all");
   for (int i = 0; i < c.qdd_given.size(); ++i)
     if (!std::isfinite(c.qdd_given[i]))
       throw Error("qdd_given[" + std::to_string(i) + "] (joint '" + model.bodies[i].joint_name +

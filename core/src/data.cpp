@@ -43,6 +43,15 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   w.driver_qdd.assign(2 * n, 0.0);
   w.virtual_force.assign(n, Vector6::Zero());
   w.ez.assign(static_cast<size_t>(n) * 2 * constraint_capacity, 0.0);
+  if (model.floating) {
+    Case& f = w.free_case;
+    f.q = Eigen::VectorXd::Zero(model.num_positions());
+    f.qd = f.ff_torques = f.qdd_given = Eigen::VectorXd::Zero(n);
+    f.prescribed.reserve(n);
+    f.constraints.reserve(constraint_capacity);
+    f.f_ext.reserve(model.num_links());
+    f.f_virtual.reserve(model.num_links());
+  }
 }
 
 }  // namespace achd

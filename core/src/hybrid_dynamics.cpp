@@ -44,6 +44,7 @@
 #include "constraint_sweep.hpp"
 #include "coupling_solve.hpp"
 #include "driver_priorities.hpp"
+#include "free_joint.hpp"
 #include "joint.hpp"
 #include "joint_subspace.hpp"
 #include "overflow_error.hpp"
@@ -264,8 +265,11 @@ double outward_accelerations(const Model& model, Data& d, const Case& c, const V
 // sweeps' KDL accelerations into physical ones. Returns their finite probe.
 double link_accelerations(const Model& model, Data& d, const Vector6& a0, const Vector6& shift) {
   const SpatialVector s = load_pairs(shift), base = load_pairs(a0);
-  store_pairs(d.link_accelerations[0], base + s);
-  double probe = finite_probe(base + s);
+  // The root link: the base, or with a floating base the free joint's last body.
+  const int root = model.floating ? kFreeJointBodies - 1 : -1;
+  const SpatialVector root_acceleration = root < 0 ? base : load_pairs(d.a[root]) + load_pairs(d.kappa[root]);
+  store_pairs(d.link_accelerations[0], root_acceleration + s);
+  double probe = finite_probe(root_acceleration + s);
   for (int l = 0; l < model.num_links(); ++l) {
     const Link& link = model.links[l];
     const int b = link.body;
@@ -281,11 +285,8 @@ double link_accelerations(const Model& model, Data& d, const Vector6& a0, const 
   return probe;
 }
 
-}  // namespace
-
-void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
-  validate(model, c, d.constraint_capacity());
-  validate(o);
+// Steps 1 to 4 on a validated case (a floating base's in the solver's coordinates).
+void solve(const Model& model, Data& d, const Case& c, const Options& o) {
   const int nc = (o.effects & kConstraints) ? c.num_constraints() : 0;
   const bool gravity = o.effects & kGravity;
   // Skipped by themselves when their inputs are zero: the result is identical.
@@ -344,6 +345,18 @@ void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& 
   probe += link_accelerations(model, d, a0, shift);
   probe += constraint_wrenches_and_joint_torques(model, d, c, prescribed);
   if (probe != 0) name_the_first_overflow(model, d, c, nc);
+}
+
+}  // namespace
+
+void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
+  validate(model, c, d.constraint_capacity());
+  validate(o);
+  if (!model.floating) return solve(model, d, c, o);
+  // A floating base: solved in the free joint's solver coordinates (free_joint.hpp).
+  const Case& s = free_joint_case(c, d.workspace.free_case);
+  solve(model, d, s, o);
+  free_joint_results(s, d);
 }
 
 }  // namespace achd

@@ -5,6 +5,7 @@
 
 #include "achd/error.hpp"
 #include "check_workspace.hpp"
+#include "free_joint.hpp"
 #include "joint.hpp"
 #include "matrix3_pairs.hpp"
 #include "sin_cos.hpp"
@@ -35,10 +36,20 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
   double sines[kBlock], cosines[kBlock];
   const int n = model.num_joints();
   Mat3p R;  // the last body's axes: the next one's parent in a chain (a tree reloads them)
-  for (int i0 = 0; i0 < n; i0 += kBlock) {
+  // A floating base: the free joint's six bodies from q[0..6], then body i's angle is
+  // q[i + 1] (free_joint.hpp).
+  int first = 0;
+  const double* angle = q.data();
+  if (model.floating) {
+    free_joint_poses(q.data(), X0.data(), r.data());
+    first = kFreeJointBodies;
+    angle = q.data() + 1;
+    R = load_columns(X0[first - 1].R);
+  }
+  for (int i0 = first; i0 < n; i0 += kBlock) {
     const int m = std::min(kBlock, n - i0);
     for (int j = 0; j < m; j += 2) {
-      const double x[2] = {q[i0 + j], j + 1 < m ? q[i0 + j + 1] : 0.0};
+      const double x[2] = {angle[i0 + j], j + 1 < m ? angle[i0 + j + 1] : 0.0};
       double s[2], c[2];
       sin_cos(x, s, c);
       sines[j] = s[0], cosines[j] = c[0];
@@ -63,7 +74,7 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
         T.col[0] = t0 * c + T.col[1] * s;
         T.col[1] = T.col[1] * c - t0 * s;
       } else {
-        ri = ri + T.col[2] * q[i];
+        ri = ri + T.col[2] * angle[i];
       }
       R = T;
       store_columns(X0[i].R, T);
@@ -85,9 +96,13 @@ ChainWorkspace::ChainWorkspace(const Model& model)
 void check_workspace_call(const char* function, const Model& model, const ChainWorkspace& ws,
                           const Eigen::VectorXd& q) {
   const int n = model.num_joints();
-  if (q.size() != n)
-    throw Error(std::string(function) + ": q must have " + std::to_string(n) + " values, got " +
-                std::to_string(q.size()));
+  if (q.size() != model.num_positions())
+    throw Error(std::string(function) + ": q must have " + std::to_string(model.num_positions()) +
+                " values" + (model.floating ? " (7 of the floating base, then one per joint)" : "") +
+                ", got " + std::to_string(q.size()));
+  if (model.floating && !(q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0 && q.segment<4>(3).allFinite()))
+    throw Error(std::string(function) + ": q[3..6], the floating base's orientation quaternion, must be finite "
+                "and nonzero");
   if (static_cast<int>(ws.X0.size()) != n || static_cast<int>(ws.Ic.size()) != n)
     throw Error(std::string(function) + ": the workspace was made for a model with " +
                 std::to_string(ws.X0.size()) + " joints, this one has " + std::to_string(n));
@@ -114,17 +129,19 @@ std::vector<Transform> forward_kinematics(const Model& model, const Eigen::Vecto
 void link_velocities(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                      ChainWorkspace& ws, std::vector<Vector6>& velocities) {
   check_workspace_call("link_velocities", model, ws, q);
-  if (qd.size() != q.size())
-    throw Error("link_velocities: qd must have " + std::to_string(q.size()) + " values, got " +
+  if (qd.size() != model.num_joints())
+    throw Error("link_velocities: qd must have " + std::to_string(model.num_joints()) + " values, got " +
                 std::to_string(qd.size()));
   body_poses(model, q, ws.X0, ws.r);
+  double free_rates[kFreeJointBodies];  // a floating base's rates in the solver's form
+  if (model.floating) free_joint_rates(ws.X0[kFreeJointBodies - 1].R, qd.data(), free_rates);
   // Body velocity in base orientation, at the body origin: v_i = v_p (moved by r_i) + S qd.
   std::vector<Vector6>& vb = ws.v;
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
     Vector6 vi = Vector6::Zero();
     if (b.parent >= 0) vi = motion_shift(vb[b.parent], ws.r[i]);
-    const Vector6 sj = subspace_times(b, qd[i]);
+    const Vector6 sj = subspace_times(b, model.floating && i < kFreeJointBodies ? free_rates[i] : qd[i]);
     vi.head<3>() += ws.X0[i].R * sj.head<3>();
     vi.tail<3>() += ws.X0[i].R * sj.tail<3>();
     vb[i] = vi;
@@ -145,6 +162,17 @@ std::vector<Vector6> link_velocities(const Model& model, const Eigen::VectorXd& 
   return velocities;
 }
 
+namespace {
+
+// Joint i's axis in base axes for the Jacobians: the body's z axis, except for the free
+// joint's rotations, whose rates are world angular velocities (free_joint.hpp).
+Vector3 jacobian_axis(const Model& model, const ChainWorkspace& ws, int i) {
+  if (model.floating && i >= 3 && i < kFreeJointBodies) return Vector3::Unit(i - 3);
+  return ws.X0[i].R.col(2);
+}
+
+}  // namespace
+
 void link_jacobian(const Model& model, const Eigen::VectorXd& q, int link, const Vector3& point,
                    ChainWorkspace& ws, Eigen::MatrixXd& J) {
   check_workspace_call("link_jacobian", model, ws, q);
@@ -161,7 +189,7 @@ void link_jacobian(const Model& model, const Eigen::VectorXd& q, int link, const
   // at the point. Revolute: [z x (p - p_i); z]; prismatic: [z; 0], with z the joint axis
   // (the body's z) in base orientation.
   for (int i = l.body; i >= 0; i = model.bodies[i].parent) {
-    const Vector3 z = ws.X0[i].R.col(2);
+    const Vector3 z = jacobian_axis(model, ws, i);
     if (is_rotational(model.bodies[i])) {
       J.col(i).head<3>() = z.cross(p - ws.X0[i].p);
       J.col(i).tail<3>() = z;
@@ -191,7 +219,7 @@ void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& 
   // prismatic: [z; 0], with z the joint axis (the body's z) in base orientation.
   for (int i = tip.body; i >= 0; i = model.bodies[i].parent) {
     const Body& b = model.bodies[i];
-    const Vector3 z = ws.X0[i].R.col(2);
+    const Vector3 z = jacobian_axis(model, ws, i);
     if (is_rotational(b)) {
       J.col(i).head<3>() = z.cross(p_tip - ws.X0[i].p);
       J.col(i).tail<3>() = z;

@@ -49,6 +49,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "achd/error.hpp"
+#include "free_joint.hpp"
 
 namespace achd {
 namespace {
@@ -129,13 +130,8 @@ struct Column {
   double beta;
 };
 
-}  // namespace
-
-ReferenceSolution pv_reference(const Model& model, const Case& c, const Options& o) {
-  validate(model, c);
-  validate(o);
-  if (o.policy != SingularityPolicy::Truncate)
-    throw Error("pv_reference: only the truncate singularity policy is implemented");
+// The solve of a validated case (a floating base's in the solver's coordinates).
+ReferenceSolution solve(const Model& model, const Case& c, const Options& o) {
   const int n = model.num_joints();
   const bool gravity = o.effects & kGravity;
   const bool wrenches = (o.effects & kExternalWrenches) && !c.f_ext.empty();
@@ -164,7 +160,18 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   for (int i = 0; i < n; ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
-    const Pose Xj = joint_pose(b, c.q[i]);
+    // A floating base: the free joint's bodies placed from q[0..6] (free_joint.hpp), each
+    // relative to the one before; then body i's angle is q[i + 1].
+    Pose Xj;
+    if (model.floating && i < kFreeJointBodies) {
+      Transform F[kFreeJointBodies];
+      Vector3 r_unused[kFreeJointBodies];
+      free_joint_poses(c.q.data(), F, r_unused);
+      const Transform prev = i == 0 ? Transform{} : F[i - 1];
+      Xj = Pose{prev.R.transpose() * F[i].R, prev.R.transpose() * (F[i].p - prev.p)};
+    } else {
+      Xj = joint_pose(b, c.q[model.floating ? i + 1 : i]);
+    }
     Xup[i] = motion_transform(Xj.R, Xj.p);  // ^i X_p
     X0[i] = p < 0 ? Xj : Pose{X0[p].R * Xj.R, X0[p].p + X0[p].R * Xj.p};
     S[i] = motion_subspace(b);
@@ -323,6 +330,10 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   Vector6 shift = Vector6::Zero();
   if (gravity && physical) shift.head<3>() = c.gravity;
   out.link_accelerations.assign(model.num_links() + 1, a0 + shift);
+  if (model.floating) {  // the root link rides on the free joint's last body
+    const int b = kFreeJointBodies - 1;
+    out.link_accelerations[0] = inverse_motion_transform(X0[b].R, Vector3::Zero()) * a[b] + shift;
+  }
   for (int l = 0; l < model.num_links(); ++l) {
     const Link& link = model.links[l];
     const int b = link.body;
@@ -355,6 +366,27 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   for (const Vector6& x : out.link_accelerations) finite = finite && x.allFinite();
   for (const Vector6& x : out.constraint_wrenches) finite = finite && x.allFinite();
   if (!finite) throw Error("pv_reference: a result is not finite (the inputs overflow)");
+  return out;
+}
+
+}  // namespace
+
+ReferenceSolution pv_reference(const Model& model, const Case& c, const Options& o) {
+  validate(model, c);
+  validate(o);
+  if (o.policy != SingularityPolicy::Truncate)
+    throw Error("pv_reference: only the truncate singularity policy is implemented");
+  if (!model.floating) return solve(model, c, o);
+  // A floating base: solved in the free joint's solver coordinates, results converted back.
+  Case s;
+  s.q = c.q;
+  s.qd = s.ff_torques = s.qdd_given = Eigen::VectorXd::Zero(model.num_joints());
+  free_joint_case(c, s);
+  ReferenceSolution out = solve(model, s, o);
+  const Matrix3 R = free_joint_rotation(c.q.data() + 3);
+  free_joint_accelerations_to_public(R, s.qd.data(), out.qdd.data());
+  free_joint_torques_to_public(R, out.joint_torques.data(), out.joint_torques.data());
+  free_joint_torques_to_public(R, out.prescribed_torques.data(), out.prescribed_torques.data());
   return out;
 }
 

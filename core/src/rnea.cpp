@@ -5,6 +5,7 @@
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
 #include "check_workspace.hpp"
+#include "free_joint.hpp"
 #include "joint.hpp"
 #include "spatial_pairs.hpp"
 
@@ -27,6 +28,16 @@ void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& q
   std::vector<Vector6>& a = ws.a;
   std::vector<Vector6>& f = ws.f;
   body_poses(model, q, X0, r);
+  // A floating base's rates and accelerations in the solver's form (free_joint.hpp).
+  double free_qd[kFreeJointBodies], free_qdd[kFreeJointBodies];
+  const bool floating = model.floating;
+  if (floating) {
+    const Matrix3& R = X0[kFreeJointBodies - 1].R;
+    free_joint_rates(R, qd.data(), free_qd);
+    free_joint_accelerations_to_solver(R, free_qd, qdd.data(), free_qdd);
+  }
+  auto rate = [&](int i) { return floating && i < kFreeJointBodies ? free_qd[i] : qd[i]; };
+  auto acceleration = [&](int i) { return floating && i < kFreeJointBodies ? free_qdd[i] : qdd[i]; };
   Vector6 a0 = Vector6::Zero();  // gravity as the base accelerating at -g
   if (effects & kGravity) a0.head<3>() = -gravity;
   const bool products = effects & kVelocityProducts;
@@ -40,9 +51,9 @@ void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& q
     if (is_rotational(b)) S.tail<3>() = z;
     else S.head<3>() = z;
     const Vector6 vp = b.parent < 0 ? Vector6::Zero().eval() : motion_shift(v[b.parent], r[i]);
-    v[i] = vp + S * qd[i];
-    a[i] = motion_shift(b.parent < 0 ? a0 : a[b.parent], r[i]) + S * qdd[i];
-    if (products) a[i] += cross_motion(vp, S * qd[i]);
+    v[i] = vp + S * rate(i);
+    a[i] = motion_shift(b.parent < 0 ? a0 : a[b.parent], r[i]) + S * acceleration(i);
+    if (products) a[i] += cross_motion(vp, S * rate(i));
     set_rigid_inertia(I, X0[i].R, b.inertia);
     store_pairs(f[i], times(I, a[i]));
     if (products) {
@@ -69,6 +80,7 @@ void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& q
     if (effects & kFriction) tau[i] += b.friction * std::tanh(qd[i] / friction_velocity);
     if (b.parent >= 0) f[b.parent] += force_shift(f[i], r[i]);
   }
+  if (floating) free_joint_torques_to_public(X0[kFreeJointBodies - 1].R, tau.data(), tau.data());
 }
 
 Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,

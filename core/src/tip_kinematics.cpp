@@ -1,6 +1,7 @@
 #include "tip_kinematics.hpp"
 
 #include "achd/kinematics.hpp"
+#include "free_joint.hpp"
 #include "joint.hpp"
 
 namespace achd {
@@ -8,9 +9,12 @@ namespace achd {
 void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                  std::vector<Transform>& X0, std::vector<Vector3>& r, std::vector<Vector6>& v) {
   body_poses(model, q, X0, r);
+  double free_rates[kFreeJointBodies];  // a floating base's rates in the solver's form
+  if (model.floating) free_joint_rates(X0[kFreeJointBodies - 1].R, qd.data(), free_rates);
   for (int i = 0; i < model.num_joints(); ++i) {
     const Body& b = model.bodies[i];
-    const Vector3 zq = X0[i].R.col(2) * qd[i];  // S qd: about (revolute) or along z
+    const double rate = model.floating && i < kFreeJointBodies ? free_rates[i] : qd[i];
+    const Vector3 zq = X0[i].R.col(2) * rate;  // S qd: about (revolute) or along z
     Vector6& vi = v[i];
     if (b.parent < 0) vi.setZero();
     else vi = motion_shift(v[b.parent], r[i]);

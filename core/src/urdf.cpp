@@ -259,6 +259,26 @@ class Walk {
     return out;
   }
 
+  // A floating base: the free joint's six bodies (free_joint.hpp) between the world and the
+  // root link, which rides on the last of them with its inertia; at q = 0 (the identity pose)
+  // their frames have z along the world x, y, z axes, twice.
+  void add_free_joint(const urdf::Link& root) {
+    Matrix3 along_x, along_y;
+    along_x << 0, 0, 1, 1, 0, 0, 0, 1, 0;  // columns e_y, e_z, e_x: z along x
+    along_y << 0, 1, 0, 0, 0, 1, 1, 0, 0;  // columns e_z, e_x, e_y: z along y
+    const Matrix3 steps[3] = {along_x, along_x.transpose() * along_y, along_y.transpose()};
+    for (int k = 0; k < 6; ++k) {
+      Body b;
+      b.joint_name = b.link_name = root.name;
+      b.parent = k - 1;
+      b.type = k < 3 ? JointType::Prismatic : JointType::Continuous;
+      b.X_tree = Transform{steps[k % 3], Vector3::Zero()};
+      model_.bodies.push_back(b);
+    }
+    model_.bodies.back().inertia = link_inertia(root, find_angles(angles_.inertial, root.name));
+    placed_[root.name] = Placed{5, Transform{}};
+  }
+
   // Places j's child link as a link of the model: a body of its own if j is movable,
   // riding on its parent's body if j is fixed; appends it to Model::links.
   void add_link(const urdf::Joint& j) {
@@ -410,7 +430,9 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
   Model model;
   model.root_name = root;
   model.tip_name = tip;
+  model.floating = options.floating;
   Walk walk(urdf_model, angles, options, model);
+  if (options.floating) walk.add_free_joint(*root_link);
   if (tip.empty()) {
     // The whole tree below the root: every link in depth-first order, so that each body's
     // subtree is the range of bodies after it.

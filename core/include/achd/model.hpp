@@ -57,12 +57,25 @@ struct Model {
   // tip_name is empty for a tree (a model loaded without a tip): then the case's tip
   // constraints (Case::alpha) do not apply, constraint blocks name their links.
   std::string root_name, tip_name;
+  // A floating base: a free joint (6 DoF) between the world and the root link, which moves.
+  // Its q is [x, y, z, qx, qy, qz, qw] (the root's origin in the world, its orientation as a
+  // unit quaternion, scalar last), its qd [v; w] (the origin's velocity, the angular
+  // velocity, world axes), its qdd their time derivative, its torques a wrench [f; n] on
+  // the root about its origin, world axes. It comes first: bodies 0 to 5 stand for it (all
+  // named after the root link; body 5 carries the root link's inertia and the links fixed
+  // to it), so vectors indexed by joint hold 6 + n values and q holds 7 + n
+  // (num_positions). The base frame is the world: gravity, alpha and every "base axes"
+  // result are in world axes. (free_joint.hpp: how the six bodies work.)
+  bool floating = false;
   std::vector<Body> bodies;  // movable joints, parents before children
   std::vector<Link> links;   // every link after the root, parents before children; a
                              // chain's tip last
   std::vector<LockedJoint> locked_joints;  // held fixed by the loader, reported
 
+  // Joint rates (qd, qdd, torques): one per body, 6 for a free joint.
   int num_joints() const { return static_cast<int>(bodies.size()); }
+  // Configuration numbers (q): num_joints(), plus 1 with a floating base (its quaternion).
+  int num_positions() const { return num_joints() + (floating ? 1 : 0); }
   int num_links() const { return static_cast<int>(links.size()); }
   bool has_tip() const { return !tip_name.empty(); }
   const Link& tip() const { return links.back(); }  // when has_tip()

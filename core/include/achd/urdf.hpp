@@ -26,6 +26,9 @@ struct UrdfOptions {
   // joint not named here is locked at 0. Naming a joint that is not a movable side joint
   // of the loaded chain is an error.
   std::map<std::string, double> locked;
+  // A floating base: a free joint between the world and the root link (Model::floating),
+  // whose inertia then counts.
+  bool floating = false;
 };
 
 // The name of a MimicJoints value in the CLI, JS and scene files ("error",

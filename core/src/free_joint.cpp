@@ -1,0 +1,108 @@
+// The free joint's poses and its conversions between public and solver coordinates
+// (free_joint.hpp states the equations).
+#include "free_joint.hpp"
+
+#include <cmath>
+
+namespace achd {
+namespace {
+
+// Frames whose z axis is the world (or root) x and y axis: columns (e_y, e_z, e_x) and
+// (e_z, e_x, e_y), right-handed.
+Matrix3 z_along_x() {
+  Matrix3 Q;
+  Q << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  return Q;
+}
+Matrix3 z_along_y() {
+  Matrix3 Q;
+  Q << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+  return Q;
+}
+
+}  // namespace
+
+Matrix3 free_joint_rotation(const double* quaternion) {
+  // Divided by its largest component first, so that neither 1e-200 nor 1e200 under- or
+  // overflows on the way to unit length.
+  const Eigen::Vector4d x = Eigen::Map<const Eigen::Vector4d>(quaternion);
+  const Eigen::Vector4d unit = (x / x.lpNorm<Eigen::Infinity>()).normalized();
+  const Eigen::Quaterniond h(unit[3], unit[0], unit[1], unit[2]);  // (w, x, y, z)
+  return h.toRotationMatrix();
+}
+
+void free_joint_poses(const double* q, Transform* X0, Vector3* r) {
+  const Vector3 p(q[0], q[1], q[2]);
+  const Matrix3 R = free_joint_rotation(q + 3);
+  const Matrix3 Qx = z_along_x(), Qy = z_along_y();
+  const Matrix3 axes[kFreeJointBodies] = {Qx, Qy, Matrix3::Identity(), R * Qx, R * Qy, R};
+  for (int k = 0; k < kFreeJointBodies; ++k) {
+    X0[k] = Transform{axes[k], p};
+    r[k] = k == 0 ? p : Vector3::Zero().eval();  // body 0 from the world origin, then none
+  }
+}
+
+void free_joint_rates(const Matrix3& R, const double* in, double* out) {
+  const Vector3 u = R.transpose() * Vector3(in[3], in[4], in[5]);
+  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = u[k];
+}
+
+Vector3 free_joint_rotation_product(const Matrix3& R, const double* u) {
+  const Vector3 w3 = R.col(0) * u[0], w4 = R.col(1) * u[1], w5 = R.col(2) * u[2];
+  return w3.cross(w4) + (w3 + w4).cross(w5);
+}
+
+void free_joint_accelerations_to_public(const Matrix3& R, const double* rates, double* qdd) {
+  const Vector3 w = R * Vector3(qdd[3], qdd[4], qdd[5]) + free_joint_rotation_product(R, rates + 3);
+  for (int k = 0; k < 3; ++k) qdd[3 + k] = w[k];
+}
+
+void free_joint_accelerations_to_solver(const Matrix3& R, const double* rates, const double* in, double* out) {
+  const Vector3 u = R.transpose() * (Vector3(in[3], in[4], in[5]) - free_joint_rotation_product(R, rates + 3));
+  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = u[k];
+}
+
+void free_joint_torques_to_solver(const Matrix3& R, const double* in, double* out) {
+  const Vector3 n = R.transpose() * Vector3(in[3], in[4], in[5]);
+  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = n[k];
+}
+
+void free_joint_torques_to_public(const Matrix3& R, const double* in, double* out) {
+  const Vector3 n = R * Vector3(in[3], in[4], in[5]);
+  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = n[k];
+}
+
+const Case& free_joint_case(const Case& in, Case& out) {
+  const Matrix3 R = free_joint_rotation(in.q.data() + 3);
+  out.q = in.q;
+  if (in.qd.size()) out.qd = in.qd;
+  else out.qd.setZero();
+  free_joint_rates(R, out.qd.data(), out.qd.data());
+  if (in.ff_torques.size()) out.ff_torques = in.ff_torques;
+  else out.ff_torques.setZero();
+  free_joint_torques_to_solver(R, out.ff_torques.data(), out.ff_torques.data());
+  out.prescribed = in.prescribed;
+  if (in.any_prescribed()) {
+    out.qdd_given = in.qdd_given;
+    if (in.prescribed[0]) free_joint_accelerations_to_solver(R, out.qd.data(), in.qdd_given.data(), out.qdd_given.data());
+  }
+  out.gravity = in.gravity;
+  out.alpha = in.alpha;
+  out.beta = in.beta;
+  out.w_fext = in.w_fext;
+  out.w_ff = in.w_ff;
+  out.constraints = in.constraints;
+  out.f_ext = in.f_ext;
+  out.f_virtual = in.f_virtual;
+  return out;
+}
+
+void free_joint_results(const Case& solver_case, Data& d) {
+  const Matrix3& R = d.X0[kFreeJointBodies - 1].R;
+  free_joint_accelerations_to_public(R, solver_case.qd.data(), d.qdd.data());
+  for (Eigen::VectorXd* tau : {&d.constraint_torques, &d.total_torques, &d.joint_torques, &d.virtual_torques,
+                               &d.prescribed_torques})
+    free_joint_torques_to_public(R, tau->data(), tau->data());
+}
+
+}  // namespace achd
