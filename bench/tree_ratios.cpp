@@ -2,6 +2,8 @@
 // timed side by side in one run (interleaved rounds, medians of per-round ratios):
 //   - the quadruped holding its four feet in 3D (m = 12) over its unconstrained solve;
 //   - the dual-arm torso holding both hands in 6D (m = 12) over its unconstrained solve;
+//   - with a floating base: the quadruped on its four feet in 3D and the humanoid (30
+//     joints) on its two soles in 6D (m = 12 each), over their unconstrained solves;
 //   - a random tree of 200 bodies over one of 100, both with four blocks of 3 columns
 //     on their deepest links (cost linear in n at fixed m);
 //   - an unconstrained random tree over a random chain with as many joints.
@@ -91,6 +93,28 @@ int main() {
     const Model m = load_urdf_string(read(robots + "/../" + e["urdf"].get<std::string>()), e["root"], "");
     const Case free = robot_case(m, e, rng), constrained = held(m, free, links, columns);
     lines.push_back({name + " holding " + std::to_string(links.size()) + " links (m = " +
+                         std::to_string(constrained.num_constraints()) + ") / unconstrained",
+                     "<= 2", side_by_side(m, constrained, m, free), 2});
+  }
+
+  // Floating bases (a free joint above the root link): the quadruped on its four feet in 3D
+  // and the humanoid (30 joints, 36 rates) on its two soles in 6D, m = 12 each.
+  for (const auto& [name, links, columns] :
+       std::vector<std::tuple<std::string, std::vector<std::string>, int>>{
+           {"quadruped", {"lf_foot", "rf_foot", "lh_foot", "rh_foot"}, 3},
+           {"humanoid", {"l_sole", "r_sole"}, 6}}) {
+    const nlohmann::json e = entry(name);
+    UrdfOptions options;
+    options.floating = true;
+    const Model m = load_urdf_string(read(robots + "/../" + e["urdf"].get<std::string>()), e["root"], "", options);
+    Case free = test::random_tree_inputs(rng, m);
+    free.gravity = Vector3(0, 0, -9.81);
+    free.q = Eigen::VectorXd::Zero(m.num_positions());
+    free.q[2] = 0.5;  // the root 0.5 m up, upright: [x, y, z, qx, qy, qz, qw]
+    free.q[6] = 1;
+    for (int i = 0; i + 7 < m.num_positions(); ++i) free.q[7 + i] = e["q0"][i].get<double>();
+    const Case constrained = held(m, free, links, columns);
+    lines.push_back({name + ", floating, holding " + std::to_string(links.size()) + " links (m = " +
                          std::to_string(constrained.num_constraints()) + ") / unconstrained",
                      "<= 2", side_by_side(m, constrained, m, free), 2});
   }

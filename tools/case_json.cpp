@@ -71,24 +71,34 @@ std::string no_joint(const Model& model, const std::string& name) {
 
 // Why `name` names no link after the root (the links wrenches and constraint blocks act on).
 std::string no_link(const Model& model, const std::string& name) {
+  if (name == model.root_name && model.floating)
+    return "'" + name + "' is the floating root link, which does not take wrenches or constraint blocks yet "
+           "(use a link fixed to it)";
   if (name == model.root_name) return "'" + name + "' is the root link, which is fixed (nothing acts on the model through it)";
   return "no link '" + name + "'" + (model.has_tip() ? " on the chain" : " below the root link '" + model.root_name + "'");
 }
 
-// A per-joint vector (q, qd, ff_torques): an array of nj numbers in model order, or an
-// object keyed by joint name (joints not named: 0).
-Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Model& model) {
-  const int nj = model.num_joints();
+// A per-joint vector: q (positions = true) or qd, ff_torques: an array in model order
+// (num_positions() or num_joints() numbers), or an object keyed by joint name (joints not
+// named: 0). A floating base's free joint, named after the root link, comes first with 7
+// numbers in q ([x, y, z, qx, qy, qz, qw]) and 6 in the others; keyed by name it is an
+// array of those, and when it is not named, the identity pose at the origin and rest.
+Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Model& model, bool positions = false) {
+  const int n = positions ? model.num_positions() : model.num_joints();
+  const int free = model.floating ? (positions ? 7 : 6) : 0;  // the free joint's numbers
   if (!v.is_object()) {
     if (!v.is_array())
-      throw Error(field + " must be an array of " + std::to_string(nj) + " numbers or an object {joint name: value}");
-    return vector(v, field, nj);
+      throw Error(field + " must be an array of " + std::to_string(n) + " numbers or an object {joint name: value}");
+    return vector(v, field, n);
   }
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(nj);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
+  if (positions && model.floating) out[6] = 1;  // qw: the identity orientation
   for (const auto& item : v.items()) {
     const int i = model.joint_index(item.key());
     if (i < 0) throw Error(field + ": " + no_joint(model, item.key()));
-    out[i] = number(item.value(), field + "['" + item.key() + "']");
+    const std::string where = field + "['" + item.key() + "']";
+    if (model.floating && i == 0) out.head(free) = vector(item.value(), where + " (the floating base)", free);
+    else out[i + (free == 7 ? 1 : 0)] = number(item.value(), where);
   }
   return out;
 }
@@ -190,7 +200,13 @@ void prescribed_joints(const json& v, const Model& model, Case& c) {
     for (const auto& item : v.items()) {
       const int i = model.joint_index(item.key());
       if (i < 0) throw Error("qdd_given: " + no_joint(model, item.key()));
-      c.qdd_given[i] = number(item.value(), "qdd_given['" + item.key() + "']");
+      const std::string where = "qdd_given['" + item.key() + "']";
+      if (model.floating && i == 0) {  // the free joint: [dv/dt; dw/dt], all six prescribed
+        c.qdd_given.head<6>() = vector(item.value(), where + " (the floating base)", 6);
+        for (int k = 0; k < 6; ++k) c.prescribed[k] = true;
+        continue;
+      }
+      c.qdd_given[i] = number(item.value(), where);
       c.prescribed[i] = true;
     }
     return;
@@ -226,7 +242,7 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
     if (!j.contains("q")) throw Error("missing required field 'q'");
     if (!j.contains("gravity")) throw Error("missing required field 'gravity'");
     Case c;
-    c.q = joint_vector(j["q"], "q", model);
+    c.q = joint_vector(j["q"], "q", model, true);
     c.gravity = vector(j["gravity"], "gravity", 3);
     if (j.contains("qd")) c.qd = joint_vector(j["qd"], "qd", model);
     if (j.contains("ff_torques")) c.ff_torques = joint_vector(j["ff_torques"], "ff_torques", model);
@@ -255,8 +271,9 @@ Case parse_case(const std::string& text, const Model& model, const std::string& 
 
 std::string result_json(const Model& model, const Data& d, const Case& c) {
   std::string s = "{\n";
-  s += "  \"joints\": [";
-  for (int i = 0; i < model.num_joints(); ++i) s += (i ? ", " : "") + quoted(model.bodies[i].joint_name);
+  s += "  \"joints\": [";  // a floating base's free joint once (its six entries in qdd)
+  for (int i = 0; i < model.num_joints(); ++i)
+    if (!model.floating || i == 0 || i >= 6) s += (i ? ", " : "") + quoted(model.bodies[i].joint_name);
   s += "],\n  \"links\": [" + quoted(model.root_name);
   for (const Link& l : model.links) s += ", " + quoted(l.name);
   s += "],\n";

@@ -26,7 +26,9 @@ int cmd_bench(int argc, char** argv) {
   std::set<std::string> valued = {"--root", "--tip", "--case", "--iterations", "--repeats", "--against", "--clock"};
   valued.insert(kSolverValued.begin(), kSolverValued.end());
   valued.insert(kUrdfValued.begin(), kUrdfValued.end());
-  const Args args(argc, argv, valued, kSolverFlags);
+  std::set<std::string> flags = kSolverFlags;
+  flags.insert(kUrdfFlags.begin(), kUrdfFlags.end());
+  const Args args(argc, argv, valued, flags);
   if (args.positional().size() != 1) throw Error("bench: expected one URDF file, see `achd help`");
   const Options options = solver_options(args);
   const std::string urdf = args.positional()[0];

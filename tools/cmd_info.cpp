@@ -14,7 +14,7 @@ namespace achd::cli {
 int cmd_info(int argc, char** argv) {
   std::set<std::string> valued = {"--root", "--tip", "--convention"};
   valued.insert(kUrdfValued.begin(), kUrdfValued.end());
-  const Args args(argc, argv, valued, {});
+  const Args args(argc, argv, valued, kUrdfFlags);
   if (args.positional().size() != 1) throw Error("info: expected one URDF file, see `achd help`");
   const std::string convention = args.get("--convention", "physical");
   if (convention != "physical" && convention != "kdl")

@@ -38,8 +38,14 @@ std::string model_info_json(const Model& model, const std::string& urdf_text) {
   ordered_json info;
   info["root"] = model.root_name;
   info["tip"] = model.has_tip() ? ordered_json(model.tip_name) : ordered_json(nullptr);
+  info["floating"] = model.floating;
   info["joints"] = ordered_json::array();
-  for (const Body& b : model.bodies)
+  // A floating base's free joint: one joint of 7 positions and 6 rates (bodies 0 to 5).
+  if (model.floating)
+    info["joints"].push_back({{"name", model.root_name}, {"type", "floating"}, {"parent", nullptr},
+                              {"link", model.root_name}, {"limits", nullptr}});
+  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
+    const Body& b = model.bodies[i];
     info["joints"].push_back({{"name", b.joint_name},
                               {"type", joint_type_name(b.type)},
                               {"parent", body_name(model, b.parent)},
@@ -48,14 +54,21 @@ std::string model_info_json(const Model& model, const std::string& urdf_text) {
                                           {"upper", bound(b.limits.upper)},
                                           {"velocity", b.limits.velocity},
                                           {"effort", b.limits.effort}}}});
+  }
   info["links"] = ordered_json::array();
-  info["links"].push_back({{"name", model.root_name}, {"body", nullptr}, {"mass", mass(model.root_name)}});
+  info["links"].push_back({{"name", model.root_name},
+                           {"body", model.floating ? ordered_json(model.root_name) : ordered_json(nullptr)},
+                           {"mass", mass(model.root_name)}});
   for (const Link& l : model.links)
     info["links"].push_back({{"name", l.name}, {"body", body_name(model, l.body)}, {"mass", mass(l.name)}});
   info["locked_joints"] = ordered_json::array();
   for (const LockedJoint& j : model.locked_joints) info["locked_joints"].push_back({{"name", j.name}, {"value", j.value}});
   info["default_q"] = ordered_json::object();
-  for (const Body& b : model.bodies) info["default_q"][b.joint_name] = std::clamp(0.0, b.limits.lower, b.limits.upper);
+  if (model.floating) info["default_q"][model.root_name] = {0, 0, 0, 0, 0, 0, 1};
+  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
+    const Body& b = model.bodies[i];
+    info["default_q"][b.joint_name] = std::clamp(0.0, b.limits.lower, b.limits.upper);
+  }
   return info.dump(2) + "\n";
 }
 

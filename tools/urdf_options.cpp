@@ -6,6 +6,7 @@
 namespace achd::cli {
 
 const std::set<std::string> kUrdfValued = {"--mimic", "--lock"};
+const std::set<std::string> kUrdfFlags = {"--floating"};
 
 namespace {
 
@@ -30,6 +31,7 @@ UrdfOptions urdf_options(const Args& args) {
   for (const std::string& lock : args.all("--lock")) add_lock(lock, options.locked);
   // KDL's chain holds the links on the root-to-tip path only.
   if (args.get("--convention", "") == "kdl") options.side_branches = SideBranches::Ignore;
+  options.floating = args.has("--floating");
   return options;
 }
 

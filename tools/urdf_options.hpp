@@ -1,7 +1,8 @@
 #pragma once
 // The URDF-loading options of `achd solve`, `achd bench` and `achd info`: --mimic
 // error|independent, --lock JOINT=VALUE (repeatable: a chain's side joint held at VALUE),
-// and --convention kdl, which loads a chain as KDL does (side branches ignored).
+// --floating (a free joint between the world and the root link) and --convention kdl,
+// which loads a chain as KDL does (side branches ignored).
 #include <set>
 #include <string>
 
@@ -12,6 +13,7 @@ namespace achd::cli {
 
 // The option names urdf_options() reads (besides --convention, a solver option).
 extern const std::set<std::string> kUrdfValued;
+extern const std::set<std::string> kUrdfFlags;  // --floating
 
 UrdfOptions urdf_options(const Args& args);
 

@@ -115,6 +115,9 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
       events_(std::make_unique<DirectionEventLog>(kMaxDirectionEvents)),
       implicit_model_(model_),
       limit_data_(model_, kMaxConstraints) {
+  if (model_.floating)
+    throw Error("simulator: the model has a floating base (root link '" + model_.root_name +
+                "'); the simulator steps fixed-base robots only, so far");
   const int n = model_.num_joints();
   q = qd = ff_torques = Eigen::VectorXd::Zero(n);
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);

@@ -276,7 +276,7 @@ TEST_F(CliTrees, TipBlockSolvesAsTheTipConstraint) {
 TEST_F(CliTrees, InfoDescribesAChain) {
   const json i = info(ACHD_SOURCE_DIR "/robots/planar2.urdf", {"--root", "base_link", "--tip", "link2"});
   const json expected = json::parse(R"({
-    "root": "base_link", "tip": "link2",
+    "root": "base_link", "tip": "link2", "floating": false,
     "joints": [
       {"name": "joint1", "type": "revolute", "parent": null, "link": "link1",
        "limits": {"lower": -3.141592653589793, "upper": 3.141592653589793, "velocity": 10.0, "effort": 100.0}},
@@ -430,6 +430,52 @@ TEST_F(CliTrees, BenchTakesWhatSolveTakes) {
   refused({"bench", kKuka, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case", blocks_path, "--against", "kdl"},
           "--against kdl: KDL's solver has no constraint blocks");
   refused({"bench", kTree, "--case", tree_case, "--against", "kdl"}, "--against kdl: KDL's solver takes a chain; give --tip");
+}
+
+// --floating: the free joint first, named after the root link, 7 numbers in q and 6 in
+// qd; by name it may be left out (identity pose at the origin, at rest) or given as
+// arrays; `achd info` reports it as one joint of type "floating"; a free fall from rest
+// accelerates the root with g; a wrong length names the floating base.
+TEST_F(CliTrees, FloatingBase) {
+  const std::string quadruped = ACHD_SOURCE_DIR "/robots/quadruped.urdf";
+  const json model = info(quadruped, {"--floating"});
+  EXPECT_EQ(model["floating"], true);
+  ASSERT_EQ(model["joints"].size(), 13u);
+  EXPECT_EQ(model["joints"][0]["name"], "trunk");
+  EXPECT_EQ(model["joints"][0]["type"], "floating");
+  EXPECT_EQ(model["default_q"]["trunk"], json({0, 0, 0, 0, 0, 0, 1}));
+
+  json by_name = {{"q", {{"lf_kfe", -1.2}}}, {"gravity", {0, 0, -9.81}}};
+  const json named = solve(quadruped, {"--floating"}, by_name);
+  ASSERT_EQ(named["joints"].size(), 13u);
+  EXPECT_EQ(named["joints"][0], "trunk");
+  ASSERT_EQ(named["qdd"].size(), 18u);
+  // at rest, no torques: the trunk falls with g, no joint moves
+  for (int k = 0; k < 18; ++k) EXPECT_NEAR(named["qdd"][k].get<double>(), k == 2 ? -9.81 : 0.0, 1e-12) << k;
+
+  json arrays = by_name;
+  std::vector<double> q(19, 0.0);
+  q[6] = 1;
+  q[7 + 2] = -1.2;  // lf_kfe is the third leg joint
+  arrays["q"] = q;
+  EXPECT_EQ(solve(quadruped, {"--floating"}, arrays)["qdd"], named["qdd"]);
+
+  json moving = by_name;
+  moving["q"]["trunk"] = {0.1, 0.2, 0.3, 0, 0, 0.2588190451, 0.9659258263};
+  moving["qd"] = {{"trunk", {0.1, 0, 0, 0, 0, 1}}};
+  EXPECT_EQ(solve(quadruped, {"--floating"}, moving)["qdd"].size(), 18u);
+
+  json wrong = by_name;
+  wrong["q"]["trunk"] = {0, 0, 0, 1};
+  refused({"solve", quadruped, "--floating", "--case", write("wrong.json", wrong.dump())},
+          "q['trunk'] (the floating base): expected 7 values, got 4");
+  json zero = by_name;
+  zero["q"]["trunk"] = {0, 0, 0, 0, 0, 0, 0};
+  refused({"solve", quadruped, "--floating", "--case", write("zero.json", zero.dump())},
+          "the floating base's orientation quaternion (qx, qy, qz, qw) is zero");
+  const std::string bench = ok("bench", quadruped, {"--floating", "--iterations", "10", "--repeats", "1",
+                                                    "--case", write("bench.json", moving.dump())});
+  EXPECT_NE(bench.find("achd_ns"), std::string::npos);
 }
 
 }  // namespace

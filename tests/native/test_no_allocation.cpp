@@ -177,7 +177,8 @@ TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
 }
 
 // The tree robots of robots/index.json (no tip) with their default held links held in 6D
-// and in 3D, every policy, with driver weights and virtual wrenches.
+// and in 3D, every policy, with driver weights and virtual wrenches, on a fixed and on a
+// floating base.
 TEST(NoAllocation, HybridDynamicsOnTheTreeRobotsHoldingTheirDefaultLinks) {
   std::ifstream in(kRepo + "/robots/index.json");
   ASSERT_TRUE(in) << kRepo;
@@ -185,16 +186,19 @@ TEST(NoAllocation, HybridDynamicsOnTheTreeRobotsHoldingTheirDefaultLinks) {
   std::mt19937 rng(10);
   std::uniform_real_distribution<double> U(-1, 1);
   int solves = 0;
-  for (const auto& r : index["robots"]) {
+  for (const auto& r : index["robots"])
+  for (bool floating : {false, true}) {
     if (r.contains("tip")) continue;
     achd::UrdfOptions options;
     if (r.contains("mimic")) options.mimic = achd::mimic_joints_from_name(r["mimic"], "mimic");
+    options.floating = floating;
     const achd::Model m =
         achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(), r["root"].get<std::string>(), "", options);
     achd::Data d(m);
     const int n = m.num_joints();
-    achd::Case c = achd::Case::zeros(m);
-    for (int i = 0; i < n; ++i) c.q[i] = r["q0"][i].get<double>();
+    achd::Case c = achd::Case::zeros(m);  // a floating base: at the origin, upright
+    const int first = floating ? 7 : 0;   // where the joints' positions start in q
+    for (int i = first; i < c.q.size(); ++i) c.q[i] = r["q0"][i - first].get<double>();
     c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
     c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
     c.f_ext.assign(m.num_links(), achd::Vector6::Zero());
@@ -221,7 +225,8 @@ TEST(NoAllocation, HybridDynamicsOnTheTreeRobotsHoldingTheirDefaultLinks) {
       }
     }
   }
-  EXPECT_EQ(solves, 3 * 2 * 3);  // quadruped, dual-arm torso, Panda with fingers
+  // quadruped, dual-arm torso, Panda with fingers, humanoid; fixed and floating
+  EXPECT_EQ(solves, 4 * 2 * 2 * 3);
 }
 
 TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {

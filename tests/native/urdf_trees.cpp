@@ -373,7 +373,7 @@ TEST(UrdfTrees, ErrorsNameTheLinkOrJoint) {
 // limits, its default held links links of the model.
 TEST(UrdfTrees, IndexTreesLoadWithTheirPosesAndHeldLinks) {
   const std::vector<test::IndexedRobot> trees = test::load_tree_index(ACHD_SOURCE_DIR);
-  ASSERT_EQ(trees.size(), 3u);
+  ASSERT_EQ(trees.size(), 4u);  // quadruped, dual-arm torso, Panda with fingers, humanoid
   for (const test::IndexedRobot& r : trees) {
     SCOPED_TRACE(r.name);
     EXPECT_FALSE(r.model.has_tip());
