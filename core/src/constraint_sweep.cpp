@@ -23,6 +23,8 @@
 #include "constraint_count.hpp"
 #include "constraint_pairs.hpp"
 #include "finite_probe.hpp"
+#include "free_joint.hpp"
+#include "free_joint_constraints.hpp"
 #include "joint_subspace.hpp"
 
 namespace achd {
@@ -103,13 +105,17 @@ void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int 
   ez += model.num_joints() * (s.columns + (s.columns & 1));
 }
 
+// The last body a block's columns pass one axis at a time: the base's child, or with the
+// free-joint step the root's children (free_joint_constraints.cpp takes the free joint).
+inline int last_body(const Data& d) { return d.workspace.free_joint_step ? kFreeJointBodies : 0; }
+
 template <int NC>
 void roll_to_base(const Model& model, Data& d, const ConstraintSource& s) {
   Data::Workspace& w = d.workspace;
   double* column = d.E.col(s.column).data();
   UnitConstraintForces<NC> E(column);
   double* ez = w.ez.data() + s.ez;
-  for (int i = s.body; i >= 0; i = model.bodies[i].parent)
+  for (int i = s.body; i >= last_body(d); i = model.bodies[i].parent)
     E.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
   E.store(column);
 }
@@ -122,7 +128,7 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
   CouplingSums<NC> sums;
   const double* ez = w.ez.data() + s.ez;
   int depth = 0;
-  for (int i = s.body; i >= 0; i = model.bodies[i].parent) w.path[depth++] = i;
+  for (int i = s.body; i >= last_body(d); i = model.bodies[i].parent) w.path[depth++] = i;
   while (depth > 0) {
     const int i = w.path[--depth];
     double known = w.u[i] * w.Dinv[i];
@@ -152,7 +158,7 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
   double probe = 0;
   for (int k = 0; k < s.columns; ++k)
     for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) = 0;
-  for (int i = common_ancestor(model, s.body, t.body); i >= 0; i = model.bodies[i].parent) {
+  for (int i = common_ancestor(model, s.body, t.body); i >= last_body(d); i = model.bodies[i].parent) {
     const double* es = w.ez.data() + s.ez + i * ss;
     const double* et = w.ez.data() + t.ez + i * st;
     for (int k = 0; k < s.columns; ++k) {
@@ -174,7 +180,8 @@ void add_constraint_torques(const Model& model, Data& d, const ConstraintSource&
   const Data::Workspace& w = d.workspace;
   const ConstraintMagnitudes<NC> nu(d.nu.data() + s.column);
   const double* ez = w.ez.data() + s.ez;
-  for (int i = s.body; i >= 0; i = model.bodies[i].parent) d.constraint_torques[i] -= nu.dot(ez + i * ez_stride<NC>());
+  for (int i = s.body; i >= last_body(d); i = model.bodies[i].parent)
+    d.constraint_torques[i] -= nu.dot(ez + i * ez_stride<NC>());
 }
 
 }  // namespace
@@ -195,6 +202,7 @@ int constraint_sources(const Model& model, Data& d, const Case& c) {
 }
 
 double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescribed) {
+  use_free_joint_step(model, d, c);
   const Data::Workspace& w = d.workspace;
   const int m = static_cast<int>(d.E.cols());
   d.K.resize(m, m);
@@ -208,6 +216,7 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
     });
   for (size_t s = 0; s < w.sources.size(); ++s)
     for (size_t t = s + 1; t < w.sources.size(); ++t) probe += mutual_coupling(model, d, w.sources[s], w.sources[t]);
+  if (w.free_joint_step) probe += free_joint_coupling(d);
   return probe;
 }
 
@@ -227,7 +236,7 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
       double r = d.G0[col] - beta[k] * scale;
       if (moving) r += (alpha.col(k) * scale).dot(kappa);
       if (gravity) {
-        r -= d.E.col(col).head<3>().dot(c.gravity);
+        if (!w.free_joint_step) r -= d.E.col(col).head<3>().dot(c.gravity);  // else E_0 = 0
         if (physical) r += (alpha.col(k).head<3>() * scale).dot(c.gravity);
       }
       w.rhs[col] = r;
@@ -239,6 +248,7 @@ void constraint_torques(const Model& model, Data& d) {
   // (the inward sweep has set them to 0)
   for (const ConstraintSource& s : d.workspace.sources)
     with_constraint_count(s.columns, [&](auto n) { add_constraint_torques<decltype(n)::value>(model, d, s); });
+  if (d.workspace.free_joint_step) free_joint_constraint_torques(model, d);
 }
 
 void unscale_constraint_forces(Data& d) {

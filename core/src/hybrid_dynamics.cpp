@@ -324,6 +324,7 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
     solve_coupling(d, o);
   } else {
     d.workspace.sources.clear();
+    d.workspace.free_joint_step = false;
     d.E.resize(6, 0);
     d.rank = 0;
     d.K.resize(0, 0);

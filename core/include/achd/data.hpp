@@ -121,6 +121,9 @@ struct Data {
     // per column: true when alpha_k has a force part (variable_damping's kinds)
     std::array<bool, kMaxConstraintColumns> has_force;
     ConstraintVector rhs;           // K nu' = rhs: E_0^T a_0 + G_0 - beta' (scaled columns)
+    // The last constraint sweep took a floating base's free joint in one 6-DoF step
+    // (free_joint_constraints.hpp): d.E then holds the columns at the root, E_0 being 0.
+    bool free_joint_step = false;
     // A floating base's case with the free joint's qd, ff_torques and qdd_given in the
     // solver's coordinates (free_joint.hpp), storage reserved by the constructor.
     Case free_case;
