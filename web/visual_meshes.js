@@ -1,0 +1,101 @@
+// three.js objects for a URDF's visuals (web/urdf_visuals.js): boxes, cylinders and
+// spheres at once, meshes once their file is read and parsed by the loaders that ship
+// with three (STL, COLLADA, OBJ). Each object sits at its visual's origin in the link
+// frame: p_link = T(xyz) R(rpy) S(scale) p_mesh, with R(rpy) = Rz(yaw) Ry(pitch) Rx(roll)
+// (URDF's fixed-axis roll, pitch, yaw).
+import * as THREE from 'three';
+import { ColladaLoader } from 'three/addons/loaders/ColladaLoader.js';
+import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
+import { STLLoader } from 'three/addons/loaders/STLLoader.js';
+
+const DEFAULT_COLOR = [0.72, 0.75, 0.79, 1];
+const FORMATS = ['stl', 'dae', 'obj'];
+
+// -> {object: THREE.Group at the visual's origin, load: null for a primitive, or
+//     async (files) => {filename, status: 'loaded' | 'missing' | 'failed', message}}
+// files: PickedFiles or ServedFiles (web/mesh_files.js).
+export function visualObject(visual) {
+  const object = new THREE.Group();
+  object.position.fromArray(visual.xyz);
+  object.quaternion.setFromEuler(new THREE.Euler(visual.rpy[0], visual.rpy[1], visual.rpy[2], 'ZYX'));
+  const g = visual.geometry;
+  if (g.type !== 'mesh') {
+    object.add(new THREE.Mesh(primitiveGeometry(g), material(visual.color)));
+    return { object, load: null };
+  }
+  object.scale.fromArray(g.scale);
+  const load = async (files) => {
+    const result = { filename: g.filename, status: 'loaded', message: '' };
+    const format = FORMATS.find((f) => g.filename.toLowerCase().endsWith(`.${f}`));
+    if (!format) return { ...result, status: 'failed', message: 'not STL, DAE or OBJ' };
+    let bytes;
+    try {
+      bytes = await files.read(g.filename);
+    } catch (err) {
+      return { ...result, status: 'failed', message: err.message };
+    }
+    if (!bytes) return { ...result, status: 'missing' };
+    try {
+      object.add(parseMesh(format, bytes, visual.color));
+    } catch (err) {
+      return { ...result, status: 'failed', message: `not a readable ${format.toUpperCase()} file (${err.message})` };
+    }
+    return result;
+  };
+  return { object, load };
+}
+
+function primitiveGeometry(g) {
+  switch (g.type) {
+    case 'box':
+      return new THREE.BoxGeometry(...g.size);
+    case 'sphere':
+      return new THREE.SphereGeometry(g.radius, 24, 16);
+    case 'cylinder':
+      // URDF's cylinder is along z, three's along y.
+      return new THREE.CylinderGeometry(g.radius, g.radius, g.length, 28).rotateX(Math.PI / 2);
+    default:
+      throw new Error(`no primitive ${g.type}`);
+  }
+}
+
+function material(color) {
+  const [r, g, b, a] = color ?? DEFAULT_COLOR;
+  return new THREE.MeshStandardMaterial({
+    color: new THREE.Color().setRGB(r, g, b, THREE.SRGBColorSpace),
+    roughness: 0.55,
+    metalness: 0.1,
+    transparent: a < 1,
+    opacity: a,
+  });
+}
+
+// A mesh file's contents as an Object3D in its own coordinates. A URDF color replaces the
+// file's materials; without one an STL or OBJ gets the default grey, a COLLADA file keeps
+// its own. COLLADA's up axis is not applied (URDF tools read a mesh's vertices in the link
+// frame), its unit is.
+function parseMesh(format, bytes, color) {
+  if (format === 'stl') {
+    const geometry = new STLLoader().parse(bytes);
+    if (!geometry.getAttribute('position')?.count) throw new Error('no triangles');
+    return new THREE.Mesh(geometry, material(color));
+  }
+  const text = new TextDecoder().decode(bytes);
+  let object;
+  if (format === 'dae') {
+    const collada = new ColladaLoader().parse(text, '');
+    if (!collada) throw new Error('no COLLADA document');
+    object = collada.scene;
+    object.rotation.set(0, 0, 0);
+  } else {
+    object = new OBJLoader().parse(text);
+  }
+  let triangles = 0;
+  object.traverse((o) => {
+    if (!o.isMesh) return;
+    triangles += o.geometry.getAttribute('position')?.count ?? 0;
+    if (color || format === 'obj') o.material = material(color);
+  });
+  if (!triangles) throw new Error('no triangles');
+  return object;
+}
