@@ -175,7 +175,6 @@ export class ChainView {
     }
 
     this.glyphs.group.scale.setScalar(radius * 8);
-    this.grid.scale.setScalar(Math.max(reach, 0.5) / 2);
     this.update(links, {}, null);
     this.frameCamera();
     return this.loadMeshes(loads, look?.files, generation);
@@ -194,23 +193,32 @@ export class ChainView {
     return outcomes.map(({ fk, ...o }) => o);
   }
 
-  // Aims the camera at the box around what is shown of the robot, from the front right
-  // and above, at the distance where the box's bounding sphere fills the view.
+  // Aims the camera, from the front right and above, at the sphere a freely swinging
+  // robot stays in: around the root (a little above or below it, toward the robot's
+  // middle), of the largest distance from the root to a corner of the box around what is
+  // shown of the robot.
   frameCamera() {
     this.robotGroup.updateMatrixWorld(true);
     const box = visibleBox(this.robotGroup);
     if (box.isEmpty()) box.setFromCenterAndSize(new THREE.Vector3(), new THREE.Vector3(0.2, 0.2, 0.2));
-    const sphere = box.getBoundingSphere(new THREE.Sphere());
-    const r = Math.max(sphere.radius, 0.05);
+    let reach = 0.05;
+    for (const x of [box.min.x, box.max.x]) {
+      for (const y of [box.min.y, box.max.y]) {
+        for (const z of [box.min.z, box.max.z]) reach = Math.max(reach, Math.hypot(x, y, z));
+      }
+    }
+    const middle = box.getCenter(new THREE.Vector3()).z;
+    const target = new THREE.Vector3(0, 0, THREE.MathUtils.clamp(middle, -0.25 * reach, 0.25 * reach));
     const halfFov = THREE.MathUtils.degToRad(this.camera.fov / 2);
     const halfAngle = Math.min(halfFov, Math.atan(Math.tan(halfFov) * this.camera.aspect));
-    const distance = (1.1 * r) / Math.sin(halfAngle);
-    this.controls.target.copy(sphere.center);
-    this.camera.position.copy(sphere.center).add(new THREE.Vector3(0.55, -0.75, 0.37).normalize().multiplyScalar(distance));
+    const distance = (0.85 * reach) / Math.sin(halfAngle);
+    this.controls.target.copy(target);
+    this.camera.position.copy(target).add(new THREE.Vector3(0.55, -0.75, 0.37).normalize().multiplyScalar(distance));
     this.camera.near = distance / 100;
     this.camera.far = distance * 50;
     this.camera.updateProjectionMatrix();
     this.controls.update();
+    this.grid.scale.setScalar(Math.max(reach, 0.25) / 2);
   }
 
   // One glyph group per direction, in a unit frame at the tip, scaled with the robot.

@@ -1,0 +1,179 @@
+// The robot as it looks, in Chromium: tests/fixtures/mesh_robot/ (an STL in millimetres
+// named by package://, a COLLADA file in centimetres named by a relative path) loaded
+// through the folder picker shows both meshes where the URDF puts them: the coloured
+// pixels' bounding box on the canvas is the box of the meshes' corners projected by the
+// page's camera at the link poses achd's forward kinematics gives (in Node, apart from
+// the page), and not the stick figure's. A URDF whose meshes are missing loads with a note
+// naming them; a broken URDF is explained while the robot keeps stepping.
+import assert from 'node:assert/strict';
+import { readFile } from 'node:fs/promises';
+import test from 'node:test';
+import { fileURLToPath } from 'node:url';
+import { files as fixtureFiles, MESH_FILES, urdf, VISUALS } from '../fixtures/make_mesh_robot.mjs';
+import { loadAchd } from '../node/helpers.mjs';
+import { openPage } from './launch.mjs';
+
+const FOLDER = new URL('../fixtures/mesh_robot/', import.meta.url);
+// Rasterising puts a pixel's centre inside a triangle: the drawn box is within a pixel of
+// the projected one; antialiased edge pixels, too pale to count, take one more.
+const PIXELS = 2;
+
+const achd = await loadAchd();
+const state = (page) => page.evaluate(() => window.achdDemo.state());
+
+// Loads files given to an <input> and submits the chain form with its preselected chain.
+async function loadThrough(page, input, files) {
+  await page.locator(input).setInputFiles(files);
+  await page.locator('#urdf-chain').waitFor({ state: 'visible' });
+  await page.locator('#urdf-chain button[type=submit]').click();
+  await page.waitForFunction(() => {
+    const s = window.achdDemo.state();
+    return s.robot === 'custom' && s.look.meshes !== null;
+  });
+}
+
+// p_world = T_link (T(xyz) R(rpy) (scale p_file)), R(rpy) = Rz(y) Ry(p) Rx(r).
+function visualToWorld(visual, link, p) {
+  const [r, pi, y] = visual.rpy;
+  const [cr, sr, cp, sp, cy, sy] = [Math.cos(r), Math.sin(r), Math.cos(pi), Math.sin(pi), Math.cos(y), Math.sin(y)];
+  const R = [
+    [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+    [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+    [-sp, cp * sr, cp * cr],
+  ];
+  const s = p.map((v) => v * visual.scale);
+  const inLink = R.map((row, i) => row[0] * s[0] + row[1] * s[1] + row[2] * s[2] + visual.xyz[i]);
+  const L = link.rotation;
+  return [0, 1, 2].map((i) => L[3 * i] * inLink[0] + L[3 * i + 1] * inLink[1] + L[3 * i + 2] * inLink[2] + link.position[i]);
+}
+
+// A world point to CSS pixels on the page, with three's column-major matrices.
+function project(camera, p) {
+  const mul = (m, v) => [0, 1, 2, 3].map((i) => m[i] * v[0] + m[4 + i] * v[1] + m[8 + i] * v[2] + m[12 + i] * v[3]);
+  const clip = mul(camera.projection, mul(camera.worldInverse, [...p, 1]));
+  const { left, top, width, height } = camera.rect;
+  return [left + ((clip[0] / clip[3] + 1) / 2) * width, top + ((1 - clip[1] / clip[3]) / 2) * height];
+}
+
+function boxOf(points) {
+  const xs = points.map((p) => p[0]);
+  const ys = points.map((p) => p[1]);
+  return { left: Math.min(...xs), right: Math.max(...xs), top: Math.min(...ys), bottom: Math.max(...ys) };
+}
+
+// The box (CSS pixels) of the canvas pixels in the meshes' colours: the arm's magenta
+// (URDF material) and the hand's yellow (the COLLADA file's own); lighting changes their
+// brightness, not their hue. Grey base, grid and the tip axes' red, green and blue are out.
+function meshPixelsBox() {
+  const canvas = document.querySelector('#view canvas');
+  const copy = document.createElement('canvas');
+  copy.width = canvas.width;
+  copy.height = canvas.height;
+  const ctx = copy.getContext('2d');
+  ctx.drawImage(canvas, 0, 0);
+  const { data } = ctx.getImageData(0, 0, copy.width, copy.height);
+  const rect = canvas.getBoundingClientRect();
+  const box = { left: Infinity, right: -Infinity, top: Infinity, bottom: -Infinity, count: 0 };
+  for (let j = 0; j < copy.height; j++) {
+    for (let i = 0; i < copy.width; i++) {
+      const k = 4 * (j * copy.width + i);
+      const [r, g, b] = [data[k], data[k + 1], data[k + 2]];
+      const max = Math.max(r, g, b);
+      const min = Math.min(r, g, b);
+      if (max < 40 || (max - min) / max < 0.45) continue;
+      let hue = max === r ? (60 * (g - b)) / (max - min) : max === g ? 120 + (60 * (b - r)) / (max - min) : 240 + (60 * (r - g)) / (max - min);
+      if (hue < 0) hue += 360;
+      if (!((hue > 285 && hue < 335) || (hue > 35 && hue < 65))) continue;
+      const x = rect.left + ((i + 0.5) * rect.width) / copy.width;
+      const y = rect.top + ((j + 0.5) * rect.height) / copy.height;
+      box.left = Math.min(box.left, x);
+      box.right = Math.max(box.right, x);
+      box.top = Math.min(box.top, y);
+      box.bottom = Math.max(box.bottom, y);
+      box.count++;
+    }
+  }
+  return box;
+}
+
+test('the robot as it looks: meshes from a folder', async (t) => {
+  const session = await openPage();
+  const { page, consoleErrors } = session;
+  try {
+    await t.test('the fixture on disk is what tests/fixtures/make_mesh_robot.mjs writes', async () => {
+      for (const [path, contents] of Object.entries(fixtureFiles())) {
+        assert.deepEqual(await readFile(new URL(path, FOLDER)), Buffer.from(contents), path);
+      }
+    });
+
+    await t.test('the folder picker loads the robot and every mesh', async () => {
+      await loadThrough(page, '#urdf-folder', fileURLToPath(FOLDER));
+      const s = await state(page);
+      assert.deepEqual(s.look.meshes.map((m) => [m.filename, m.link, m.status]),
+        [[MESH_FILES[0], 'arm', 'loaded'], [MESH_FILES[1], 'hand', 'loaded']]);
+      assert.deepEqual(s.look.problems, []);
+      assert.ok(await page.locator('#view-note').isHidden(), 'a note shows though every mesh loaded');
+    });
+
+    await t.test('the drawn meshes cover their projected corners, not the stick figure', async () => {
+      await page.evaluate(() => window.achdDemo.pause());
+      await page.waitForTimeout(300);  // frames render the paused pose
+      const { q, camera, drawn } = await page.evaluate((fn) => {
+        // eslint-disable-next-line no-new-func
+        const pixels = new Function(`return (${fn})()`);
+        return { q: window.achdDemo.state().q, camera: window.achdDemo.camera(), drawn: pixels() };
+      }, meshPixelsBox.toString());
+      const robot = achd.loadURDF(urdf(), { root: 'base', tip: 'hand' });
+      const links = Object.fromEntries(robot.forwardKinematics(q).map((l) => [l.name, l]));
+      const base = { position: [0, 0, 0], rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1] };
+      robot.delete();
+      const corners = VISUALS.flatMap((v) => v.vertices.map((p) => project(camera, visualToWorld(v, links[v.link], p))));
+      const expected = boxOf(corners);
+      console.log(`# drawn ${JSON.stringify(drawn)}\n# projected ${JSON.stringify(expected)}`);
+      assert.ok(drawn.count > 500, `${drawn.count} mesh pixels`);
+      for (const side of ['left', 'right', 'top', 'bottom']) {
+        assert.ok(Math.abs(drawn[side] - expected[side]) <= PIXELS, `${side}: drawn ${drawn[side]}, projected ${expected[side]}`);
+      }
+      // The stick figure runs through the link origins: its box is far from the meshes'.
+      const stick = boxOf([base, links.arm, links.hand].map((l) => project(camera, l.position)));
+      const apart = Math.max(...['left', 'right', 'top', 'bottom'].map((side) => Math.abs(stick[side] - expected[side])));
+      assert.ok(apart > 20 * PIXELS, `the stick figure's box is within ${apart} px of the meshes'`);
+      await page.evaluate(() => window.achdDemo.play());
+    });
+
+    await t.test('a URDF whose meshes are missing loads with a note naming them', async () => {
+      await loadThrough(page, '#urdf-file', { name: 'mesh_robot.urdf', mimeType: 'application/xml', buffer: Buffer.from(urdf()) });
+      const s = await state(page);
+      assert.deepEqual(s.look.meshes.map((m) => m.status), ['missing', 'missing']);
+      const note = await page.locator('#view-note').textContent();
+      assert.ok(await page.locator('#view-note').isVisible());
+      for (const file of MESH_FILES) assert.ok(note.includes(file), `note "${note}" does not name ${file}`);
+      assert.match(note, /stick figure/);
+      const t0 = s.t;
+      await page.waitForTimeout(300);
+      assert.ok((await state(page)).t > t0, 'the robot with missing meshes does not step');
+    });
+
+    await t.test('a broken URDF is explained while the robot keeps stepping', async () => {
+      const before = await state(page);
+      await page.locator('#urdf-file').setInputFiles({
+        name: 'broken.urdf', mimeType: 'application/xml', buffer: Buffer.from('<robot name="broken"><link name="a">'),
+      });
+      await page.locator('#page-error').waitFor({ state: 'visible' });
+      const message = await page.locator('#page-error-text').textContent();
+      assert.match(message, /broken\.urdf: not a URDF file/);
+      await page.waitForTimeout(300);
+      const after = await state(page);
+      assert.equal(after.robot, before.robot);
+      assert.ok(after.t > before.t, 'the robot stopped stepping');
+      // The robot's own note stays: its meshes are still missing.
+      assert.ok(await page.locator('#view-note').isVisible());
+    });
+
+    await t.test('no console errors', () => {
+      assert.deepEqual(consoleErrors, []);
+    });
+  } finally {
+    await session.close();
+  }
+});
