@@ -10,6 +10,7 @@
 import { ChainView } from './chain_view.js';
 import { Controls } from './controls.js';
 import { EventsNotice } from './events_notice.js';
+import { JointSliders } from './joint_sliders.js';
 import { LinkHover } from './link_hover.js';
 import { ServedFiles } from './mesh_files.js';
 import { moduleOffer } from './module_offer.js';
@@ -106,6 +107,11 @@ window.achdDemo = {
     if (!page.sim) throw new Error('achdDemo.step: no robot loaded yet (await achdDemo.ready)');
     stepSimulation(n);
   },
+  // Puts the robot at rest at q (an array in joint order), paused, as the sliders do.
+  setPose(q) {
+    if (!page.sim) throw new Error('achdDemo.setPose: no robot loaded yet (await achdDemo.ready)');
+    setPose(Array.from(q));
+  },
   async loadURDF(text, root, tip) {
     await ready;
     loadRobot({ name: CUSTOM, text: String(text), root, tip });
@@ -151,6 +157,16 @@ const controls = new Controls({
 });
 new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name);
 const viewNote = document.getElementById('view-note');
+const sliders = new JointSliders(document.getElementById('joint-sliders'), document.getElementById('btn-start-pose'), {
+  onPose: (q) => {
+    try {
+      setPose(q);
+    } catch (err) {
+      showError(`could not set the pose: ${err.message}`);
+    }
+  },
+  startPose: () => page.sim?.q0,
+});
 const upload = new UrdfUpload({
   onLoad: (text, root, tip, fileName, files) => {
     try {
@@ -179,6 +195,15 @@ function setDirection(name, mode) {
   controls.showLost(notice.lost);
   controls.show(page.settings, page.playing);
   writeHash();
+}
+
+// The robot at rest at q, paused (the sliders, "Start pose"); time, events and plots go on.
+function setPose(q) {
+  setPlaying(false);
+  push.release();
+  page.sim.setPose(q);
+  page.links = page.sim.links();
+  sliders.show(page.sim.q);
 }
 
 // Back to the start pose, toggles kept (a held direction holds where the tip is then);
@@ -256,6 +281,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   page.lastSolveTiming = -Infinity;
   page.rate = { wall: 0, sim: 0, shown: null };
   showLook(sim, source);
+  sliders.setRobot(sim.robot, sim.q);
   if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
     robotSelect.add(new Option(`own URDF`, CUSTOM));
   }
@@ -402,6 +428,7 @@ function frame() {
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
       page.lastNumbers = now;
       readouts.showNumbers();
+      sliders.show(sim.q);
       document.getElementById('readout-time').textContent = `t = ${sim.t.toFixed(2)} s`;
       document.getElementById('readout-rtf').textContent = !page.playing ? 'paused'
         : page.rate.shown === null ? '' : `running at ${page.rate.shown.toFixed(2)}× real time`;
