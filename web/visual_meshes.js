@@ -13,7 +13,8 @@ const FORMATS = ['stl', 'dae', 'obj'];
 
 // -> {object: THREE.Group at the visual's origin, load: null for a primitive, or
 //     async (files) => {filename, status: 'loaded' | 'missing' | 'failed', message}}
-// files: PickedFiles or ServedFiles (web/mesh_files.js).
+// files: PickedFiles or ServedFiles (web/mesh_files.js); without files (a URDF given as
+// text alone) every mesh is missing.
 export function visualObject(visual) {
   const object = new THREE.Group();
   object.position.fromArray(visual.xyz);
@@ -30,7 +31,7 @@ export function visualObject(visual) {
     if (!format) return { ...result, status: 'failed', message: 'not STL, DAE or OBJ' };
     let bytes;
     try {
-      bytes = await files.read(g.filename);
+      bytes = files ? await files.read(g.filename) : null;
     } catch (err) {
       return { ...result, status: 'failed', message: err.message };
     }

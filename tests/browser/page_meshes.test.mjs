@@ -4,7 +4,8 @@
 // pixels' bounding box on the canvas is the box of the meshes' corners projected by the
 // page's camera at the link poses achd's forward kinematics gives (in Node, apart from
 // the page), and not the stick figure's. A URDF whose meshes are missing loads with a note
-// naming them; a broken URDF is explained while the robot keeps stepping.
+// naming them; a broken URDF is explained while the robot keeps stepping; an OBJ mesh
+// picked with its URDF loads, and a visual that cannot be read is named.
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import test from 'node:test';
@@ -26,6 +27,8 @@ async function loadThrough(page, input, files) {
   await page.locator(input).setInputFiles(files);
   await page.locator('#urdf-chain').waitFor({ state: 'visible' });
   await page.locator('#urdf-chain button[type=submit]').click();
+  // The form hides once the robot is in (its meshes then start loading).
+  await page.locator('#urdf-chain').waitFor({ state: 'hidden' });
   await page.waitForFunction(() => {
     const s = window.achdDemo.state();
     return s.robot === 'custom' && s.look.meshes !== null;
@@ -168,6 +171,33 @@ test('the robot as it looks: meshes from a folder', async (t) => {
       assert.ok(after.t > before.t, 'the robot stopped stepping');
       // The robot's own note stays: its meshes are still missing.
       assert.ok(await page.locator('#view-note').isVisible());
+    });
+
+    await t.test('a URDF picked with its OBJ file: the mesh loads; a visual that cannot be read is named', async () => {
+      // A unit cube, 8 corners and 12 triangles, written here.
+      const obj = ['v 0 0 0', 'v 1 0 0', 'v 1 1 0', 'v 0 1 0', 'v 0 0 1', 'v 1 0 1', 'v 1 1 1', 'v 0 1 1',
+        'f 1 3 2', 'f 1 4 3', 'f 5 6 7', 'f 5 7 8', 'f 1 2 6', 'f 1 6 5', 'f 2 3 7', 'f 2 7 6',
+        'f 3 4 8', 'f 3 8 7', 'f 4 1 5', 'f 4 5 8', ''].join('\n');
+      const text = `<robot name="cube">
+  <link name="base"><visual><geometry><sphere radius="0.05"/></geometry></visual></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <link name="arm">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><geometry><mesh filename="package://cube/meshes/cube.obj" scale="0.1 0.1 0.3"/></geometry></visual>
+    <visual><geometry><cylinder radius="-0.02" length="0.1"/></geometry></visual>
+    <visual><origin xyz="0 0 0.3"/><geometry><cylinder radius="0.02" length="0.1"/></geometry></visual>
+  </link>
+</robot>`;
+      await loadThrough(page, '#urdf-file', [
+        { name: 'cube.urdf', mimeType: 'application/xml', buffer: Buffer.from(text) },
+        { name: 'cube.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) },
+      ]);
+      const s = await state(page);
+      assert.deepEqual(s.look.meshes.map((m) => [m.filename, m.status]), [['package://cube/meshes/cube.obj', 'loaded']]);
+      // urdfdom takes a negative radius; the page leaves that visual out and says so.
+      assert.deepEqual(s.look.problems, ['link "arm", visual 2: cylinder radius "-0.02" is not a positive number']);
+      assert.match(await page.locator('#view-note').textContent(), /Visual left out: link "arm", visual 2: cylinder radius/);
     });
 
     await t.test('no console errors', () => {
