@@ -2,7 +2,7 @@
 // <visual> elements (box, cylinder, sphere, or a mesh file with a scale), each with its
 // origin in the link frame and its colour (a <material> given inline or by name at the
 // robot's top level), and every joint's origin and axis, which place the links that
-// forward kinematics does not list (a chain's side links). achd ignores <visual>; a visual
+// forward kinematics does not list (a chain's side links). achd does not use <visual>; a visual
 // that cannot be read is left out and named in `problems`, the robot still loads.
 
 // -> {visuals: Map<link name, Visual[]>, joints: Map<child link, Joint>, problems: string[]}
