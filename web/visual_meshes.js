@@ -4,12 +4,15 @@
 // frame: p_link = T(xyz) R(rpy) S(scale) p_mesh, with R(rpy) = Rz(yaw) Ry(pitch) Rx(roll)
 // (URDF's fixed-axis roll, pitch, yaw).
 import * as THREE from 'three';
-import { ColladaLoader } from 'three/addons/loaders/ColladaLoader.js';
-import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
-import { STLLoader } from 'three/addons/loaders/STLLoader.js';
+
+// Imported when a mesh of that format is first read: a robot of solids starts without them.
+const LOADERS = {
+  stl: async () => (await import('three/addons/loaders/STLLoader.js')).STLLoader,
+  dae: async () => (await import('three/addons/loaders/ColladaLoader.js')).ColladaLoader,
+  obj: async () => (await import('three/addons/loaders/OBJLoader.js')).OBJLoader,
+};
 
 const DEFAULT_COLOR = [0.72, 0.75, 0.79, 1];
-const FORMATS = ['stl', 'dae', 'obj'];
 
 // -> {object: THREE.Group at the visual's origin, load: null for a primitive, or
 //     async (files) => {filename, status: 'loaded' | 'missing' | 'failed', message}}
@@ -27,7 +30,7 @@ export function visualObject(visual) {
   object.scale.fromArray(g.scale);
   const load = async (files) => {
     const result = { filename: g.filename, status: 'loaded', message: '' };
-    const format = FORMATS.find((f) => g.filename.toLowerCase().endsWith(`.${f}`));
+    const format = Object.keys(LOADERS).find((f) => g.filename.toLowerCase().endsWith(`.${f}`));
     if (!format) return { ...result, status: 'failed', message: 'not STL, DAE or OBJ' };
     let bytes;
     try {
@@ -36,8 +39,9 @@ export function visualObject(visual) {
       return { ...result, status: 'failed', message: err.message };
     }
     if (!bytes) return { ...result, status: 'missing' };
+    const Loader = await LOADERS[format]();
     try {
-      object.add(parseMesh(format, bytes, visual.color));
+      object.add(parseMesh(new Loader(), format, bytes, visual.color));
     } catch (err) {
       return { ...result, status: 'failed', message: `not a readable ${format.toUpperCase()} file (${err.message})` };
     }
@@ -75,21 +79,21 @@ function material(color) {
 // file's materials; without one an STL or OBJ gets the default grey, a COLLADA file keeps
 // its own. COLLADA's up axis is not applied (URDF tools read a mesh's vertices in the link
 // frame), its unit is.
-function parseMesh(format, bytes, color) {
+function parseMesh(loader, format, bytes, color) {
   if (format === 'stl') {
-    const geometry = new STLLoader().parse(bytes);
+    const geometry = loader.parse(bytes);
     if (!geometry.getAttribute('position')?.count) throw new Error('no triangles');
     return new THREE.Mesh(geometry, material(color));
   }
   const text = new TextDecoder().decode(bytes);
   let object;
   if (format === 'dae') {
-    const collada = new ColladaLoader().parse(text, '');
+    const collada = loader.parse(text, '');
     if (!collada) throw new Error('no COLLADA document');
     object = collada.scene;
     object.rotation.set(0, 0, 0);
   } else {
-    object = new OBJLoader().parse(text);
+    object = loader.parse(text);
   }
   let triangles = 0;
   object.traverse((o) => {

@@ -5,7 +5,8 @@
 // page's camera at the link poses achd's forward kinematics gives (in Node, apart from
 // the page), and not the stick figure's. A URDF whose meshes are missing loads with a note
 // naming them; a broken URDF is explained while the robot keeps stepping; an OBJ mesh
-// picked with its URDF loads, and a visual that cannot be read is named.
+// picked with its URDF loads, and a visual that cannot be read is named; the fixture's
+// files dropped loose on the page load with their meshes.
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import test from 'node:test';
@@ -198,6 +199,26 @@ test('the robot as it looks: meshes from a folder', async (t) => {
       // urdfdom takes a negative radius; the page leaves that visual out and says so.
       assert.deepEqual(s.look.problems, ['link "arm", visual 2: cylinder radius "-0.02" is not a positive number']);
       assert.match(await page.locator('#view-note').textContent(), /Visual left out: link "arm", visual 2: cylinder radius/);
+    });
+
+    await t.test('the URDF and its meshes dropped together as loose files: the meshes resolve by name', async () => {
+      const loose = Object.entries(fixtureFiles())
+        .filter(([path]) => path !== 'package.xml')
+        .map(([path, contents]) => [path.split('/').pop(), Buffer.from(contents).toString('base64')]);
+      await page.evaluate((files) => {
+        const drop = new DataTransfer();
+        for (const [name, base64] of files) {
+          drop.items.add(new File([Uint8Array.from(atob(base64), (c) => c.charCodeAt(0))], name));
+        }
+        document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: drop, bubbles: true, cancelable: true }));
+      }, loose);
+      await page.locator('#urdf-chain').waitFor({ state: 'visible' });
+      await page.locator('#urdf-chain button[type=submit]').click();
+      await page.locator('#urdf-chain').waitFor({ state: 'hidden' });
+      await page.waitForFunction(() => window.achdDemo.state().look.meshes !== null);
+      const s = await state(page);
+      assert.deepEqual(s.look.meshes.map((m) => [m.filename, m.status]), [[MESH_FILES[0], 'loaded'], [MESH_FILES[1], 'loaded']]);
+      assert.ok(await page.locator('#view-note').isHidden());
     });
 
     await t.test('no console errors', () => {
