@@ -122,11 +122,8 @@ test('the robot as it looks: meshes from a folder', async (t) => {
     await t.test('the drawn meshes cover their projected corners, not the stick figure', async () => {
       await page.evaluate(() => window.achdDemo.pause());
       await page.waitForTimeout(300);  // frames render the paused pose
-      const { q, camera, drawn } = await page.evaluate((fn) => {
-        // eslint-disable-next-line no-new-func
-        const pixels = new Function(`return (${fn})()`);
-        return { q: window.achdDemo.state().q, camera: window.achdDemo.camera(), drawn: pixels() };
-      }, meshPixelsBox.toString());
+      const drawn = await page.evaluate(meshPixelsBox);
+      const { q, camera } = await page.evaluate(() => ({ q: window.achdDemo.state().q, camera: window.achdDemo.camera() }));
       const robot = achd.loadURDF(urdf(), { root: 'base', tip: 'hand' });
       const links = Object.fromEntries(robot.forwardKinematics(q).map((l) => [l.name, l]));
       const base = { position: [0, 0, 0], rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1] };
