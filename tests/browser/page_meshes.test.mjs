@@ -11,7 +11,7 @@ import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import test from 'node:test';
 import { fileURLToPath } from 'node:url';
-import { files as fixtureFiles, MESH_FILES, urdf, VISUALS } from '../fixtures/make_mesh_robot.mjs';
+import { ELBOW_XYZ, files as fixtureFiles, MESH_FILES, urdf, VISUALS } from '../fixtures/make_mesh_robot.mjs';
 import { loadAchd } from '../node/helpers.mjs';
 import { openPage } from './launch.mjs';
 
@@ -23,10 +23,12 @@ const PIXELS = 2;
 const achd = await loadAchd();
 const state = (page) => page.evaluate(() => window.achdDemo.state());
 
-// Loads files given to an <input> and submits the chain form with its preselected chain.
-async function loadThrough(page, input, files) {
+// Loads files given to an <input> and submits the chain form with its preselected chain
+// (or the tip given).
+async function loadThrough(page, input, files, tip) {
   await page.locator(input).setInputFiles(files);
   await page.locator('#urdf-chain').waitFor({ state: 'visible' });
+  if (tip) await page.locator('#urdf-tip').selectOption(tip);
   await page.locator('#urdf-chain button[type=submit]').click();
   // The form hides once the robot is in (its meshes then start loading).
   await page.locator('#urdf-chain').waitFor({ state: 'hidden' });
@@ -100,6 +102,40 @@ function meshPixelsBox() {
   return box;
 }
 
+const SIDES = ['left', 'right', 'top', 'bottom'];
+
+// Pauses the page and checks the box of the mesh pixels drawn against the meshes' corners
+// projected at the poses achd gives the chain base -> tip; a hand beyond the tip is placed
+// on the arm through the elbow at its locked value.
+async function drawnAndProjected(page, tip) {
+  await page.evaluate(() => window.achdDemo.pause());
+  await page.waitForTimeout(300);  // frames render the paused pose
+  const drawn = await page.evaluate(meshPixelsBox);
+  const { q, camera } = await page.evaluate(() => ({ q: window.achdDemo.state().q, camera: window.achdDemo.camera() }));
+  const robot = achd.loadURDF(urdf(), { root: 'base', tip });
+  const links = Object.fromEntries(robot.forwardKinematics(q).map((l) => [l.name, l]));
+  const locked = robot.lockedJoints;
+  robot.delete();
+  if (!links.hand) {
+    assert.deepEqual(locked.map((j) => j.name), ['elbow']);
+    const [c, s] = [Math.cos(locked[0].value), Math.sin(locked[0].value)];
+    const R = links.arm.rotation;
+    const Ry = [c, 0, s, 0, 1, 0, -s, 0, c];
+    links.hand = {
+      position: [0, 1, 2].map((i) => links.arm.position[i] + R[3 * i] * ELBOW_XYZ[0] + R[3 * i + 1] * ELBOW_XYZ[1] + R[3 * i + 2] * ELBOW_XYZ[2]),
+      rotation: [0, 1, 2].flatMap((i) => [0, 1, 2].map((k) => R[3 * i] * Ry[k] + R[3 * i + 1] * Ry[3 + k] + R[3 * i + 2] * Ry[6 + k])),
+    };
+  }
+  const corners = VISUALS.flatMap((v) => v.vertices.map((p) => project(camera, visualToWorld(v, links[v.link], p))));
+  const expected = boxOf(corners);
+  console.log(`# tip ${tip}: drawn ${JSON.stringify(drawn)}\n# projected ${JSON.stringify(expected)}`);
+  assert.ok(drawn.count > 500, `${drawn.count} mesh pixels`);
+  for (const side of SIDES) {
+    assert.ok(Math.abs(drawn[side] - expected[side]) <= PIXELS, `${side}: drawn ${drawn[side]}, projected ${expected[side]}`);
+  }
+  return { drawn, expected, camera, links };
+}
+
 test('the robot as it looks: meshes from a folder', async (t) => {
   const session = await openPage();
   const { page, consoleErrors } = session;
@@ -120,25 +156,20 @@ test('the robot as it looks: meshes from a folder', async (t) => {
     });
 
     await t.test('the drawn meshes cover their projected corners, not the stick figure', async () => {
-      await page.evaluate(() => window.achdDemo.pause());
-      await page.waitForTimeout(300);  // frames render the paused pose
-      const drawn = await page.evaluate(meshPixelsBox);
-      const { q, camera } = await page.evaluate(() => ({ q: window.achdDemo.state().q, camera: window.achdDemo.camera() }));
-      const robot = achd.loadURDF(urdf(), { root: 'base', tip: 'hand' });
-      const links = Object.fromEntries(robot.forwardKinematics(q).map((l) => [l.name, l]));
-      const base = { position: [0, 0, 0], rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1] };
-      robot.delete();
-      const corners = VISUALS.flatMap((v) => v.vertices.map((p) => project(camera, visualToWorld(v, links[v.link], p))));
-      const expected = boxOf(corners);
-      console.log(`# drawn ${JSON.stringify(drawn)}\n# projected ${JSON.stringify(expected)}`);
-      assert.ok(drawn.count > 500, `${drawn.count} mesh pixels`);
-      for (const side of ['left', 'right', 'top', 'bottom']) {
-        assert.ok(Math.abs(drawn[side] - expected[side]) <= PIXELS, `${side}: drawn ${drawn[side]}, projected ${expected[side]}`);
-      }
+      const { drawn, expected, camera, links } = await drawnAndProjected(page, 'hand');
       // The stick figure runs through the link origins: its box is far from the meshes'.
+      const base = { position: [0, 0, 0] };
       const stick = boxOf([base, links.arm, links.hand].map((l) => project(camera, l.position)));
-      const apart = Math.max(...['left', 'right', 'top', 'bottom'].map((side) => Math.abs(stick[side] - expected[side])));
-      assert.ok(apart > 20 * PIXELS, `the stick figure's box is within ${apart} px of the meshes'`);
+      const apart = Math.max(...SIDES.map((side) => Math.abs(stick[side] - expected[side])));
+      assert.ok(apart > 20 * PIXELS, `the stick figure's box is within ${apart} px of the meshes' (drawn ${JSON.stringify(drawn)})`);
+      await page.evaluate(() => window.achdDemo.play());
+    });
+
+    await t.test('a chain ending at the arm: the hand hangs on it at the locked elbow', async () => {
+      await loadThrough(page, '#urdf-folder', fileURLToPath(FOLDER), 'arm');
+      const s = await state(page);
+      assert.deepEqual(s.look.meshes.map((m) => m.status), ['loaded', 'loaded']);
+      await drawnAndProjected(page, 'arm');
       await page.evaluate(() => window.achdDemo.play());
     });
 
