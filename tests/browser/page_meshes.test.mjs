@@ -67,10 +67,15 @@ function boxOf(points) {
   return { left: Math.min(...xs), right: Math.max(...xs), top: Math.min(...ys), bottom: Math.max(...ys) };
 }
 
-// The box (CSS pixels) of the canvas pixels in the meshes' colours: the arm's magenta
-// (URDF material) and the hand's yellow (the COLLADA file's own); lighting changes their
-// brightness, not their hue. Grey base, grid and the tip axes' red, green and blue are out.
-function meshPixelsBox() {
+// Hue windows (degrees) of the meshes' colours: the arm's magenta (URDF material) and the
+// hand's yellow (the COLLADA file's own); lighting changes their brightness, not their
+// hue. Grey base, grid and the tip axes' red, green and blue are out.
+const MESH_HUES = [[285, 335], [35, 65]];
+// The stick figure's orange links (web/chain_view.js, #e8a33d).
+const STICK_HUES = [[25, 45]];
+
+// The box (CSS pixels) of the canvas's saturated pixels whose hue is in one of the windows.
+function pixelsBox(hues) {
   const canvas = document.querySelector('#view canvas');
   const copy = document.createElement('canvas');
   copy.width = canvas.width;
@@ -89,7 +94,7 @@ function meshPixelsBox() {
       if (max < 40 || (max - min) / max < 0.45) continue;
       let hue = max === r ? (60 * (g - b)) / (max - min) : max === g ? 120 + (60 * (b - r)) / (max - min) : 240 + (60 * (r - g)) / (max - min);
       if (hue < 0) hue += 360;
-      if (!((hue > 285 && hue < 335) || (hue > 35 && hue < 65))) continue;
+      if (!hues.some(([lo, hi]) => hue > lo && hue < hi)) continue;
       const x = rect.left + ((i + 0.5) * rect.width) / copy.width;
       const y = rect.top + ((j + 0.5) * rect.height) / copy.height;
       box.left = Math.min(box.left, x);
@@ -110,7 +115,7 @@ const SIDES = ['left', 'right', 'top', 'bottom'];
 async function drawnAndProjected(page, tip) {
   await page.evaluate(() => window.achdDemo.pause());
   await page.waitForTimeout(300);  // frames render the paused pose
-  const drawn = await page.evaluate(meshPixelsBox);
+  const drawn = await page.evaluate(pixelsBox, MESH_HUES);
   const { q, camera } = await page.evaluate(() => ({ q: window.achdDemo.state().q, camera: window.achdDemo.camera() }));
   const robot = achd.loadURDF(urdf(), { root: 'base', tip });
   const links = Object.fromEntries(robot.forwardKinematics(q).map((l) => [l.name, l]));
@@ -184,6 +189,20 @@ test('the robot as it looks: meshes from a folder', async (t) => {
       const t0 = s.t;
       await page.waitForTimeout(300);
       assert.ok((await state(page)).t > t0, 'the robot with missing meshes does not step');
+      // The stick figure stands in: an orange segment from the arm's origin to the hand's.
+      await page.evaluate(() => window.achdDemo.pause());
+      await page.waitForTimeout(300);
+      const stick = await page.evaluate(pixelsBox, STICK_HUES);
+      const { q, camera } = await page.evaluate(() => ({ q: window.achdDemo.state().q, camera: window.achdDemo.camera() }));
+      const robot = achd.loadURDF(urdf(), { root: 'base', tip: 'hand' });
+      const ends = robot.forwardKinematics(q).map((l) => project(camera, l.position));
+      robot.delete();
+      assert.ok(stick.count > 100, `${stick.count} stick pixels`);
+      for (const [x, y] of ends) {
+        assert.ok(x >= stick.left - PIXELS && x <= stick.right + PIXELS && y >= stick.top - PIXELS && y <= stick.bottom + PIXELS,
+          `link origin (${x}, ${y}) is off the stick figure ${JSON.stringify(stick)}`);
+      }
+      await page.evaluate(() => window.achdDemo.play());
     });
 
     await t.test('a broken URDF is explained while the robot keeps stepping', async () => {
