@@ -322,6 +322,9 @@ function showLookNote() {
       'Load the robot\'s folder (Load folder…, or drop it) so that package:// and relative paths resolve.');
   }
   for (const m of failed) lines.push(`Mesh ${m.filename} of link ${m.link} not shown: ${m.message}.`);
+  for (const m of meshes.filter((m) => m.texturesMissing?.length)) {
+    lines.push(`Textures of ${m.filename} not found (drawn without): ${m.texturesMissing.join(', ')}.`);
+  }
   for (const p of page.look.problems) lines.push(`Visual left out: ${p}.`);
   viewNote.textContent = lines.join('\n');
   viewNote.hidden = !lines.length;

@@ -5,7 +5,8 @@
 //   file:///abs/path, or a path relative to the URDF's folder.
 // Among the user's files, the one whose path shares the longest tail of folder names
 // with the filename wins (its file name at least must match): a folder picked at any
-// level, or loose files, then still resolve.
+// level, or loose files, then still resolve. A mesh's textures are looked up the same
+// way, relative to the mesh's folder.
 
 // files: [{path: 'robot/meshes/a.stl' (folder-relative, '/'-separated), file: File}];
 // urdfPath: the URDF's own path among them.
@@ -13,14 +14,15 @@ export class PickedFiles {
   constructor(files, urdfPath) {
     this.files = files.map(({ path, file }) => ({ parts: splitPath(path), file }));
     this.urdfFolder = splitPath(urdfPath).slice(0, -1);
+    this.objectUrls = new Map();
   }
 
-  // The File a mesh filename names, or null.
-  find(filename) {
-    const wanted = meshParts(filename, this.urdfFolder);
+  // The picked file {parts, file} at the path parts `wanted`, or the one sharing the
+  // longest tail with them; null when no file name matches.
+  match(wanted) {
     if (!wanted.length) return null;
     const exact = this.files.find((f) => samePath(f.parts, wanted));
-    if (exact) return exact.file;
+    if (exact) return exact;
     let best = null;
     let bestShared = 0;
     for (const f of this.files) {
@@ -30,13 +32,24 @@ export class PickedFiles {
         bestShared = shared;
       }
     }
-    return best?.file ?? null;
+    return best;
   }
 
   // The mesh's bytes, or null when no picked file matches.
   async read(filename) {
-    const file = this.find(filename);
-    return file ? file.arrayBuffer() : null;
+    const hit = this.match(meshParts(filename, this.urdfFolder));
+    return hit ? hit.file.arrayBuffer() : null;
+  }
+
+  // A URL the browser can load a mesh's texture from (a blob: URL of the picked file),
+  // or null. ref: the texture's path as the mesh file gives it.
+  textureUrl(meshFilename, ref) {
+    const mesh = this.match(meshParts(meshFilename, this.urdfFolder));
+    const folder = mesh ? mesh.parts.slice(0, -1) : this.urdfFolder;
+    const hit = this.match(normalize([...folder, ...splitPath(ref.replace(/^file:\/\//i, ''))]));
+    if (!hit) return null;
+    if (!this.objectUrls.has(hit.file)) this.objectUrls.set(hit.file, URL.createObjectURL(hit.file));
+    return this.objectUrls.get(hit.file);
   }
 }
 
@@ -50,6 +63,11 @@ export class ServedFiles {
     if (/^[a-z]+:\/\//i.test(filename)) return null;  // package:// or file://: not on this server
     const response = await fetch(new URL(filename, this.urdfUrl));
     return response.ok ? response.arrayBuffer() : null;
+  }
+
+  // A texture next to the mesh on this server.
+  textureUrl(meshFilename, ref) {
+    return new URL(ref, new URL(meshFilename, this.urdfUrl)).href;
   }
 }
 

@@ -13,9 +13,13 @@ const LOADERS = {
 };
 
 const DEFAULT_COLOR = [0.72, 0.75, 0.79, 1];
+// What a texture that was not found is drawn with: one white pixel (PNG), so the mesh
+// keeps its material colour and the browser fetches nothing.
+const BLANK_TEXTURE = 'data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGP4//8/AAX+Av4N70a4AAAAAElFTkSuQmCC';
 
 // -> {object: THREE.Group at the visual's origin, load: null for a primitive, or
-//     async (files) => {filename, status: 'loaded' | 'missing' | 'failed', message}}
+//     async (files) => {filename, status: 'loaded' | 'missing' | 'failed', message,
+//                       texturesMissing: the textures the mesh names that were not found}}
 // files: PickedFiles or ServedFiles (web/mesh_files.js); without files (a URDF given as
 // text alone) every mesh is missing.
 export function visualObject(visual) {
@@ -29,7 +33,7 @@ export function visualObject(visual) {
   }
   object.scale.fromArray(g.scale);
   const load = async (files) => {
-    const result = { filename: g.filename, status: 'loaded', message: '' };
+    const result = { filename: g.filename, status: 'loaded', message: '', texturesMissing: [] };
     const format = Object.keys(LOADERS).find((f) => g.filename.toLowerCase().endsWith(`.${f}`));
     if (!format) return { ...result, status: 'failed', message: 'not STL, DAE or OBJ' };
     let bytes;
@@ -40,8 +44,17 @@ export function visualObject(visual) {
     }
     if (!bytes) return { ...result, status: 'missing' };
     const Loader = await LOADERS[format]();
+    // Textures (COLLADA images) come from the same files as the mesh.
+    const manager = new THREE.LoadingManager();
+    manager.setURLModifier((url) => {
+      if (/^(data|blob):/.test(url)) return url;
+      const found = files.textureUrl(g.filename, url);
+      if (found) return found;
+      result.texturesMissing.push(url);
+      return BLANK_TEXTURE;
+    });
     try {
-      object.add(parseMesh(new Loader(), format, bytes, visual.color));
+      object.add(parseMesh(new Loader(manager), format, bytes, visual.color));
     } catch (err) {
       return { ...result, status: 'failed', message: `not a readable ${format.toUpperCase()} file (${err.message})` };
     }

@@ -11,7 +11,9 @@ import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import test from 'node:test';
 import { fileURLToPath } from 'node:url';
-import { ELBOW_XYZ, files as fixtureFiles, MESH_FILES, urdf, VISUALS } from '../fixtures/make_mesh_robot.mjs';
+import {
+  ARM_VERTICES, binaryStl, collada, ELBOW_XYZ, files as fixtureFiles, HAND_VERTICES, MESH_FILES, png, urdf, VISUALS,
+} from '../fixtures/make_mesh_robot.mjs';
 import { loadAchd } from '../node/helpers.mjs';
 import { openPage } from './launch.mjs';
 
@@ -266,6 +268,31 @@ test('the robot as it looks: meshes from a folder', async (t) => {
       const s = await state(page);
       assert.deepEqual(s.look.meshes.map((m) => [m.filename, m.status]), [[MESH_FILES[0], 'loaded'], [MESH_FILES[1], 'loaded']]);
       assert.ok(await page.locator('#view-note').isHidden());
+    });
+
+    await t.test('a COLLADA texture is read from the files given; one not given is named, nothing fetched', async () => {
+      // The hand's COLLADA file with a texture of one colour, teal (hue 187), next to it.
+      const TEAL = [30, 190, 210];
+      const given = [
+        { name: 'mesh_robot.urdf', mimeType: 'application/xml', buffer: Buffer.from(urdf()) },
+        { name: 'arm.stl', mimeType: 'model/stl', buffer: binaryStl(ARM_VERTICES) },
+        { name: 'hand.dae', mimeType: 'model/vnd.collada+xml', buffer: Buffer.from(collada(HAND_VERTICES, 'textures/skin.png')) },
+      ];
+      await loadThrough(page, '#urdf-file', [...given, { name: 'skin.png', mimeType: 'image/png', buffer: png(4, 4, TEAL) }]);
+      let s = await state(page);
+      assert.deepEqual(s.look.meshes.map((m) => [m.status, m.texturesMissing]), [['loaded', []], ['loaded', []]]);
+      assert.ok(await page.locator('#view-note').isHidden());
+      await page.evaluate(() => window.achdDemo.pause());
+      await page.waitForTimeout(500);  // the image decodes, then frames draw it
+      const teal = await page.evaluate(pixelsBox, [[175, 200]]);
+      console.log(`# ${teal.count} pixels in the texture's colour`);
+      assert.ok(teal.count > 1000, `${teal.count} pixels in the texture's colour`);
+      await page.evaluate(() => window.achdDemo.play());
+
+      await loadThrough(page, '#urdf-file', given);
+      s = await state(page);
+      assert.deepEqual(s.look.meshes.map((m) => [m.status, m.texturesMissing]), [['loaded', []], ['loaded', ['textures/skin.png']]]);
+      assert.match(await page.locator('#view-note').textContent(), /Textures of \.\.\/meshes\/hand\.dae not found \(drawn without\): textures\/skin\.png/);
     });
 
     await t.test('no console errors', () => {
