@@ -3,10 +3,12 @@
 // through the folder picker shows both meshes where the URDF puts them: the coloured
 // pixels' bounding box on the canvas is the box of the meshes' corners projected by the
 // page's camera at the link poses achd's forward kinematics gives (in Node, apart from
-// the page), and not the stick figure's. A URDF whose meshes are missing loads with a note
-// naming them; a broken URDF is explained while the robot keeps stepping; an OBJ mesh
-// picked with its URDF loads, and a visual that cannot be read is named; the fixture's
-// files dropped loose on the page load with their meshes.
+// the page), and not the stick figure's; so it is for the chain ending at the arm, the
+// hand drawn on it through the locked elbow. A URDF whose meshes are missing loads with a
+// note naming them and the stick figure through the link origins; a broken URDF is
+// explained while the robot keeps stepping; an OBJ mesh picked with its URDF loads, and a
+// visual that cannot be read is named; the fixture's files dropped loose on the page load
+// with their meshes; a COLLADA texture given with the files is drawn, one missing named.
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import test from 'node:test';
