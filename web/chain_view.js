@@ -1,9 +1,12 @@
-// The 3D view: the chain as simple solids between consecutive link frames (from forward
-// kinematics), spheres at movable joints, the tip frame's axes, and the held or
-// accelerated tip directions as glyphs. z is up, as in URDF.
+// The 3D view: the robot as its URDF's visuals on the link frames forward kinematics
+// reports (web/visual_meshes.js), or, for a URDF without visuals and for links whose mesh
+// was not found, a stick figure: simple solids between consecutive link frames and
+// spheres at movable joints. Also the tip frame's axes and the held or accelerated tip
+// directions as glyphs. z is up, as in URDF.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { DIRECTIONS } from './settings.js';
+import { visualObject } from './visual_meshes.js';
 
 export const DIRECTION_COLORS = {
   x: '#d9443a', y: '#2e9e4f', z: '#2f6fdf', rx: '#e58a1f', ry: '#1a9aa0', rz: '#8b4fd1',
@@ -49,6 +52,9 @@ export class ChainView {
     this.camera.up.set(0, 0, 1);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.enableDamping = true;
+    // Once the user turns or zooms, meshes arriving later do not move the camera again.
+    this.controls.addEventListener('start', () => (this.userMoved = true));
+    this.generation = 0;
 
     this.scene.add(new THREE.HemisphereLight('#ffffff', '#8090a0', 2.2));
     const sun = new THREE.DirectionalLight('#ffffff', 1.6);
@@ -84,13 +90,21 @@ export class ChainView {
     this.camera.updateProjectionMatrix();
   }
 
-  // Builds the solids for a chain. links: FK output at the initial pose (root first);
-  // movable[i]: whether link i hangs on a movable joint. Frames the camera on the chain.
-  setChain(links, movable) {
-    if (!this.enabled) return;
+  // Builds the robot. links: FK output at the initial pose (root first); movable[i]:
+  // whether link i hangs on a movable joint; look: null, or {visuals, joints} of
+  // urdfVisuals(), locked (joint name -> value of the chain's locked side joints) and
+  // files (where meshes are read from, web/mesh_files.js). Frames the camera on the robot.
+  // Returns a promise of the meshes' outcomes ([{filename, link, status, message}]; null
+  // when another robot was set before they were all read).
+  setChain(links, movable, look = null) {
+    if (!this.enabled) return Promise.resolve([]);
+    const generation = ++this.generation;
+    this.userMoved = false;
     for (const child of [...this.robotGroup.children]) {
-      child.geometry.dispose();
-      child.material.dispose();
+      child.traverse((o) => {
+        o.geometry?.dispose();
+        for (const m of [o.material ?? []].flat()) m.dispose();
+      });
       this.robotGroup.remove(child);
     }
     const origins = links.map((l) => new THREE.Vector3(...l.position));
@@ -99,6 +113,7 @@ export class ChainView {
     reach = Math.max(reach, 0.2);
     const radius = Math.min(0.06, Math.max(0.004, reach * 0.022));
     this.radius = radius;
+    const hasVisuals = Boolean(look?.visuals.size);
 
     const linkMaterials = [
       new THREE.MeshStandardMaterial({ color: '#9aa7b8', roughness: 0.55, metalness: 0.1 }),
@@ -109,11 +124,13 @@ export class ChainView {
     const sphere = new THREE.SphereGeometry(radius * 1.45, 20, 14);
 
     // Segment i runs from link i's origin to link i+1's: it is link i's body, so a push
-    // on it acts on link i. The root's segment is the fixed base.
+    // on it acts on link i. The root's segment is the fixed base. With visuals, a
+    // segment shows only for a link whose mesh is missing.
     this.segments = [];
     for (let i = 0; i + 1 < links.length; i++) {
       const mesh = new THREE.Mesh(cylinder, i === 0 ? jointMaterial : linkMaterials[i % 2]);
       mesh.userData.link = i;
+      mesh.userData.shown = !hasVisuals;
       this.segments.push(mesh);
       this.robotGroup.add(mesh);
     }
@@ -123,31 +140,85 @@ export class ChainView {
       const mesh = new THREE.Mesh(sphere, jointMaterial);
       mesh.userData.link = i;
       mesh.userData.jointOf = i;
+      mesh.visible = !hasVisuals;
       this.joints.push(mesh);
       this.robotGroup.add(mesh);
     });
     // The tip link has no segment after it: a small block stands for it.
     this.tipBlock = new THREE.Mesh(new THREE.BoxGeometry(radius * 2.6, radius * 2.6, radius * 1.6), linkMaterials[1]);
     this.tipBlock.userData.link = links.length - 1;
+    this.tipBlock.visible = !hasVisuals;
     this.robotGroup.add(this.tipBlock);
     this.tipAxes = new THREE.AxesHelper(radius * 7);
     this.tipAxes.matrixAutoUpdate = false;
     this.robotGroup.add(this.tipAxes);
 
-    this.glyphs.group.scale.setScalar(radius * 8);
-    this.grid.scale.setScalar(Math.max(reach, 0.5) / 2);
-    
+    // The visuals, one group per link that has any, moved to the link's pose each frame.
+    this.linkFrames = [];
+    const loads = [];
+    if (hasVisuals) {
+      const fkIndex = new Map(links.map((l, i) => [l.name, i]));
+      for (const [name, list] of look.visuals) {
+        const place = linkPlacement(name, fkIndex, look.joints, look.locked);
+        if (!place) continue;  // above the root: not part of the simulated robot
+        const frame = new THREE.Group();
+        frame.matrixAutoUpdate = false;
+        frame.userData.link = place.fk;
+        for (const visual of list) {
+          const { object, load } = visualObject(visual);
+          frame.add(object);
+          if (load) loads.push({ load, link: name, fk: place.fk });
+        }
+        this.linkFrames.push({ frame, fk: place.fk, offset: place.offset });
+        this.robotGroup.add(frame);
+      }
+    }
 
-    // Frame the space the chain can sweep, not just its initial pose: a sphere of the
-    // chain's length around the base, seen from the front right and above.
-    const target = new THREE.Vector3(0, 0, 0.3 * reach);
+    this.glyphs.group.scale.setScalar(radius * 8);
+    this.update(links, {}, null);
+    this.frameCamera();
+    return this.loadMeshes(loads, look?.files, generation);
+  }
+
+  async loadMeshes(loads, files, generation) {
+    const outcomes = await Promise.all(loads.map(async ({ load, link, fk }) => ({ ...(await load(files)), link, fk })));
+    if (generation !== this.generation) return null;
+    for (const o of outcomes) {
+      if (o.status === 'loaded') continue;
+      if (this.segments[o.fk]) this.segments[o.fk].userData.shown = true;
+      else this.tipBlock.visible = true;
+    }
+    this.robotGroup.updateMatrixWorld(true);
+    if (!this.userMoved) this.frameCamera();
+    return outcomes.map(({ fk, ...o }) => o);
+  }
+
+  // Aims the camera, from the front right and above, at the sphere a freely swinging
+  // robot stays in: around the root (a little above or below it, toward the robot's
+  // middle), of the largest distance from the root to a corner of the box around what is
+  // shown of the robot.
+  frameCamera() {
+    this.robotGroup.updateMatrixWorld(true);
+    const box = visibleBox(this.robotGroup);
+    if (box.isEmpty()) box.setFromCenterAndSize(new THREE.Vector3(), new THREE.Vector3(0.2, 0.2, 0.2));
+    let reach = 0.05;
+    for (const x of [box.min.x, box.max.x]) {
+      for (const y of [box.min.y, box.max.y]) {
+        for (const z of [box.min.z, box.max.z]) reach = Math.max(reach, Math.hypot(x, y, z));
+      }
+    }
+    const middle = box.getCenter(new THREE.Vector3()).z;
+    const target = new THREE.Vector3(0, 0, THREE.MathUtils.clamp(middle, -0.25 * reach, 0.25 * reach));
+    const halfFov = THREE.MathUtils.degToRad(this.camera.fov / 2);
+    const halfAngle = Math.min(halfFov, Math.atan(Math.tan(halfFov) * this.camera.aspect));
+    const distance = (0.85 * reach) / Math.sin(halfAngle);
     this.controls.target.copy(target);
-    const distance = reach / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2));
-    this.camera.position.copy(target).add(new THREE.Vector3(0.55, -0.75, 0.37).normalize().multiplyScalar(0.65 * distance));
-    this.camera.near = reach / 200;
-    this.camera.far = reach * 50;
+    this.camera.position.copy(target).add(new THREE.Vector3(0.55, -0.75, 0.37).normalize().multiplyScalar(distance));
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 50;
     this.camera.updateProjectionMatrix();
     this.controls.update();
+    this.grid.scale.setScalar(Math.max(reach, 0.25) / 2);
   }
 
   // One glyph group per direction, in a unit frame at the tip, scaled with the robot.
@@ -189,13 +260,14 @@ export class ChainView {
       a.fromArray(links[i].position);
       b.fromArray(links[i + 1].position);
       const length = a.distanceTo(b);
-      mesh.visible = length > 1e-6;
+      mesh.visible = mesh.userData.shown && length > 1e-6;
       if (!mesh.visible) return;
       mesh.position.copy(a).add(b).multiplyScalar(0.5);
       mesh.quaternion.setFromUnitVectors(UP, b.sub(a).divideScalar(length));
       mesh.scale.set(1, length, 1);
     });
     for (const mesh of this.joints) mesh.position.fromArray(links[mesh.userData.jointOf].position);
+    for (const { frame, fk, offset } of this.linkFrames) poseMatrix(links[fk], frame.matrix).multiply(offset);
 
     const tip = links[links.length - 1];
     const tipPose = poseMatrix(tip);
@@ -236,12 +308,17 @@ export class ChainView {
     return this.raycaster.ray;
   }
 
-  // The link under the pointer and the world point hit, or null.
+  // The link under the pointer (FK index, root = 0) and the world point hit, or null.
   pick(clientX, clientY) {
     if (!this.enabled || !this.segments) return null;
     this.ray(clientX, clientY);
-    const hits = this.raycaster.intersectObjects(this.robotGroup.children.filter((o) => o.isMesh), false);
-    return hits.length ? { link: hits[0].object.userData.link, point: hits[0].point.clone() } : null;
+    for (const hit of this.raycaster.intersectObject(this.robotGroup, true)) {
+      if (!hit.object.isMesh || !shown(hit.object)) continue;
+      let o = hit.object;
+      while (o && o.userData.link === undefined) o = o.parent;
+      if (o) return { link: o.userData.link, point: hit.point.clone() };
+    }
+    return null;
   }
 
   // Where the pointer's ray meets the plane through `point` facing the camera.
@@ -251,4 +328,52 @@ export class ChainView {
     const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, point);
     return ray.intersectPlane(plane, new THREE.Vector3());
   }
+}
+
+// Where a link's visuals go: {fk: index of the FK link it is fixed to, offset: its pose in
+// that link's frame}. A link forward kinematics lists is at its own pose; a side link
+// (merged into the body it hangs from) follows the joints up to a listed link, each at
+// T(xyz) R(rpy) times its motion at the locked value (0 when not reported). null for a
+// link above the root.
+function linkPlacement(name, fkIndex, joints, locked) {
+  const offset = new THREE.Matrix4();
+  const step = new THREE.Matrix4();
+  for (let link = name, hops = 0; hops <= joints.size; hops++) {
+    if (fkIndex.has(link)) return { fk: fkIndex.get(link), offset };
+    const joint = joints.get(link);
+    if (!joint) return null;
+    const value = locked?.get(joint.name) ?? 0;
+    const axis = new THREE.Vector3().fromArray(joint.axis).normalize();
+    const motion = joint.type === 'prismatic'
+      ? new THREE.Matrix4().makeTranslation(axis.multiplyScalar(value))
+      : joint.type === 'fixed' || joint.type === 'floating' || joint.type === 'planar'
+        ? new THREE.Matrix4()
+        : new THREE.Matrix4().makeRotationAxis(axis, value);
+    step.compose(
+      new THREE.Vector3().fromArray(joint.xyz),
+      new THREE.Quaternion().setFromEuler(new THREE.Euler(joint.rpy[0], joint.rpy[1], joint.rpy[2], 'ZYX')),
+      new THREE.Vector3(1, 1, 1),
+    ).multiply(motion);
+    offset.premultiply(step);
+    link = joint.parent;
+  }
+  return null;
+}
+
+// Whether an object and all its ancestors are visible.
+function shown(object) {
+  for (let o = object; o; o = o.parent) if (!o.visible) return false;
+  return true;
+}
+
+// The world box around the visible meshes below `group` (matrices up to date).
+function visibleBox(group) {
+  const box = new THREE.Box3();
+  const part = new THREE.Box3();
+  group.traverseVisible((o) => {
+    if (!o.isMesh) return;
+    o.geometry.computeBoundingBox();
+    box.union(part.copy(o.geometry.boundingBox).applyMatrix4(o.matrixWorld));
+  });
+  return box;
 }

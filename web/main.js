@@ -10,12 +10,16 @@
 import { ChainView } from './chain_view.js';
 import { Controls } from './controls.js';
 import { EventsNotice } from './events_notice.js';
+import { JointSliders } from './joint_sliders.js';
+import { LinkHover } from './link_hover.js';
+import { ServedFiles } from './mesh_files.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
 import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, parseHash } from './settings.js';
 import { Simulation } from './simulation.js';
 import { UrdfUpload } from './urdf_upload.js';
+import { urdfVisuals } from './urdf_visuals.js';
 import './accuracy_panel.js';
 
 // At most this much simulated time per frame: after a stall (a hidden tab, a slow
@@ -43,6 +47,9 @@ const page = {
   writtenHash: '',
   // The last failed step: {message, wasPlaying}, until Reset or a new robot.
   failure: null,
+  // The robot's visuals: {meshes: outcomes of web/chain_view.js's setChain (null while
+  // they load), problems: visuals the URDF has but that could not be read}.
+  look: { meshes: [], problems: [] },
 };
 
 let markReady;
@@ -70,6 +77,18 @@ window.achdDemo = {
       events: notice.recent.map((e) => ({ ...e })),
       lost: [...notice.lost],
       plots: readouts.plotRanges(),
+      look: { meshes: page.look.meshes?.map((m) => ({ ...m })) ?? null, problems: [...page.look.problems] },
+    };
+  },
+  // The 3D view's camera (column-major 4x4 matrices as three.js stores them) and the
+  // canvas's size in CSS pixels and its place on the page, or null without WebGL.
+  camera() {
+    if (!view.enabled) return null;
+    const rect = view.renderer.domElement.getBoundingClientRect();
+    return {
+      projection: [...view.camera.projectionMatrix.elements],
+      worldInverse: [...view.camera.matrixWorldInverse.elements],
+      rect: { left: rect.left, top: rect.top, width: rect.width, height: rect.height },
     };
   },
   setDirection(name, mode) {
@@ -87,6 +106,11 @@ window.achdDemo = {
     if (!Number.isInteger(n) || n < 1) throw new Error(`achdDemo.step: n must be a positive integer, got ${n}`);
     if (!page.sim) throw new Error('achdDemo.step: no robot loaded yet (await achdDemo.ready)');
     stepSimulation(n);
+  },
+  // Puts the robot at rest at q (an array in joint order), paused, as the sliders do.
+  setPose(q) {
+    if (!page.sim) throw new Error('achdDemo.setPose: no robot loaded yet (await achdDemo.ready)');
+    setPose(Array.from(q));
   },
   async loadURDF(text, root, tip) {
     await ready;
@@ -131,10 +155,22 @@ const controls = new Controls({
   direction: (name, mode) => setDirection(name, mode),
   effect: (key, on) => changeSetting(() => (page.settings.effects[key] = on), true),
 });
-const upload = new UrdfUpload({
-  onLoad: (text, root, tip, fileName) => {
+new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name);
+const viewNote = document.getElementById('view-note');
+const sliders = new JointSliders(document.getElementById('joint-sliders'), document.getElementById('btn-start-pose'), {
+  onPose: (q) => {
     try {
-      loadRobot({ name: CUSTOM, text, root, tip });
+      setPose(q);
+    } catch (err) {
+      showError(`could not set the pose: ${err.message}`);
+    }
+  },
+  startPose: () => page.sim?.q0,
+});
+const upload = new UrdfUpload({
+  onLoad: (text, root, tip, fileName, files) => {
+    try {
+      loadRobot({ name: CUSTOM, text, root, tip, files });
       upload.hide();
     } catch (err) {
       showError(`${fileName}: ${err.message}`);
@@ -159,6 +195,15 @@ function setDirection(name, mode) {
   controls.showLost(notice.lost);
   controls.show(page.settings, page.playing);
   writeHash();
+}
+
+// The robot at rest at q, paused (the sliders, "Start pose"); time, events and plots go on.
+function setPose(q) {
+  setPlaying(false);
+  push.release();
+  page.sim.setPose(q);
+  page.links = page.sim.links();
+  sliders.show(page.sim.q);
 }
 
 // Back to the start pose, toggles kept (a held direction holds where the tip is then);
@@ -235,13 +280,54 @@ function loadRobot(source, { keepDirections = false } = {}) {
   page.lastFrame = performance.now() - 1000 * page.settings.dt;
   page.lastSolveTiming = -Infinity;
   page.rate = { wall: 0, sim: 0, shown: null };
-  view.setChain(page.links, sim.movable);
+  showLook(sim, source);
+  sliders.setRobot(sim.robot, sim.q);
   if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
     robotSelect.add(new Option(`own URDF`, CUSTOM));
   }
   robotSelect.value = source.name;
   errorBox.hidden = true;
   writeHash();
+}
+
+// Builds the robot in the view from its URDF's visuals (meshes from source.files) and
+// says on the page which meshes were not found or not read, and which visuals not parsed.
+function showLook(sim, source) {
+  let look = null;
+  let problems = [];
+  try {
+    look = urdfVisuals(source.text);
+    problems = look.problems;
+    look.locked = new Map(sim.robot.lockedJoints.map((j) => [j.name, j.value]));
+    look.files = source.files;
+  } catch (err) {
+    problems = [err.message];
+  }
+  page.look = { meshes: null, problems };
+  showLookNote();
+  view.setChain(page.links, sim.movable, look).then((meshes) => {
+    if (!meshes || page.sim !== sim) return;  // another robot came first
+    page.look.meshes = meshes;
+    showLookNote();
+  });
+}
+
+function showLookNote() {
+  const lines = [];
+  const meshes = page.look.meshes ?? [];
+  const missing = [...new Set(meshes.filter((m) => m.status === 'missing').map((m) => m.filename))];
+  const failed = meshes.filter((m) => m.status === 'failed');
+  if (missing.length) {
+    lines.push(`Meshes not found (a stick figure stands in for their links): ${missing.join(', ')}. ` +
+      'Load the robot\'s folder (Load folder…, or drop it) so that package:// and relative paths resolve.');
+  }
+  for (const m of failed) lines.push(`Mesh ${m.filename} of link ${m.link} not shown: ${m.message}.`);
+  for (const m of meshes.filter((m) => m.texturesMissing?.length)) {
+    lines.push(`Textures of ${m.filename} not found (drawn without): ${m.texturesMissing.join(', ')}.`);
+  }
+  for (const p of page.look.problems) lines.push(`Visual left out: ${p}.`);
+  viewNote.textContent = lines.join('\n');
+  viewNote.hidden = !lines.length;
 }
 
 async function fetchText(path) {
@@ -251,12 +337,17 @@ async function fetchText(path) {
   return response.text();
 }
 
+// Meshes of a robot of robots/index.json are read next to its URDF on this server.
+function servedFiles(entry) {
+  return new ServedFiles(new URL(`../${entry.urdf}`, import.meta.url));
+}
+
 async function selectRobot(name, options) {
   const entry = page.index.robots.find((r) => r.name === name);
   if (!entry) return;
   try {
     const text = await fetchText(entry.urdf);
-    loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 }, options);
+    loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry) }, options);
   } catch (err) {
     robotSelect.value = page.settings.robot;
     showError(`${entry.name}: ${err.message}`);
@@ -340,6 +431,7 @@ function frame() {
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
       page.lastNumbers = now;
       readouts.showNumbers();
+      sliders.show(sim.q);
       document.getElementById('readout-time').textContent = `t = ${sim.t.toFixed(2)} s`;
       document.getElementById('readout-rtf').textContent = !page.playing ? 'paused'
         : page.rate.shown === null ? '' : `running at ${page.rate.shown.toFixed(2)}× real time`;
@@ -403,7 +495,8 @@ async function start() {
   problems.push(...parsed.problems);
   controls.offer(page.offer);
   controls.show(page.settings, page.playing);
-  loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0 }, { keepDirections: true });
+  loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry) },
+    { keepDirections: true });
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
   requestAnimationFrame(frame);
 }

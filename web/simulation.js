@@ -83,6 +83,19 @@ export class Simulation {
     this.sim.setDirection(name, this.settings.directions[name]);
   }
 
+  // Puts the robot at rest at q, the page's clock kept; held directions hold at q.
+  setPose(q) {
+    const t = this.t;
+    this.sim.reset(q);
+    this.tOffset = t;
+    this.eventsSeen = 0;
+    for (const name of DIRECTIONS) this.applyDirection(name);
+  }
+
+  get q() {
+    return this.sim.q;
+  }
+
   reset() {
     this.tOffset = 0;
     this.sim.reset(this.q0);

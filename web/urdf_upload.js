@@ -1,7 +1,13 @@
-// Loading the user's own URDF: a file picker and drag-and-drop anywhere on the page
-// read the text, then a small form offers root and tip from the file's links (the
-// longest chain preselected) and hands the choice to `onLoad(text, root, tip, fileName)`.
+// Loading the user's own URDF: a file picker (one URDF or several files together), a
+// folder picker and drag-and-drop anywhere on the page (files or folders) read the URDF,
+// then a small form offers root and tip from the file's links (the longest chain
+// preselected) and hands the choice to `onLoad(text, root, tip, fileName, files)`, files
+// being the PickedFiles its meshes are looked up in (web/mesh_files.js).
+import { PickedFiles, droppedFiles, pickedFiles } from './mesh_files.js';
 import { chainLinks, longestChain, urdfTree } from './urdf_tree.js';
+
+const URDF_NAME = /\.urdf$/i;
+const XML_NAME = /\.xml$/i;
 
 export class UrdfUpload {
   constructor({ onLoad, onError }) {
@@ -10,14 +16,16 @@ export class UrdfUpload {
     this.fileLabel = document.getElementById('urdf-chain-file');
     this.root = document.getElementById('urdf-root');
     this.tip = document.getElementById('urdf-tip');
-    const picker = document.getElementById('urdf-file');
-    picker.addEventListener('change', () => {
-      if (picker.files[0]) this.read(picker.files[0]);
-      picker.value = '';  // choosing the same file again should reload it
-    });
+    for (const id of ['urdf-file', 'urdf-folder']) {
+      const picker = document.getElementById(id);
+      picker.addEventListener('change', () => {
+        if (picker.files.length) this.read(pickedFiles(picker.files));
+        picker.value = '';  // choosing the same files again should reload them
+      });
+    }
     this.form.addEventListener('submit', (e) => {
       e.preventDefault();
-      onLoad(this.text, this.root.value, this.tip.value, this.fileName);
+      onLoad(this.text, this.root.value, this.tip.value, this.fileName, this.files);
     });
     document.getElementById('urdf-cancel').addEventListener('click', () => {
       this.form.hidden = true;
@@ -45,24 +53,34 @@ export class UrdfUpload {
       e.preventDefault();
       depth = 0;
       overlay.hidden = true;
-      if (e.dataTransfer.files[0]) this.read(e.dataTransfer.files[0]);
+      droppedFiles(e.dataTransfer).then((files) => this.read(files), (err) => this.onError(err));
     });
   }
 
-  async read(file) {
+  // files: [{path, file}] picked or dropped together; the URDF among them is read.
+  async read(files) {
+    const urdf = chooseUrdf(files);
+    if (!urdf) {
+      this.form.hidden = true;
+      this.onError(new Error(`no .urdf file among the ${files.length} file(s) given ` +
+        '(a .xacro file must be expanded with xacro first)'));
+      return;
+    }
     try {
-      this.text = await file.text();
-      this.fileName = file.name;
+      this.text = await urdf.file.text();
+      this.fileName = urdf.path;
       this.tree = urdfTree(this.text);
     } catch (err) {
       this.form.hidden = true;
-      this.onError(new Error(`${file.name}: ${err.message}`));
+      this.onError(new Error(`${urdf.path}: ${err.message}`));
       return;
     }
+    this.files = new PickedFiles(files, urdf.path);
     const { root, tip } = longestChain(this.tree);
     this.root.replaceChildren(...this.tree.links.map((l) => new Option(l, l, false, l === root)));
     this.offerTips(tip);
-    this.fileLabel.textContent = `${file.name}: choose the chain`;
+    const others = files.length - 1;
+    this.fileLabel.textContent = `${urdf.path}${others ? ` (and ${others} more file${others > 1 ? 's' : ''})` : ''}: choose the chain`;
     this.form.hidden = false;
   }
 
@@ -77,4 +95,19 @@ export class UrdfUpload {
   hide() {
     this.form.hidden = true;
   }
+}
+
+// The URDF among files given together: a .urdf file (else an .xml one), the one nearest
+// the top of the folder, then the first by name.
+function chooseUrdf(files) {
+  for (const pattern of [URDF_NAME, XML_NAME]) {
+    const candidates = files.filter((f) => pattern.test(f.path));
+    candidates.sort((a, b) => depth(a.path) - depth(b.path) || a.path.localeCompare(b.path));
+    if (candidates.length) return candidates[0];
+  }
+  return null;
+}
+
+function depth(path) {
+  return path.split('/').length;
 }

@@ -6,6 +6,9 @@
 //                                 0.5 m/s²) after 12 simulated seconds: the tip has reached
 //                                 the workspace boundary, the events notice says what the
 //                                 simulator did about y
+//   docs/screenshots/robot.png    the UR5 at its start pose, drawn from its URDF's visuals
+//   docs/screenshots/sliders.png  the LWR posed with the joint sliders, paused, the pointer on a
+//                                 link naming it
 // Usage: node tests/browser/screenshots.mjs   (after the wasm build)
 import { mkdir } from 'node:fs/promises';
 import { openPage } from './launch.mjs';
@@ -55,4 +58,38 @@ try {
   if (boundary.consoleErrors.length) throw new Error(`console errors: ${boundary.consoleErrors.join('\n')}`);
 } finally {
   await boundary.close();
+}
+
+const look = await openPage({ viewport: { width: 1400, height: 1000 }, hash: '#robot=ur5' });
+try {
+  const { page } = look;
+  await page.evaluate(() => {
+    window.achdDemo.pause();
+    document.getElementById('btn-start-pose').click();
+  });
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: new URL('robot.png', out).pathname });
+  if (look.consoleErrors.length) throw new Error(`console errors: ${look.consoleErrors.join('\n')}`);
+} finally {
+  await look.close();
+}
+
+const posed = await openPage({ viewport: { width: 1400, height: 1000 } });
+try {
+  const { page } = posed;
+  for (const [joint, value] of [['lwr_joint_1', '0.8'], ['lwr_joint_2', '0.9'], ['lwr_joint_4', '-1.4'], ['lwr_joint_6', '1.1']]) {
+    await page.locator(`#joint-sliders input[data-joint="${joint}"]`).fill(value);
+  }
+  await page.waitForTimeout(500);
+  // The pointer on the robot's middle link: the page names it.
+  const box = await page.locator('#view').boundingBox();
+  for (let y = box.y + box.height * 0.3; y < box.y + box.height * 0.8; y += 8) {
+    await page.mouse.move(box.x + box.width / 2, y);
+    if (await page.locator('#link-label').isVisible()) break;
+  }
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: new URL('sliders.png', out).pathname });
+  if (posed.consoleErrors.length) throw new Error(`console errors: ${posed.consoleErrors.join('\n')}`);
+} finally {
+  await posed.close();
 }
