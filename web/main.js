@@ -13,7 +13,7 @@ import { EventsNotice } from './events_notice.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
-import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, parseHash } from './settings.js';
+import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, motionFrom, parseHash } from './settings.js';
 import { Simulation } from './simulation.js';
 import { UrdfUpload } from './urdf_upload.js';
 import './accuracy_panel.js';
@@ -40,6 +40,8 @@ const page = {
   lastSolveTiming: -Infinity,
   rate: { wall: 0, sim: 0, shown: null },
   pushedLink: null,
+  // A push given by achdDemo.push ({link: FK index, wrench}), applied as a drag's is.
+  scriptedPush: null,
   writtenHash: '',
   // The last failed step: {message, wasPlaying}, until Reset or a new robot.
   failure: null,
@@ -76,6 +78,35 @@ window.achdDemo = {
     checkDirection(name, mode);
     if (!page.sim) throw new Error('achdDemo.setDirection: no robot loaded yet (await achdDemo.ready)');
     setDirection(name, mode);
+  },
+  // A joint on a motion ({motion: 'constant' | 'ramp' | 'sine', position, velocity,
+  // amplitude, frequency}, started now), or null: driven by its torques again.
+  setPrescribed(joint, params) {
+    if (!page.sim) throw new Error('achdDemo.setPrescribed: no robot loaded yet (await achdDemo.ready)');
+    setPrescribed(joint, params);
+  },
+  // Whether a direction yields to pushes (w_fext = 0).
+  setYield(name, on) {
+    checkDirection(name, 'free');
+    if (!page.sim) throw new Error('achdDemo.setYield: no robot loaded yet (await achdDemo.ready)');
+    setYield(name, Boolean(on));
+  },
+  // The tip link's origin in the base frame, m.
+  tipPosition() {
+    if (!page.sim) throw new Error('achdDemo.tipPosition: no robot loaded yet (await achdDemo.ready)');
+    return page.sim.links().at(-1).position;
+  },
+  // A wrench (base axes, about the link origin) on a link by name, as a drag applies one;
+  // null stops it.
+  push(link, wrench) {
+    if (!page.sim) throw new Error('achdDemo.push: no robot loaded yet (await achdDemo.ready)');
+    if (link === null) {
+      page.scriptedPush = null;
+      return;
+    }
+    const index = page.sim.robot.linkNames.indexOf(link);
+    if (index < 0) throw new Error(`achdDemo.push: no link "${link}" on the chain`);
+    page.scriptedPush = { link: index + 1, wrench: Array.from(wrench) };
   },
   play() {
     setPlaying(true);
@@ -129,6 +160,14 @@ const controls = new Controls({
   dt: (v) => changeSetting(() => (page.settings.dt = v), false),
   policy: (v) => changeSetting(() => (page.settings.policy = v), true),
   direction: (name, mode) => setDirection(name, mode),
+  yield: (name, on) => setYield(name, on),
+  prescribe: (joint, params) => {
+    try {
+      setPrescribed(joint, params);
+    } catch (err) {
+      showError(`joint ${joint}: ${err.message}`);
+    }
+  },
   effect: (key, on) => changeSetting(() => (page.settings.effects[key] = on), true),
 });
 const upload = new UrdfUpload({
@@ -159,6 +198,29 @@ function setDirection(name, mode) {
   controls.showLost(notice.lost);
   controls.show(page.settings, page.playing);
   writeHash();
+}
+
+function setYield(name, on) {
+  page.settings.yielding[name] = on;
+  page.sim.applyYield(name);
+  controls.show(page.settings, page.playing);
+  writeHash();
+}
+
+// params null: the joint is free again; else its motion starts now, where it is.
+function setPrescribed(joint, params) {
+  if (!page.sim.robot.jointNames.includes(joint)) throw new Error(`no movable joint "${joint}" on the chain`);
+  const before = page.settings.prescribed[joint];
+  if (params === null) delete page.settings.prescribed[joint];
+  else page.settings.prescribed[joint] = motionFrom(params, page.sim.t);
+  try {
+    page.sim.applyPrescribed(joint);
+  } catch (err) {
+    if (before) page.settings.prescribed[joint] = before;
+    else delete page.settings.prescribed[joint];
+    throw err;
+  }
+  controls.show(page.settings, page.playing);
 }
 
 // Back to the start pose, toggles kept (a held direction holds where the tip is then);
@@ -208,9 +270,13 @@ function writeHash() {
 function loadRobot(source, { keepDirections = false } = {}) {
   moduleLog.length = 0;
   let sim;
+  // Prescribed joints are the old robot's: the new one starts with none.
+  const prescribed = page.settings.prescribed;
+  page.settings.prescribed = {};
   try {
     sim = new Simulation(page.achd, source, page.settings);
   } catch (err) {
+    page.settings.prescribed = prescribed;
     const detail = moduleLog.filter((line) => !err.message.includes(line.trim())).join('\n');
     const message = `could not load the robot: ${err.message}${detail ? '\n' + detail : ''}`;
     showError(message);
@@ -224,9 +290,13 @@ function loadRobot(source, { keepDirections = false } = {}) {
   if (!keepDirections) {
     for (const name of DIRECTIONS) {
       page.settings.directions[name] = 'free';
+      page.settings.yielding[name] = false;
+      sim.applyYield(name);
       sim.applyDirection(name);
     }
   }
+  page.scriptedPush = null;
+  controls.setJoints(sim.robot.jointNames, (joint) => (page.sim ? page.sim.sim.q[page.sim.robot.jointNames.indexOf(joint)] : null));
   clearRun();
   setPlaying(true);
   page.links = sim.links();
@@ -264,7 +334,7 @@ async function selectRobot(name, options) {
 }
 
 function stepSimulation(n) {
-  const p = push.current();
+  const p = push.current() ?? page.scriptedPush;
   if (p) {
     page.sim.setPush(p.link, p.wrench);
     page.pushedLink = p.link;
