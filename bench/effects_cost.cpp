@@ -4,7 +4,10 @@
 // directions' kinematics), in one run: every row's solve and step are timed in each of 31
 // interleaved rounds (thread CPU time, tools/timing.hpp), so that the shared machine's
 // speed changes hit all rows alike. Prints the medians as a markdown table with the
-// increment of each row over the previous one.
+// increment of each row over the previous one. The last rows add issue 16's drivers to
+// the 3-constraint row, each measured against that row: one prescribed joint (the solve:
+// a given qdd; the step: a sine), driver weights below 1 (w_fext = w_ff = 0.5 on z), and
+// virtual wrenches on every link (the solve only: the simulator takes none).
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -19,11 +22,15 @@ namespace {
 
 using namespace achd;
 
+enum class Driver { None, Prescribed, Weights, Virtual };
+
 struct EffectSet {
   const char* name;
   std::uint32_t effects;
   bool moving;  // qd != 0
   int nc;       // held directions x, y, z, rx, ry, rz, in that order
+  Driver driver = Driver::None;
+  int base = -1;  // the row its increment is measured against (-1: the previous one)
 };
 
 const std::uint32_t kG = kGravity, kV = kVelocityProducts, kW = kExternalWrenches, kD = kDamping,
@@ -40,6 +47,9 @@ const EffectSet kSets[] = {
     {"+ 1 constraint (z)", kAllEffects, true, 1},
     {"+ 3 constraints (x y z)", kAllEffects, true, 3},
     {"everything on, 6 constraints", kAllEffects, true, 6},
+    {"3 constraints + 1 prescribed joint", kAllEffects, true, 3, Driver::Prescribed, 8},
+    {"3 constraints + weights below 1 (z)", kAllEffects, true, 3, Driver::Weights, 8},
+    {"3 constraints + virtual wrenches (every link)", kAllEffects, true, 3, Driver::Virtual, 8},
 };
 static_assert((kC & kAllEffects) != 0, "constraints are part of kAllEffects");
 
@@ -71,6 +81,17 @@ struct Solve {
     for (int k = 0; k < s.nc; ++k) c.alpha(k, k) = 1;
     c.beta.setZero(s.nc);
     o.effects = s.effects;
+    if (s.driver == Driver::Prescribed) {
+      c.qdd_given = Eigen::VectorXd::Zero(7);
+      c.qdd_given[0] = 0.5;
+      c.prescribed.assign(7, false);
+      c.prescribed[0] = true;
+    }
+    if (s.driver == Driver::Weights) {
+      c.w_fext = c.w_ff = ConstraintVector::Ones(s.nc);
+      c.w_fext[2] = c.w_ff[2] = 0.5;
+    }
+    if (s.driver == Driver::Virtual) c.f_virtual = r.f_ext;
   }
   void operator()() { hybrid_dynamics(model, d, c, o); }
   const Model& model;
@@ -85,10 +106,22 @@ struct Step {
       : q0(r.q0), qd0(s.moving ? r.qd0 : Eigen::VectorXd::Zero(7)), sim(r.model, options(s)) {
     sim.reset(q0, qd0);
     if (s.effects & kExternalWrenches) sim.f_ext = r.f_ext;
+    if (s.driver == Driver::Prescribed) {
+      JointMotion m;
+      m.kind = MotionKind::Sine;
+      m.position = q0[0];
+      m.amplitude = 0.3;
+      m.frequency = 0.5;
+      sim.prescribe(0, m);
+      q0 = sim.q;  // started on its trajectory
+      qd0 = sim.qd;
+    }
+    if (s.driver == Driver::Weights) sim.set_direction_weights(2, 0.5, 0.5);
     for (int k = 0; k < s.nc; ++k) sim.set_direction(k, DirectionMode::Hold);
   }
   static SimulatorOptions options(const EffectSet& s) {
     SimulatorOptions o;
+    o.integrator = Integrator::RK4;  // the column's integrator (not the simulator's default)
     o.effects = s.effects;
     o.limits = LimitPolicy::Ignore;
     return o;
@@ -96,6 +129,7 @@ struct Step {
   void operator()() {
     sim.q = q0;
     sim.qd = qd0;
+    sim.t = 0;
     sim.step(1e-3);
   }
   Eigen::VectorXd q0, qd0;
@@ -122,12 +156,15 @@ int main() {
   std::printf("KUKA LWR 4 (7 joints), CPU ns, medians of 31 interleaved rounds:\n\n");
   std::printf("| effect set | ns per solve | + over previous | ns per RK4 step |\n");
   std::printf("| --- | ---: | ---: | ---: |\n");
-  double previous = 0;
   for (int row = 0; row < rows; ++row) {
     const double solve_ns = cli::median(ns[row]), step_ns = cli::median(ns[rows + row]);
-    std::printf("| %s | %.0f | %+.0f | %.0f |\n", kSets[row].name, solve_ns, row ? solve_ns - previous : 0.0,
-                step_ns);
-    previous = solve_ns;
+    const int base = kSets[row].base >= 0 ? kSets[row].base : row - 1;
+    const double increment = row ? solve_ns - cli::median(ns[base]) : 0.0;
+    const std::string over = kSets[row].base >= 0 ? std::string(" (over row ") + std::to_string(base + 1) + ")" : "";
+    if (kSets[row].driver == Driver::Virtual)  // the simulator has no virtual wrenches
+      std::printf("| %s | %.0f | %+.0f%s | - |\n", kSets[row].name, solve_ns, increment, over.c_str());
+    else
+      std::printf("| %s | %.0f | %+.0f%s | %.0f |\n", kSets[row].name, solve_ns, increment, over.c_str(), step_ns);
   }
   return 0;
 }

@@ -70,6 +70,17 @@ LimitPolicy limits(const json& v) {
   throw Error("limits: expected 'report', 'clamp' or 'ignore', got '" + s + "'");
 }
 
+const json& required(const json& j, const char* field) {
+  if (!j.contains(field)) throw Error(std::string("missing required field '") + field + "'");
+  return j[field];
+}
+
+// A required field of an object in the scene, `where` naming the object.
+const json& required_in(const json& j, const char* field, const std::string& where) {
+  if (!j.contains(field)) throw Error(where + ": missing required field '" + field + "'");
+  return j[field];
+}
+
 void directions(const json& j, Scene& s) {
   if (!j.is_object()) throw Error("directions must be an object (x y z rx ry rz)");
   for (const auto& item : j.items()) {
@@ -106,6 +117,35 @@ void direction_weights(const json& j, Scene& s) {
   }
 }
 
+// "prescribed": [{"joint": NAME, "motion": KIND, "position", "velocity", "amplitude",
+// "frequency", "phase"}]: the parameters a kind reads (joint_motion.hpp), absent = 0.
+void prescribed(const json& j, Scene& s) {
+  if (!j.is_array()) throw Error("prescribed must be an array of {joint, motion, ...} objects");
+  for (size_t k = 0; k < j.size(); ++k) {
+    const std::string where = "prescribed[" + std::to_string(k) + "]";
+    const json& item = j[k];
+    if (!item.is_object()) throw Error(where + " must be an object {joint, motion, ...}");
+    only_known(item, where + ".", {"joint", "motion", "position", "velocity", "amplitude", "frequency", "phase"});
+    const std::string name = text(required_in(item, "joint", where), where + ".joint");
+    const int i = s.model.joint_index(name);
+    if (i < 0) throw Error(where + ".joint: no movable joint '" + name + "' between the root and the tip");
+    for (const auto& [other, motion] : s.prescribed)
+      if (other == i) throw Error(where + ".joint: joint '" + name + "' is prescribed twice");
+    const std::string kind = text(required_in(item, "motion", where), where + ".motion");
+    JointMotion m;
+    int found = -1;
+    for (int c = 0; c < 3; ++c)
+      if (kind == kMotionKindNames[c]) found = c;
+    if (found < 0) throw Error(where + ".motion: expected 'constant', 'ramp' or 'sine', got '" + kind + "'");
+    m.kind = static_cast<MotionKind>(found);
+    for (auto [field, out] : {std::pair<const char*, double*>{"position", &m.position}, {"velocity", &m.velocity},
+                              {"amplitude", &m.amplitude}, {"frequency", &m.frequency}, {"phase", &m.phase}})
+      if (item.contains(field)) *out = number(item[field], where + "." + field);
+    validate(m, where + ": ");
+    s.prescribed.emplace_back(i, m);
+  }
+}
+
 void f_ext(const json& j, Scene& s) {
   if (!j.is_object()) throw Error("f_ext must be an object {link name: [fx, fy, fz, tx, ty, tz]}");
   s.f_ext.assign(s.model.num_links(), Vector6::Zero());
@@ -122,10 +162,7 @@ double positive(const json& j, const char* field) {
   return x;
 }
 
-const json& required(const json& j, const char* field) {
-  if (!j.contains(field)) throw Error(std::string("missing required field '") + field + "'");
-  return j[field];
-}
+
 
 }  // namespace
 
@@ -145,6 +182,7 @@ bool Scene::conserves_energy() const {
   for (const Body& b : model.bodies)
     if (((e & kDamping) && b.damping != 0) || ((e & kFriction) && b.friction != 0)) return false;
   if (ff_torques.size() && ff_torques.cwiseAbs().maxCoeff() != 0) return false;
+  if (!prescribed.empty()) return false;
   if (e & kExternalWrenches)
     for (const Vector6& f : f_ext)
       if (f.cwiseAbs().maxCoeff() != 0) return false;
@@ -180,7 +218,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
                        "rotor_inertia", "mimic", "rtol", "atol", "policy",
-                       "singular_region", "max_damping"});
+                       "singular_region", "max_damping", "prescribed"});
     if (j.contains("description")) text(j["description"], "description");
     s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
     s.root = text(required(j, "root"), "root");
@@ -204,6 +242,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     if (j.contains("effects")) s.options.effects = effects(j["effects"]);
     if (j.contains("directions")) directions(j["directions"], s);
     if (j.contains("direction_weights")) direction_weights(j["direction_weights"], s);
+    if (j.contains("prescribed")) prescribed(j["prescribed"], s);
     if (j.contains("integrator")) s.options.integrator = integrator(j["integrator"]);
     if (j.contains("limits")) s.options.limits = limits(j["limits"]);
     if (j.contains("gravity")) s.options.gravity = vector(j["gravity"], "gravity", 3);
@@ -235,6 +274,7 @@ void start_scene(const Scene& scene, Simulator& sim) {
   sim.reset(scene.q0, scene.qd0);
   sim.ff_torques = scene.ff_torques;
   sim.f_ext = scene.f_ext;
+  for (const auto& [joint, motion] : scene.prescribed) sim.prescribe(joint, motion);
   for (int k = 0; k < kNumDirections; ++k) {
     sim.set_direction_weights(k, scene.w_fext[k], scene.w_ff[k]);
     if (scene.modes[k] != DirectionMode::Free) sim.set_direction(k, scene.modes[k], scene.setpoints[k]);

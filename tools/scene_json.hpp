@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -26,12 +27,16 @@ struct Scene {
   std::array<double, kNumDirections> setpoints{};
   // "direction_weights": {"z": {"w_fext": 0, "w_ff": 1}}: driver priorities per direction
   std::array<double, kNumDirections> w_fext{1, 1, 1, 1, 1, 1}, w_ff{1, 1, 1, 1, 1, 1};
+  // "prescribed": [{"joint": NAME, "motion": "constant" | "ramp" | "sine", ...}]: joints
+  // on a trajectory (Simulator::prescribe), by joint index
+  std::vector<std::pair<int, JointMotion>> prescribed;
   double dt = 0, duration = 0;
 
   // duration / dt, a whole number checked when the scene is parsed (steps_for_duration).
   std::int64_t steps() const;
   // True when nothing in the scene adds or removes energy: velocity products on, no
-  // damping, friction, torques, wrenches or accelerated directions, limits not clamped.
+  // damping, friction, torques, wrenches, accelerated directions or prescribed joints,
+  // limits not clamped.
   bool conserves_energy() const;
 };
 
@@ -48,7 +53,9 @@ Scene load_scene(const std::string& path);
 // directory). Absolute paths are used as they are.
 std::string resolve_scene_path(const std::string& path, const std::string& scene_file);
 
-// Puts the scene's initial state, torques, wrenches and directions into `sim`.
+// Puts the scene's initial state, torques, wrenches, prescribed joints (on their
+// trajectories at t = 0, whatever q0 says for them) and directions (held where the tip is
+// then) into `sim`.
 void start_scene(const Scene& scene, Simulator& sim);
 
 }  // namespace achd::cli

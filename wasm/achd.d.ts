@@ -70,6 +70,9 @@ export interface ConstraintBlock {
   beta?: Vec;
   /** where the constraint acts, in the link's frame; default its origin. */
   point?: Vec;
+  /** driver priorities per alpha column, each in [0, 1] (default 1): see Case.w_fext, Case.w_ff. */
+  w_fext?: Vec;
+  w_ff?: Vec;
 }
 
 /** The case (docs/design.md section 5): q and gravity required, the rest default to zero/none. */
@@ -86,6 +89,17 @@ export interface Case {
   /** one wrench per link after the root (base orientation, about the link origin), or an object keyed by link name. */
   f_ext?: Vec[] | Record<string, Vec>;
   ff_torques?: JointValues;
+  /** driver priorities of the tip's columns, one per alpha column in [0, 1] (default 1 = the
+   * column resists the driver fully): below 1 the share 1 - w of f_ext's (w_fext) or
+   * ff_torques' (w_ff) own unconstrained effect along the column passes through. */
+  w_fext?: Vec;
+  w_ff?: Vec;
+  /** virtual wrenches a controller wants on links (as f_ext: per link after the root, or by
+   * link name), applied by the joints as torques J^T f_virtual (Result.virtual_torques). */
+  f_virtual?: Vec[] | Record<string, Vec>;
+  /** prescribed joints: their accelerations, by joint name, or in model order with null
+   * for a joint whose torque is given (its ff_torques are then ignored). */
+  qdd_given?: Record<string, number> | Array<number | null>;
 }
 
 /** A joint the loader held fixed (a chain's movable side joint), at `value` (rad or m). */
@@ -121,6 +135,11 @@ export interface Result {
   sigma_min: number;
   /** constraint-space directions truncated or damped (columns of nc numbers). */
   dropped: number[][];
+  /** only with f_virtual: J^T f_virtual per joint (part of the ff torques). */
+  virtual_torques?: number[];
+  /** only with qdd_given: per joint, the actuator torque a prescribed joint needs while the
+   * constraint forces act; null for the joints whose torque was given. */
+  prescribed_torques?: Array<number | null>;
   /** only when the robot has locked joints (Robot.lockedJoints). */
   locked_joints?: LockedJoint[];
 }
@@ -169,6 +188,19 @@ export interface Solver {
   numConstraints: number;
   /** default false. */
   useExternalWrenches: boolean;
+  /** maxConstraints each, initially 1: the driver weights of the tip's columns (the first numConstraints are used). */
+  readonly w_fext: Float64Array;
+  readonly w_ff: Float64Array;
+  /** 6 per link after the root; read by solve() only while useVirtualWrenches is true. */
+  readonly f_virtual: Float64Array;
+  /** default false. */
+  useVirtualWrenches: boolean;
+  /** one per joint: the accelerations of the joints setPrescribed names (others not read). */
+  readonly qdd_given: Float64Array;
+  /** the prescribed joints of the solves that follow: joint names, or one boolean per joint; [] for none. */
+  setPrescribed(joints: string[] | boolean[]): void;
+  /** one boolean per joint (a copy). */
+  readonly prescribed: boolean[];
   /** constraint blocks for the solves that follow (copied in; a solve never allocates); [] for none. */
   setConstraints(blocks: ConstraintBlock[]): void;
   /** blocks set by setConstraints. */
@@ -185,6 +217,10 @@ export interface Solver {
   readonly constraint_wrenches: Float64Array;
   /** 6 * (numLinks + 1): root link first. */
   readonly link_accelerations: Float64Array;
+  /** one per joint: a prescribed joint's torque, 0 for the others. */
+  readonly prescribed_torques: Float64Array;
+  /** one per joint: J^T f_virtual (0 while useVirtualWrenches is false). */
+  readonly virtual_torques: Float64Array;
   readonly rank: number;
   /** smallest singular value of K of the last solve, computed when read (not by solve());
    * throws if that K is beyond the range of a double (columns of length ~1e154). */
@@ -199,6 +235,19 @@ export interface Solver {
 }
 
 export type Direction = 'x' | 'y' | 'z' | 'rx' | 'ry' | 'rz';
+
+/** Prescribed joint motion in the simulated time t (rad or m; frequency in Hz):
+ *  constant: q = position; ramp: q = position + velocity t;
+ *  sine: q = position + amplitude sin(2 pi frequency t + phase). Parameters a kind does not read must be absent or 0. */
+export type MotionKind = 'constant' | 'ramp' | 'sine';
+export interface JointMotion {
+  motion: MotionKind;
+  position?: number;
+  velocity?: number;
+  amplitude?: number;
+  frequency?: number;
+  phase?: number;
+}
 
 export interface SimulatorOptions {
   /** default 'dormand_prince' (adaptive: step(n, dt) takes error-controlled substeps). */
@@ -294,6 +343,16 @@ export interface Simulator {
    *  yields to external wrenches (wFext) or feed-forward torques (wFf) and is re-anchored
    *  where the tip is after every step. */
   setDirectionWeights(name: Direction, weights: { wFext?: number; wFf?: number }): void;
+  /** the joint (name or index) follows `motion` from now on: put on it at once, its
+   *  acceleration prescribed in every solve, its q and qd set on the trajectory after every
+   *  step; never stopped at a limit (limits 'clamp'). reset() releases every joint. */
+  prescribe(joint: number | string, motion: JointMotion): void;
+  /** the joint is driven by its torques again, from where it is. */
+  release(joint: number | string): void;
+  /** names of the prescribed joints, root to tip. */
+  prescribedJoints(): string[];
+  /** per joint: a prescribed joint's torque in the solve at the start of the last step, 0 for the others (a copy). */
+  prescribed_torques(): number[];
   /** held-direction residuals in m or rad; null for directions not held (free or accelerated). */
   residuals(): Record<Direction, number | null>;
   energy(): { kinetic: number; potential: number; total: number };
@@ -414,6 +473,7 @@ export interface Constants {
   readonly conventions: readonly Convention[];
   readonly singularity_policies: readonly SingularityPolicy[];
   readonly direction_event_kinds: readonly DirectionEventKind[];
+  readonly motion_kinds: readonly MotionKind[];
   /** achd::Case's default gravity: the solver's and rnea's. */
   readonly case_gravity: readonly [number, number, number];
   /** achd::Options{}: the solver's defaults. */

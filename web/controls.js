@@ -1,9 +1,9 @@
 // The control panel: play/pause/step/reset, integrator, its relative tolerance (adaptive
 // integrators), dt and the singularity policy, the six tip-direction toggles (free /
-// hold / acceleration setpoint; a direction the simulator released is marked lost) and
-// the effect switches. It reports the user's changes through `on` callbacks and shows
+// hold / acceleration setpoint, and whether a held direction yields to pushes; a direction
+// the simulator released is marked lost), prescribed joint motion and the effect switches. It reports the user's changes through `on` callbacks and shows
 // whatever settings it is given.
-import { DIRECTIONS, EFFECTS, RELATIVE_TOLERANCES, isAdaptive } from './settings.js';
+import { DIRECTIONS, EFFECTS, MOTION_PARAMETERS, RELATIVE_TOLERANCES, isAdaptive } from './settings.js';
 import { DIRECTION_COLORS } from './chain_view.js';
 
 // Names the page knows how to say; any other name the module offers is shown as it is.
@@ -26,7 +26,7 @@ const DIRECTION_TITLES = {
 
 export class Controls {
   // on: {playPause(), step(), reset(), integrator(v), rtol(v), dt(v), policy(v),
-  //      direction(name, mode), effect(key, on)}
+  //      direction(name, mode), yield(name, on), prescribe(joint, params | null), effect(key, on)}
   constructor(on) {
     this.playButton = document.getElementById('btn-play');
     this.playButton.addEventListener('click', () => on.playPause());
@@ -82,8 +82,41 @@ export class Controls {
         if (input.value !== '' && Number.isFinite(v)) on.direction(name, v);
       });
       tr.insertCell().append(input);
-      this.rows[name] = { row: tr, label, lostTag, buttons, input };
+
+      const yieldLabel = document.createElement('label');
+      yieldLabel.className = 'yield';
+      yieldLabel.title = `yield to push: a push moves the tip along ${name} while it is held (w_fext = 0)`;
+      const yieldBox = document.createElement('input');
+      yieldBox.type = 'checkbox';
+      yieldBox.dataset.yield = name;
+      yieldBox.addEventListener('change', () => on.yield(name, yieldBox.checked));
+      yieldLabel.append(yieldBox, ' yield');
+      tr.insertCell().append(yieldLabel);
+      this.rows[name] = { row: tr, label, lostTag, buttons, input, yieldBox };
     }
+
+    // Prescribed joint motion: a joint, its motion kind and the parameters that kind reads.
+    this.jointSelect = document.getElementById('joint-select');
+    this.jointMotion = document.getElementById('joint-motion');
+    this.jointSummary = document.getElementById('joint-summary');
+    this.jointInputs = Object.fromEntries(['position', 'velocity', 'amplitude', 'frequency']
+      .map((key) => [key, document.getElementById(`joint-${key}`)]));
+    this.jointMotion.addEventListener('change', () => {
+      // A joint not yet prescribed starts its motion from where it is now.
+      const q = this.jointQ(this.jointSelect.value);
+      if (!this.prescribed[this.jointSelect.value] && q !== null) this.jointInputs.position.value = String(Number(q.toFixed(4)));
+      this.showMotionParameters();
+    });
+    this.jointSelect.addEventListener('change', () => this.showJoint());
+    document.getElementById('joint-apply').addEventListener('click', () => {
+      const kind = this.jointMotion.value;
+      if (kind === 'free') return on.prescribe(this.jointSelect.value, null);
+      const params = { motion: kind };
+      for (const key of MOTION_PARAMETERS[kind]) params[key] = Number(this.jointInputs[key].value);
+      on.prescribe(this.jointSelect.value, params);
+    });
+    this.prescribed = {};
+    this.jointQ = () => null;
 
     this.effectBoxes = {};
     const effects = document.getElementById('effects');
@@ -106,6 +139,31 @@ export class Controls {
     this.rtol.replaceChildren(...RELATIVE_TOLERANCES.map((v) => new Option(v.toExponential(0), String(v))));
   }
 
+  // The robot's joints; q(name): the joint's position now (the position a new motion
+  // starts from).
+  setJoints(names, q) {
+    this.jointSelect.replaceChildren(...names.map((n) => new Option(n, n)));
+    this.jointQ = q;
+    this.showJoint();
+  }
+
+  // The selected joint's motion (or free), its parameters filled in.
+  showJoint() {
+    const m = this.prescribed[this.jointSelect.value];
+    this.jointMotion.value = m ? m.motion : 'free';
+    const q = this.jointQ(this.jointSelect.value);
+    this.jointInputs.position.value = String(m?.position !== undefined && m.motion !== 'ramp' ? m.position
+      : q === null ? 0 : Number(q.toFixed(4)));
+    for (const key of ['velocity', 'amplitude', 'frequency'])
+      if (m && m[key] !== undefined) this.jointInputs[key].value = String(m[key]);
+    this.showMotionParameters();
+  }
+
+  showMotionParameters() {
+    const read = MOTION_PARAMETERS[this.jointMotion.value] ?? [];
+    for (const [key, input] of Object.entries(this.jointInputs)) input.closest('label').hidden = !read.includes(key);
+  }
+
   show(settings, playing) {
     this.playButton.textContent = playing ? 'Pause' : 'Play';
     this.integrator.value = settings.integrator;
@@ -126,6 +184,14 @@ export class Controls {
       if (key === 'accel' && Number(row.input.value) !== mode) row.input.value = String(mode);
     }
     for (const e of EFFECTS) this.effectBoxes[e.key].checked = settings.effects[e.key];
+    for (const name of DIRECTIONS) this.rows[name].yieldBox.checked = settings.yielding[name];
+    const prescribed = Object.entries(settings.prescribed);
+    this.jointSummary.textContent = prescribed.length
+      ? `Prescribed: ${prescribed.map(([joint, m]) => `${joint} (${m.motion})`).join(', ')}.`
+      : 'Every joint is driven by its torques.';
+    const changed = JSON.stringify(this.prescribed) !== JSON.stringify(settings.prescribed);
+    this.prescribed = structuredClone(settings.prescribed);
+    if (changed) this.showJoint();
   }
 
   // lost: the directions the simulator has released (a 'released' event not yet followed

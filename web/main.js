@@ -16,7 +16,7 @@ import { ServedFiles } from './mesh_files.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
-import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, parseHash } from './settings.js';
+import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, motionFrom, parseHash } from './settings.js';
 import { Simulation } from './simulation.js';
 import { UrdfUpload } from './urdf_upload.js';
 import { urdfVisuals } from './urdf_visuals.js';
@@ -44,6 +44,8 @@ const page = {
   lastSolveTiming: -Infinity,
   rate: { wall: 0, sim: 0, shown: null },
   pushedLink: null,
+  // A push given by achdDemo.push ({link: FK index, wrench}), applied as a drag's is.
+  scriptedPush: null,
   writtenHash: '',
   // The last failed step: {message, wasPlaying}, until Reset or a new robot.
   failure: null,
@@ -95,6 +97,35 @@ window.achdDemo = {
     checkDirection(name, mode);
     if (!page.sim) throw new Error('achdDemo.setDirection: no robot loaded yet (await achdDemo.ready)');
     setDirection(name, mode);
+  },
+  // A joint on a motion ({motion: 'constant' | 'ramp' | 'sine', position, velocity,
+  // amplitude, frequency}, started now), or null: driven by its torques again.
+  setPrescribed(joint, params) {
+    if (!page.sim) throw new Error('achdDemo.setPrescribed: no robot loaded yet (await achdDemo.ready)');
+    setPrescribed(joint, params);
+  },
+  // Whether a direction yields to pushes (w_fext = 0).
+  setYield(name, on) {
+    checkDirection(name, 'free');
+    if (!page.sim) throw new Error('achdDemo.setYield: no robot loaded yet (await achdDemo.ready)');
+    setYield(name, Boolean(on));
+  },
+  // The tip link's origin in the base frame, m.
+  tipPosition() {
+    if (!page.sim) throw new Error('achdDemo.tipPosition: no robot loaded yet (await achdDemo.ready)');
+    return page.sim.links().at(-1).position;
+  },
+  // A wrench (base axes, about the link origin) on a link by name, as a drag applies one;
+  // null stops it.
+  push(link, wrench) {
+    if (!page.sim) throw new Error('achdDemo.push: no robot loaded yet (await achdDemo.ready)');
+    if (link === null) {
+      page.scriptedPush = null;
+      return;
+    }
+    const index = page.sim.robot.linkNames.indexOf(link);
+    if (index < 0) throw new Error(`achdDemo.push: no link "${link}" on the chain`);
+    page.scriptedPush = { link: index + 1, wrench: Array.from(wrench) };
   },
   play() {
     setPlaying(true);
@@ -153,6 +184,14 @@ const controls = new Controls({
   dt: (v) => changeSetting(() => (page.settings.dt = v), false),
   policy: (v) => changeSetting(() => (page.settings.policy = v), true),
   direction: (name, mode) => setDirection(name, mode),
+  yield: (name, on) => setYield(name, on),
+  prescribe: (joint, params) => {
+    try {
+      setPrescribed(joint, params);
+    } catch (err) {
+      showError(`joint ${joint}: ${err.message}`);
+    }
+  },
   effect: (key, on) => changeSetting(() => (page.settings.effects[key] = on), true),
 });
 new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name);
@@ -206,6 +245,29 @@ function setPose(q) {
   sliders.show(page.sim.q);
 }
 
+function setYield(name, on) {
+  page.settings.yielding[name] = on;
+  page.sim.applyYield(name);
+  controls.show(page.settings, page.playing);
+  writeHash();
+}
+
+// params null: the joint is free again; else its motion starts now, where it is.
+function setPrescribed(joint, params) {
+  if (!page.sim.robot.jointNames.includes(joint)) throw new Error(`no movable joint "${joint}" on the chain`);
+  const before = page.settings.prescribed[joint];
+  if (params === null) delete page.settings.prescribed[joint];
+  else page.settings.prescribed[joint] = motionFrom(params, page.sim.t);
+  try {
+    page.sim.applyPrescribed(joint);
+  } catch (err) {
+    if (before) page.settings.prescribed[joint] = before;
+    else delete page.settings.prescribed[joint];
+    throw err;
+  }
+  controls.show(page.settings, page.playing);
+}
+
 // Back to the start pose, toggles kept (a held direction holds where the tip is then);
 // after a failure, also out of it: the error goes, and the page plays again if it was
 // playing when the step failed.
@@ -253,9 +315,13 @@ function writeHash() {
 function loadRobot(source, { keepDirections = false } = {}) {
   moduleLog.length = 0;
   let sim;
+  // Prescribed joints are the old robot's: the new one starts with none.
+  const prescribed = page.settings.prescribed;
+  page.settings.prescribed = {};
   try {
     sim = new Simulation(page.achd, source, page.settings);
   } catch (err) {
+    page.settings.prescribed = prescribed;
     const detail = moduleLog.filter((line) => !err.message.includes(line.trim())).join('\n');
     const message = `could not load the robot: ${err.message}${detail ? '\n' + detail : ''}`;
     showError(message);
@@ -269,9 +335,13 @@ function loadRobot(source, { keepDirections = false } = {}) {
   if (!keepDirections) {
     for (const name of DIRECTIONS) {
       page.settings.directions[name] = 'free';
+      page.settings.yielding[name] = false;
+      sim.applyYield(name);
       sim.applyDirection(name);
     }
   }
+  page.scriptedPush = null;
+  controls.setJoints(sim.robot.jointNames, (joint) => (page.sim ? page.sim.sim.q[page.sim.robot.jointNames.indexOf(joint)] : null));
   clearRun();
   setPlaying(true);
   page.links = sim.links();
@@ -355,7 +425,7 @@ async function selectRobot(name, options) {
 }
 
 function stepSimulation(n) {
-  const p = push.current();
+  const p = push.current() ?? page.scriptedPush;
   if (p) {
     page.sim.setPush(p.link, p.wrench);
     page.pushedLink = p.link;

@@ -1,7 +1,9 @@
-// What the user chose on the page (robot, directions, effects, integrator, dt, the
-// singularity policy and the adaptive integrator's relative tolerance), its defaults, and
-// its round trip through the URL hash so that a view can be shared, e.g.
-// #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping&dirs=z:hold,rx:0.5
+// What the user chose on the page (robot, directions and which of them yield to pushes,
+// prescribed joints, effects, integrator, dt, the singularity policy and the adaptive
+// integrator's relative tolerance), its defaults, and its round trip through the URL hash
+// so that a view can be shared, e.g.
+// #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping&dirs=z:hold,rx:0.5&yield=z
+// (prescribed joints belong to the robot's run and are not in the hash).
 // Values are the scene files' words (achd.constants); the simulator's option keys are
 // the same words in camelCase. Which integrators and policies exist, and the defaults,
 // are the module's (`offer`, web/module_offer.js): this file keeps no list of its own.
@@ -42,7 +44,42 @@ export function defaultSettings(robot, offer) {
     rtol: offer.defaults.rtol,
     effects: Object.fromEntries(EFFECTS.map((e) => [e.key, true])),
     directions: Object.fromEntries(DIRECTIONS.map((d) => [d, 'free'])),
+    // true: the direction yields to pushes (its w_fext is 0, sim.setDirectionWeights)
+    yielding: Object.fromEntries(DIRECTIONS.map((d) => [d, false])),
+    // joint name -> {motion, position, velocity, amplitude, frequency, phase} in page time
+    prescribed: {},
   };
+}
+
+// Prescribed joint motion on the page: the kinds (achd.constants.motion_kinds) and the
+// parameters each reads. The page starts a motion where the joint is when it is applied.
+export const MOTION_PARAMETERS = { constant: ['position'], ramp: ['position', 'velocity'],
+  sine: ['position', 'amplitude', 'frequency'] };
+
+// The motion the simulator follows for a joint at q when the user applies {motion,
+// position, velocity, amplitude, frequency} at page time t: a ramp and a sine pass through
+// their given position then (the sine at its centre, rising).
+export function motionFrom(params, t) {
+  const kind = params.motion;
+  if (!Object.hasOwn(MOTION_PARAMETERS, kind)) throw new Error(`unknown motion "${kind}" (constant, ramp or sine)`);
+  const m = { motion: kind };
+  for (const key of MOTION_PARAMETERS[kind]) {
+    const v = params[key];
+    if (typeof v !== 'number' || !Number.isFinite(v)) throw new Error(`${kind} motion: ${key} must be a finite number`);
+    m[key] = v;
+  }
+  if (kind === 'sine' && m.frequency < 0) throw new Error('sine motion: frequency must be >= 0 (Hz)');
+  if (kind === 'ramp') m.position -= m.velocity * t;
+  if (kind === 'sine') m.phase = -2 * Math.PI * m.frequency * t;
+  return m;
+}
+
+// The same motion in a simulator's own time, which started at page time t0.
+export function motionInSimulatorTime(m, t0) {
+  const out = { ...m };
+  if (m.motion === 'ramp') out.position = m.position + m.velocity * t0;
+  if (m.motion === 'sine') out.phase = m.phase + 2 * Math.PI * m.frequency * t0;
+  return out;
 }
 
 export const isAdaptive = (integrator) => ADAPTIVE_INTEGRATORS.includes(integrator);
@@ -79,6 +116,8 @@ export function formatHash(s) {
   params.set('effects', EFFECTS.filter((e) => s.effects[e.key]).map((e) => e.hash).join(','));
   const dirs = DIRECTIONS.filter((d) => s.directions[d] !== 'free').map((d) => `${d}:${s.directions[d]}`);
   if (dirs.length) params.set('dirs', dirs.join(','));
+  const yielding = DIRECTIONS.filter((d) => s.yielding[d]);
+  if (yielding.length) params.set('yield', yielding.join(','));
   // URLSearchParams escapes ':' and ','; they are legal in a fragment and easier to read.
   return '#' + params.toString().replaceAll('%3A', ':').replaceAll('%2C', ',');
 }
@@ -132,6 +171,12 @@ export function parseHash(hash, defaults, offer) {
       } catch (err) {
         problems.push(err.message);
       }
+    }
+  }
+  if (params.has('yield')) {
+    for (const name of params.get('yield').split(',').filter(Boolean)) {
+      if (DIRECTIONS.includes(name)) s.yielding[name] = true;
+      else problems.push(`yield: unknown direction "${name}"`);
     }
   }
   return { settings: s, problems };

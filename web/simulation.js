@@ -3,7 +3,7 @@
 // direction events, and plain snapshots of the state. Effects, the integrator and the
 // policy are fixed when a simulator is created, so changing them builds a new one from
 // the current state.
-import { DIRECTIONS, GRAVITY, simulatorOptions } from './settings.js';
+import { DIRECTIONS, GRAVITY, motionInSimulatorTime, simulatorOptions } from './settings.js';
 import { startPose } from './start_pose.js';
 import { chainLinks, isMovable, urdfTree } from './urdf_tree.js';
 
@@ -67,7 +67,30 @@ export class Simulation {
     // The solver mirrors the simulator's solve so that its time can be measured alone.
     this.solver = this.robot.createSolver({ effects: options.effects });
     this.solver.useExternalWrenches = this.settings.effects.externalWrenches;
-    for (const name of DIRECTIONS) this.applyDirection(name);
+    this.applyDrivers();
+  }
+
+  // The prescribed joints first (a held direction then holds where the tip is on their
+  // trajectories), each direction's priority, then the directions.
+  applyDrivers() {
+    for (const joint of Object.keys(this.settings.prescribed)) this.applyPrescribed(joint);
+    for (const name of DIRECTIONS) {
+      this.applyYield(name);
+      this.applyDirection(name);
+    }
+  }
+
+  // settings.prescribed[joint] (page time) given to the simulator (its time starts at
+  // tOffset), or the joint released when it has none.
+  applyPrescribed(joint) {
+    const m = this.settings.prescribed[joint];
+    if (m) this.sim.prescribe(joint, motionInSimulatorTime(m, this.tOffset));
+    else this.sim.release(joint);
+  }
+
+  // A direction that yields to pushes has w_fext = 0: a push moves the tip along it.
+  applyYield(name) {
+    this.sim.setDirectionWeights(name, { wFext: this.settings.yielding[name] ? 0 : 1 });
   }
 
   get t() {
@@ -100,8 +123,8 @@ export class Simulation {
     this.tOffset = 0;
     this.sim.reset(this.q0);
     this.eventsSeen = this.events().length;
-    // reset() releases every direction; the page keeps the user's toggles.
-    for (const name of DIRECTIONS) this.applyDirection(name);
+    // reset() releases every direction and prescribed joint; the page keeps the user's choices.
+    this.applyDrivers();
   }
 
   // Every direction event of this simulator (since it was built or reset), t on the page's
@@ -182,6 +205,8 @@ export class Simulation {
       q: Array.from(this.sim.q),
       qd: Array.from(this.sim.qd),
       directions: { ...this.settings.directions },
+      yielding: { ...this.settings.yielding },
+      prescribed: structuredClone(this.settings.prescribed),
       residuals: this.sim.residuals(),
       stepMicros: this.currentStepMicros(),
     };

@@ -33,6 +33,8 @@ constexpr double kA[7][6] = {
     {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656},
     {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84},  // = b
 };
+// c_s = sum_j a_sj: the stage times within a substep.
+constexpr double kC[7] = {0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1, 1};
 constexpr double kE[7] = {71.0 / 57600,      0,           -71.0 / 16695, 71.0 / 1920,
                           -17253.0 / 339200, 22.0 / 525, -1.0 / 40};
 
@@ -63,7 +65,7 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
   const int n = model_.num_joints();
   const double rtol = options_.rtol, atol = options_.atol;
   stage_ = 0;
-  evaluate(q, qd, held_.angle, w_n, first, k_angle_[0]);
+  evaluate(q, qd, held_.angle, t, w_n, first, k_angle_[0]);
   // No substep size helps when the acceleration at the start is not finite.
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(first.qdd[i]))
@@ -108,7 +110,7 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
       finite = qs.allFinite() && qds.allFinite();
       for (int k = 0; k < kNumDirections; ++k) finite = finite && std::isfinite(as[k]);
       if (!finite) break;  // rejected below: a smaller substep
-      evaluate(qs, qds, as, w_n, stage_data_, k_angle_[s]);
+      evaluate(qs, qds, as, t + done + kC[s] * hs, w_n, stage_data_, k_angle_[s]);
       k_q_[s] = qds;
       k_qd_[s] = stage_data_.qdd;
     }

@@ -22,6 +22,9 @@
 // the torque the stop exerts, prescribed_torques_i - ff_i. When it would have to pull the
 // joint into the limit (positive on an upper stop, negative on a lower one), the joint is
 // free again: the acceleration it would have, free, points out of the limit.
+// Prescribed joints (Simulator::prescribe) follow their trajectories through their limits:
+// they are never stopped, and in the impact solves they are prescribed with dq = dqd = 0,
+// so that an impact of another joint leaves their motion as given.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -69,13 +72,13 @@ void Simulator::update_limit_stops(double w_n) {
     const bool on_it = limit_stop_[i] && options_.limits == LimitPolicy::Clamp && qd[i] == 0 &&
                        q[i] == limit_at(model_.bodies[i].limits, limit_stop_[i]);
     if (!on_it) limit_stop_[i] = 0;
-    case_.prescribed[i] = limit_stop_[i] != 0;
+    case_.prescribed[i] = limit_stop_[i] != 0 || moving_[i];
     resting = resting || on_it;
   }
   if (!resting) return;
   // The step's first solve, with the stops' joints prescribed: the torque each stop exerts.
   stage_ = 0;
-  evaluate(q, qd, held_.angle, w_n, limit_data_, limit_angle_rate_);
+  evaluate(q, qd, held_.angle, t, w_n, limit_data_, limit_angle_rate_);
   for (int i = 0; i < n; ++i) {
     if (!limit_stop_[i]) continue;
     const double ff = case_.ff_torques.size() ? case_.ff_torques[i] : 0.0;
@@ -118,7 +121,8 @@ void Simulator::stop_at_limits() {
       limit_reached_[i] = 0;
       continue;
     }
-    limit_reached_[i] = static_cast<signed char>(limit_side(l, q[i]));
+    // A prescribed joint follows its trajectory through its limits: never stopped.
+    limit_reached_[i] = moving_[i] ? 0 : static_cast<signed char>(limit_side(l, q[i]));
     reached = reached || limit_reached_[i];
   }
   if (!reached) return;
@@ -133,7 +137,8 @@ void Simulator::stop_at_limits() {
     if (held_.mode[k] != DirectionMode::Hold) continue;
     impact_case_.alpha(k, col++) = 1;  // [e; 0] or [0; e]: direction k's 1 is in row k
   }
-  for (int i = 0; i < n; ++i) impact_case_.prescribed[i] = limit_stop_[i] || limit_reached_[i];
+  // A prescribed joint keeps its trajectory through an impact: dq_i = dqd_i = 0.
+  for (int i = 0; i < n; ++i) impact_case_.prescribed[i] = limit_stop_[i] || limit_reached_[i] || moving_[i];
 
   // Position: back on the limit with the held quantities unchanged.
   body_motion(model_, q, qd, X0_, r_, v_);
@@ -175,7 +180,7 @@ void Simulator::stop_at_limits() {
   for (int i = 0; i < n; ++i) {
     const bool into = limit_reached_[i] && limit_reached_[i] * qd[i] >= 0;
     if (limit_reached_[i] && !into) limit_reached_[i] = 0;
-    impact_case_.prescribed[i] = limit_stop_[i] || into;
+    impact_case_.prescribed[i] = limit_stop_[i] || into || moving_[i];
     impact_case_.qdd_given[i] = into ? -qd[i] : 0.0;
   }
   impact_case_.q = q;

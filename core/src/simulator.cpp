@@ -128,6 +128,8 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   case_.prescribed.assign(n, false);
   limit_stop_.assign(n, 0);
   limit_reached_.assign(n, 0);
+  motions_.assign(n, JointMotion{});
+  moving_.assign(n, 0);
   impact_case_ = Case::zeros(model_);
   impact_case_.qdd_given = case_.qdd_given;
   impact_case_.prescribed = case_.prescribed;
@@ -174,8 +176,57 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   max_residual_.fill(0);
   limit_hits_.clear();
   limit_stop_.assign(n, 0);
+  moving_.assign(n, 0);
   case_.prescribed.assign(n, false);
+  case_.qdd_given.setZero();
   events_->clear();
+}
+
+void Simulator::check_joint(int joint, const char* what) const {
+  if (joint < 0 || joint >= model_.num_joints())
+    throw Error(std::string(what) + ": joint index " + std::to_string(joint) + " is not in 0.." +
+                std::to_string(model_.num_joints() - 1));
+}
+
+void Simulator::prescribe(int joint, const JointMotion& motion) {
+  check_joint(joint, "prescribe");
+  validate(motion, "joint '" + model_.bodies[joint].joint_name + "': ");
+  if (!std::isfinite(t)) throw Error("prescribe: t is not finite");
+  motions_[joint] = motion;
+  moving_[joint] = 1;
+  case_.prescribed[joint] = true;
+  limit_stop_[joint] = 0;  // its motion is given: no stop holds it
+  const JointSample at = sample(motion, t);
+  q[joint] = at.q;
+  qd[joint] = at.qd;
+  case_.qdd_given[joint] = at.qdd;
+}
+
+void Simulator::release(int joint) {
+  check_joint(joint, "release");
+  moving_[joint] = 0;
+  case_.prescribed[joint] = false;
+  case_.qdd_given[joint] = 0;  // a limit stop prescribes 0
+}
+
+bool Simulator::prescribed(int joint) const {
+  check_joint(joint, "prescribed");
+  return moving_[joint] != 0;
+}
+
+const JointMotion& Simulator::motion(int joint) const {
+  check_joint(joint, "motion");
+  if (!moving_[joint]) throw Error("motion: joint '" + model_.bodies[joint].joint_name + "' is not prescribed");
+  return motions_[joint];
+}
+
+void Simulator::follow_trajectories(double t_at) {
+  for (int i = 0; i < model_.num_joints(); ++i) {
+    if (!moving_[i]) continue;
+    const JointSample at = sample(motions_[i], t_at);
+    q[i] = at.q;
+    qd[i] = at.qd;
+  }
 }
 
 void Simulator::set_direction(int index, DirectionMode mode, double setpoint) {
@@ -237,7 +288,7 @@ std::array<double, kNumDirections> Simulator::max_residuals() const {
 // x' = f(x) at x = (q, qd, angle): the held set's alpha (set with the directions) and
 // beta at this state, one solve, and the held angles' rates e . w_tip.
 void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_at,
-                         const std::array<double, kNumDirections>& angle, double w_n, Data& out,
+                         const std::array<double, kNumDirections>& angle, double t_at, double w_n, Data& out,
                          std::array<double, kNumDirections>& angle_rate) {
   if (!q_at.allFinite() || !qd_at.allFinite())
     throw Error("the stage's state is not finite (" + non_finite_joint(model_, q_at, qd_at) + ")");
@@ -262,6 +313,8 @@ void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_
   for (int k = 0; k < kNumDirections; ++k)
     angle_rate[k] = held_.mode[k] == DirectionMode::Hold && !is_linear_direction(k)
                         ? direction_axis(k).dot(tip.w) : 0.0;
+  for (int i = 0; i < model_.num_joints(); ++i)
+    if (moving_[i]) case_.qdd_given[i] = sample(motions_[i], t_at).qdd;
   case_.q = q_at;
   case_.qd = qd_at;
   hybrid_dynamics(implicit_solve_ ? implicit_model_ : model_, out, case_, solver_);
@@ -339,6 +392,7 @@ void Simulator::step(double dt) {
   ++steps_taken_;
   t = t_origin_ + static_cast<double>(t_steps_) * dt;
   t_written_ = t;
+  follow_trajectories(t);
   apply_limits();
   // resumed directions, and held ones that yield to a driver, continue from where the tip is
   const unsigned anchored = resumed | yielding_directions(held_);
@@ -397,7 +451,7 @@ void Simulator::run(std::int64_t steps, double dt) {
 // x_{k+1} = x_k + dt f(x_k)
 void Simulator::step_explicit_euler(double dt, double w_n, Data& first) {
   stage_ = 0;
-  evaluate(q, qd, held_.angle, w_n, first, k_angle_[0]);
+  evaluate(q, qd, held_.angle, t, w_n, first, k_angle_[0]);
   q += dt * qd;
   qd += dt * first.qdd;
   for (int k = 0; k < kNumDirections; ++k) held_.angle[k] += dt * k_angle_[0][k];
@@ -407,7 +461,7 @@ void Simulator::step_explicit_euler(double dt, double w_n, Data& first) {
 // (positions too) advance with the new velocity: dt e . w(q_k, qd_{k+1}).
 void Simulator::step_semi_implicit_euler(double dt, double w_n, Data& first) {
   stage_ = 0;
-  evaluate(q, qd, held_.angle, w_n, first, k_angle_[0]);
+  evaluate(q, qd, held_.angle, t, w_n, first, k_angle_[0]);
   qd += dt * first.qdd;
   body_motion(model_, q, qd, X0_, r_, v_);
   const Vector3 w = tip_state(model_, X0_, v_).w;
@@ -426,13 +480,13 @@ void Simulator::step_rk4(double dt, double w_n, Data& first) {
     stage_ = s;
     Data& out = s == 0 ? first : stage_data_;
     if (s == 0) {
-      evaluate(q0_, qd0_, angle0_, w_n, out, k_angle_[0]);
+      evaluate(q0_, qd0_, angle0_, t, w_n, out, k_angle_[0]);
     } else {
       const double h = kStageStep[s] * dt;
       q_stage_ = q0_ + h * k_q_[s - 1];
       qd_stage_ = qd0_ + h * k_qd_[s - 1];
       for (int k = 0; k < kNumDirections; ++k) angle_stage_[k] = angle0_[k] + h * k_angle_[s - 1][k];
-      evaluate(q_stage_, qd_stage_, angle_stage_, w_n, out, k_angle_[s]);
+      evaluate(q_stage_, qd_stage_, angle_stage_, t + h, w_n, out, k_angle_[s]);
     }
     k_q_[s] = s == 0 ? qd0_ : qd_stage_;
     k_qd_[s] = out.qdd;

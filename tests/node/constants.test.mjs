@@ -125,15 +125,18 @@ test('every view and result covers the C++ buffer of its name', () => {
   solver.alpha.set([1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0]);
   solver.beta.set([0.3, -0.2]);
   solver.useExternalWrenches = true;
+  solver.useVirtualWrenches = true;
+  solver.setPrescribed(['lwr_joint_2']);
   solver.solve();
   const views = ['q', 'qd', 'ff_torques', 'gravity', 'alpha', 'beta', 'f_ext', 'qdd', 'nu', 'joint_torques',
-    'constraint_torques', 'total_torques', 'link_accelerations', 'constraint_wrench', 'constraint_wrenches'];
+    'constraint_torques', 'total_torques', 'link_accelerations', 'constraint_wrench', 'constraint_wrenches',
+    'qdd_given', 'w_fext', 'w_ff', 'f_virtual', 'prescribed_torques', 'virtual_torques'];
   assert.deepEqual(c.solver_buffers.filter((name) => name !== 'dropped'), views, 'a view per C++ buffer');
   for (const name of views)
     assert.equal(solver[name].byteOffset, achd._achd_solver_buffer(solver._ptr, c.solver_buffers.indexOf(name)), name);
   const result = solver.result();
   for (const name of ['qdd', 'nu', 'joint_torques', 'constraint_torques', 'total_torques', 'constraint_wrench',
-    'link_accelerations']) {
+    'link_accelerations', 'virtual_torques']) {
     const flat = result[name].flat();
     assert.deepEqual(flat, doubles(achd._achd_solver_buffer(solver._ptr, c.solver_buffers.indexOf(name)), flat.length), name);
   }
@@ -177,6 +180,7 @@ test('achd.d.ts declares the C++ names and the fields of achd.constants', () => 
   assert.deepEqual(union('SingularityPolicy'), sorted(c.singularity_policies));
   assert.deepEqual(union('Direction'), sorted(c.directions));
   assert.deepEqual(union('DirectionEventKind'), sorted(c.direction_event_kinds));
+  assert.deepEqual(union('MotionKind'), sorted(c.motion_kinds));
   assert.deepEqual(fields('Constants'), sorted(Object.keys(c)));
   assert.deepEqual(fields('CppOptions'), sorted(Object.keys(c.options)));
   assert.deepEqual(fields('CppSimulatorOptions'), sorted(Object.keys(c.simulator_options)));

@@ -6,7 +6,8 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 
-import { EFFECTS, defaultSettings, formatHash, hashRobot, parseHash, simulatorOptions } from '../../web/settings.js';
+import { EFFECTS, MOTION_PARAMETERS, defaultSettings, formatHash, hashRobot, motionFrom, motionInSimulatorTime, parseHash,
+  simulatorOptions } from '../../web/settings.js';
 import { moduleOffer } from '../../web/module_offer.js';
 import { loadAchd } from './helpers.mjs';
 
@@ -28,6 +29,37 @@ test('the hash writes the scene names and reads them back', () => {
   assert.deepEqual(parseHash(hash, defaultSettings('kuka_lwr4', OFFER), OFFER), { settings: s, problems: [] });
   assert.equal(hashRobot(hash, 'kuka_lwr4'), 'ur5');
   assert.equal(hashRobot('#dt=0.001', 'kuka_lwr4'), 'kuka_lwr4');
+});
+
+test('directions that yield to pushes are stored in the hash; prescribed joints are not', () => {
+  const s = defaultSettings('kuka_lwr4', OFFER);
+  s.directions.z = 'hold';
+  s.yielding.z = true;
+  s.prescribed.lwr_joint_1 = motionFrom({ motion: 'constant', position: 0.3 }, 2);
+  const hash = formatHash(s);
+  assert.match(hash, /&dirs=z:hold&yield=z$/);
+  const back = parseHash(hash, defaultSettings('kuka_lwr4', OFFER), OFFER);
+  assert.deepEqual(back.problems, []);
+  assert.deepEqual(back.settings, { ...s, prescribed: {} });
+  assert.deepEqual(parseHash('#yield=up', defaultSettings('ur5', OFFER), OFFER).problems, ['yield: unknown direction "up"']);
+});
+
+// The page starts a motion where it is applied: q(t) of the simulator's sine at page time
+// t = t0 + its own time passes through the given centre, rising, at the page time of Apply.
+test('a page motion starts at its given position when applied, in any simulator\'s time', async () => {
+  const achd = await loadAchd();
+  assert.deepEqual(Object.keys(MOTION_PARAMETERS), achd.constants.motion_kinds);
+  const sine = motionFrom({ motion: 'sine', position: 0.3, amplitude: 0.5, frequency: 0.5 }, 2.25);
+  const at = (m, t) => m.position + m.amplitude * Math.sin(2 * Math.PI * m.frequency * t + m.phase);
+  assert.ok(Math.abs(at(sine, 2.25) - 0.3) < 1e-15);
+  assert.ok(at(sine, 2.3) > 0.3, 'rising');
+  const inSim = motionInSimulatorTime(sine, 1.5);  // a simulator built at page time 1.5
+  assert.ok(Math.abs(at(inSim, 2.25 - 1.5) - 0.3) < 1e-15);
+  const ramp = motionFrom({ motion: 'ramp', position: 1, velocity: 0.2 }, 3);
+  assert.ok(Math.abs(motionInSimulatorTime(ramp, 1).position + 0.2 * 2 - 1) < 1e-15);
+  assert.throws(() => motionFrom({ motion: 'sine', position: 0, amplitude: 1, frequency: -1 }, 0), /frequency must be >= 0/);
+  assert.throws(() => motionFrom({ motion: 'ramp', position: 0 }, 0), /ramp motion: velocity must be a finite number/);
+  assert.throws(() => motionFrom({ motion: 'square' }, 0), /unknown motion "square"/);
 });
 
 test('the policy and the adaptive integrator\'s rtol are stored in the hash', () => {

@@ -43,7 +43,7 @@ const runModule = (source, cwd) => run(process.execPath, ['--input-type=module']
 
 test('README.md\'s JavaScript example runs as written and simulates 60 s', async () => {
   const blocks = codeBlocks('README.md', 'js');
-  assert.equal(blocks.length, 2, 'README.md has two JavaScript examples: the quadruped\'s, the LWR\'s');
+  assert.equal(blocks.length, 3, 'README.md has three JavaScript examples: the quadruped\'s, the LWR\'s, the drivers\'');
   const { code, stdout, stderr } = await runModule(blocks[1], repo);
   assert.equal(stderr, '');
   assert.equal(code, 0);
@@ -52,6 +52,19 @@ test('README.md\'s JavaScript example runs as written and simulates 60 s', async
   assert.equal(Number(m[1]), 60);
   assert.ok(Number(m[2]) < 1e-6, `z residual ${m[2]}`);
   console.log(`# ${stdout.trim()}`);
+});
+
+// The drivers (issue 16): a prescribed joint, a yielding column, a virtual wrench; the
+// simulator's prescribed sine with z held.
+test('README.md\'s drivers example (JavaScript) runs as written', async () => {
+  const block = codeBlocks('README.md', 'js')[2];
+  assert.match(block, /qdd_given/);
+  const { code, stdout, stderr } = await runModule(block, repo);
+  assert.equal(stderr, '');
+  assert.equal(code, 0);
+  const m = stdout.match(/^qdd 0\.5, 7 virtual torques\nbase at 0\.3000 rad, z held within (\S+) m\n$/);
+  assert.ok(m, `unexpected output: ${stdout}`);
+  assert.ok(Number(m[1]) < 1e-6, `z residual ${m[1]}`);
 });
 
 // The quadruped's four feet held in 3D: full rank, the legs still, the feet pressing.

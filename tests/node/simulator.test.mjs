@@ -14,7 +14,7 @@ const camelCase = (name) => name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase(
 // Scene fields -> createSimulator options (the rest are handled in startScene).
 const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping', 'rtol', 'atol'];
 const HANDLED = ['description', 'urdf', 'root', 'tip', 'q0', 'qd0', 'effects', 'directions', 'direction_weights', 'integrator',
-  'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', ...OPTIONS];
+  'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', 'prescribed', ...OPTIONS];
 
 let achd, kuka, kukaEntry;
 before(async () => {
@@ -38,6 +38,10 @@ function startScene(scene, robot) {
   sim.reset(scene.q0, scene.qd0);
   if (scene.ff_torques) sim.ff_torques.set(scene.ff_torques);
   for (const [link, wrench] of Object.entries(scene.f_ext ?? {})) sim.setExternalWrench(link, wrench);
+  for (const p of scene.prescribed ?? []) {
+    const { joint, ...motion } = p;
+    sim.prescribe(joint, motion);
+  }
   for (const [name, w] of Object.entries(scene.direction_weights ?? {}))
     sim.setDirectionWeights(name, { wFext: w.w_fext, wFf: w.w_ff });
   for (const [name, mode] of Object.entries(scene.directions ?? {})) sim.setDirection(name, mode);

@@ -1,12 +1,14 @@
 // The case's inputs by name, as tools/case_json.cpp reads them and with its messages: q,
-// qd, ff_torques as an object keyed by joint name (joints not named: 0), f_ext as an
-// object keyed by link name (links not named: no wrench), and the constraint blocks
-// {link, alpha, beta, point} packed for achd_solver_set_blocks. `robot` supplies the
+// qd, ff_torques as an object keyed by joint name (joints not named: 0), f_ext and
+// f_virtual as an object keyed by link name (links not named: no wrench), qdd_given by
+// joint name or in model order with null for a joint whose torque is given, the driver
+// weights w_fext and w_ff, and the constraint blocks {link, alpha, beta, point, w_fext,
+// w_ff} packed for achd_solver_set_blocks. `robot` supplies the
 // names: root, tip (null for a tree), jointNames, linkNames (after the root),
 // lockedJoints.
 import { achdCheckVector, achdIsArrayLike } from './validation.mjs';
 
-const ACHD_BLOCK_KEYS = ['link', 'alpha', 'beta', 'point'];
+const ACHD_BLOCK_KEYS = ['link', 'alpha', 'beta', 'point', 'w_fext', 'w_ff'];
 
 function achdIsPlainObject(v) {
   return v !== null && typeof v === 'object' && !achdIsArrayLike(v);
@@ -51,21 +53,60 @@ export function achdJointValues(value, field, robot) {
   return out;
 }
 
-// f_ext: an object by link name becomes the list of one wrench per link after the root.
-export function achdLinkWrenches(value, robot) {
+// f_ext, f_virtual (`field`): an object by link name becomes the list of one wrench per
+// link after the root.
+export function achdLinkWrenches(value, robot, field = 'f_ext') {
   if (!achdIsPlainObject(value)) {
-    if (!Array.isArray(value)) throw new Error('f_ext must be an array of 6-element wrenches or an object {link name: wrench}');
+    if (!Array.isArray(value)) throw new Error(`${field} must be an array of 6-element wrenches or an object {link name: wrench}`);
     return value;
   }
   const out = robot.linkNames.map(() => [0, 0, 0, 0, 0, 0]);
   for (const name of Object.keys(value)) {
     const w = value[name];
     const l = robot.linkNames.indexOf(name);
-    if (l < 0) throw new Error(`f_ext: ${achdNoLink(robot, name)}`);
-    achdCheckVector(w, `f_ext['${name}']`, 6);
+    if (l < 0) throw new Error(`${field}: ${achdNoLink(robot, name)}`);
+    achdCheckVector(w, `${field}['${name}']`, 6);
     out[l] = Array.from(w);
   }
   return out;
+}
+
+// qdd_given: the prescribed joints' accelerations, an object {joint name: qdd} or an array
+// in model order with null where the joint's torque is given -> {mask, values} (one per
+// joint; values 0 where not prescribed).
+export function achdPrescribedJoints(value, robot) {
+  const nj = robot.numJoints;
+  const mask = new Array(nj).fill(false), values = new Array(nj).fill(0);
+  if (achdIsPlainObject(value)) {
+    for (const name of Object.keys(value)) {
+      const i = robot.jointNames.indexOf(name);
+      if (i < 0) throw new Error(`qdd_given: ${achdNoJoint(robot, name)}`);
+      values[i] = achdNumber(value[name], `qdd_given['${name}']`);
+      mask[i] = true;
+    }
+    return { mask, values };
+  }
+  if (!achdIsArrayLike(value))
+    throw new Error(`qdd_given must be an object {joint name: acceleration} or an array of ${nj} numbers or nulls (null: the joint is not prescribed)`);
+  if (value.length !== nj)
+    throw new Error(`qdd_given: expected ${nj} values (one per joint, null where not prescribed), got ${value.length}`);
+  for (let i = 0; i < nj; ++i) {
+    if (value[i] === null) continue;
+    values[i] = achdNumber(value[i], `qdd_given[${i}] (joint '${robot.jointNames[i]}')`);
+    mask[i] = true;
+  }
+  return { mask, values };
+}
+
+// w_fext, w_ff of the tip (prefix '') or of a block ('constraints[b].'): one weight per
+// alpha column, absent: 1 (the range [0, 1] is checked by the C++ validate, whose
+// message the CLI gives too).
+export function achdDriverWeights(value, field, nc) {
+  if (value === undefined) return new Array(nc).fill(1);
+  if (!achdIsArrayLike(value)) throw new Error(`${field} must be an array of numbers in [0, 1], one per alpha column`);
+  if (value.length !== nc)
+    throw new Error(`${field}: expected ${nc} values (one per alpha column), got ${value.length}`);
+  return Array.from(value, (x, k) => achdNumber(x, `${field}[${k}]`));
 }
 
 // Columns alpha (up to `max` 6-vectors) and beta (one per column, absent: zeros) of a
@@ -87,7 +128,8 @@ function achdColumns(block, prefix, max) {
 }
 
 // "constraints": the blocks checked and packed as achd_solver_set_blocks reads them: per
-// block [link index, columns k, point (3), alpha (6 k), beta (k)]. `max`: columns per block.
+// block [link index, columns k, point (3), alpha (6 k), beta (k), w_fext (k), w_ff (k)].
+// `max`: columns per block.
 export function achdPackBlocks(blocks, robot, max) {
   if (!Array.isArray(blocks)) throw new Error('constraints must be an array of blocks {link, alpha, beta, point}');
   const packed = [];
@@ -102,6 +144,8 @@ export function achdPackBlocks(blocks, robot, max) {
     const link = robot.linkNames.indexOf(block.link);
     if (link < 0) throw new Error(`${where}.link: ${achdNoLink(robot, block.link)}`);
     const columns = achdColumns(block, `${where}.`, max), alpha = columns.alpha;
+    const w_fext = achdDriverWeights(block.w_fext, `${where}.w_fext`, alpha.length);
+    const w_ff = achdDriverWeights(block.w_ff, `${where}.w_ff`, alpha.length);
     let point = [0, 0, 0];
     if (block.point !== undefined) {
       achdCheckVector(block.point, `${where}.point`, 3);
@@ -110,6 +154,7 @@ export function achdPackBlocks(blocks, robot, max) {
     packed.push(link, alpha.length, ...point);
     for (const col of alpha) packed.push(...Array.from(col));
     packed.push(...columns.beta);
+    packed.push(...w_fext, ...w_ff);
   });
   return packed;
 }

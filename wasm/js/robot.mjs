@@ -2,7 +2,7 @@
 import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeprecated } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
 import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdEffectBits, achdIsArrayLike, achdPositive, achdSolverOptions, achdWriteSpatialList, achdWriteVector } from './validation.mjs';
-import { achdJointValues, achdLinkWrenches } from './case_names.mjs';
+import { achdDriverWeights, achdJointValues, achdLinkWrenches, achdPrescribedJoints } from './case_names.mjs';
 import { achdChunks, achdWithScratch } from './memory.mjs';
 import { AchdHandle } from './handle.mjs';
 import { Solver } from './solver.mjs';
@@ -49,11 +49,13 @@ export class Robot extends AchdHandle {
     return new Solver(this, s, mc);  // gravity: the C++ Case's default
   }
   // The case object in, the result object out (docs/design.md section 5; plain arrays:
-  // copies). q, qd, ff_torques by joint name and f_ext by link name as in the CLI;
-  // constraints: blocks {link (a name), alpha, beta, point}.
+  // copies). q, qd, ff_torques by joint name and f_ext, f_virtual by link name as in the
+  // CLI; qdd_given by joint name or in model order (null: the torque is given); w_fext,
+  // w_ff per tip column; constraints: blocks {link (a name), alpha, beta, point, w_fext, w_ff}.
   solve(c, options) {
     this._live();
-    achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques', 'constraints']);
+    achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques', 'constraints',
+      'qdd_given', 'w_fext', 'w_ff', 'f_virtual']);
     if (!('q' in c)) throw new Error("missing required field 'q'");
     if (!('gravity' in c)) throw new Error("missing required field 'gravity'");
     const args = achdSolverOptions(options);
@@ -82,16 +84,23 @@ export class Robot extends AchdHandle {
     } else {
       achdWasm.module.HEAPF64.fill(0, at('beta'), at('beta') + nc);
     }
-    if (c.f_ext !== undefined) {
-      const f_ext = achdLinkWrenches(c.f_ext, this);
-      if (f_ext.length !== nl)
-        throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${f_ext.length}`);
-      s.useExternalWrenches = true;
-      achdWriteSpatialList(f_ext, 'f_ext', nl, at('f_ext'), 'wrenches');
-    } else {
-      s.useExternalWrenches = false;
-    }
+    for (const field of ['w_fext', 'w_ff'])
+      achdWasm.module.HEAPF64.set(achdDriverWeights(c[field], field, nc), at(field));
     s.setConstraints(c.constraints === undefined ? [] : c.constraints);
+    for (const field of ['f_ext', 'f_virtual']) {
+      const on = c[field] !== undefined;
+      if (on) {
+        const wrenches = achdLinkWrenches(c[field], this, field);
+        if (wrenches.length !== nl)
+          throw new Error(`${field}: expected ${nl} wrenches (one per link after the root), got ${wrenches.length}`);
+        achdWriteSpatialList(wrenches, field, nl, at(field), 'wrenches');
+      }
+      if (field === 'f_ext') s.useExternalWrenches = on;
+      else s.useVirtualWrenches = on;
+    }
+    const given = c.qdd_given === undefined ? null : achdPrescribedJoints(c.qdd_given, this);
+    if (given) achdWasm.module.HEAPF64.set(given.values, at('qdd_given'));
+    s.setPrescribed(given ? given.mask : []);
     s.numConstraints = nc;
     achdWasm.module._achd_solver_set_options(ptr, ...args);
     s.solve();

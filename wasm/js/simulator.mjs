@@ -95,6 +95,39 @@ export class Simulator extends AchdHandle {
     if (index < 0) throw new Error(`setDirectionWeights: unknown direction '${name}' (${directions.join(', ')})`);
     if (achdWasm.module._achd_sim_set_direction_weights(ptr, index, Number(wFext), Number(wFf))) throw achdLastError();
   }
+  // Prescribed joint motion: joint (a name or an index) follows {motion: 'constant' |
+  // 'ramp' | 'sine', position, velocity, amplitude, frequency, phase} (parameters its
+  // kind does not read: absent) in the simulated time, put on it at once; release(joint)
+  // drives it by its torques again. reset() releases every joint.
+  prescribe(joint, motion) {
+    const ptr = this._live(), index = this._jointIndex(joint, 'prescribe');
+    achdCheckObject(motion, 'prescribe: motion', ['motion', 'position', 'velocity', 'amplitude', 'frequency', 'phase']);
+    const kinds = achdConstants().motion_kinds, kind = kinds.indexOf(motion.motion);
+    if (kind < 0)
+      throw new Error(`prescribe: motion.motion: expected ${kinds.map((k) => `'${k}'`).join(', ')}, got '${motion.motion}'`);
+    const value = (key) => {
+      const x = motion[key] === undefined ? 0 : motion[key];
+      if (typeof x !== 'number') throw new Error(`prescribe: motion.${key} must be a number`);
+      return x;
+    };
+    if (achdWasm.module._achd_sim_prescribe(ptr, index, kind, value('position'), value('velocity'),
+      value('amplitude'), value('frequency'), value('phase'))) throw achdLastError();
+  }
+  release(joint) {
+    const ptr = this._live(), index = this._jointIndex(joint, 'release');
+    if (achdWasm.module._achd_sim_release(ptr, index)) throw achdLastError();
+  }
+  // Names of the prescribed joints, root to tip.
+  prescribedJoints() {
+    const ptr = this._live();
+    return this._jointNames.filter((_, i) => achdWasm.module._achd_sim_prescribed(ptr, i) !== 0);
+  }
+  _jointIndex(joint, what) {
+    const index = typeof joint === 'string' ? this._jointNames.indexOf(joint) : joint;
+    if (!Number.isInteger(index) || index < 0 || index >= this.numJoints)
+      throw new Error(`${what}: unknown joint ${JSON.stringify(joint)} (index 0..${this.numJoints - 1} or a joint name)`);
+    return index;
+  }
   // Held-direction residuals (m or rad); null for directions that are not held (free
   // or accelerated: neither has a position or angle to keep).
   residuals() {
@@ -146,6 +179,8 @@ export class Simulator extends AchdHandle {
   nu() { return this._result('nu', achdWasm.module._achd_sim_nu_size(this._live())); }
   joint_torques() { return this._result('joint_torques', this.numJoints); }
   qdd() { return this._result('qdd', this.numJoints); }
+  // per joint: a prescribed joint's torque (its trajectory's acceleration needs it), 0 for the others.
+  prescribed_torques() { return this._result('prescribed_torques', this.numJoints); }
   jointTorques() {
     achdDeprecated('Simulator.jointTorques()', 'Simulator.joint_torques()');
     return this.joint_torques();

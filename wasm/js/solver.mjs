@@ -3,7 +3,7 @@ import { achdConstants } from './constants.mjs';
 import { achdLastError, achdSigmaMin, achdWasm } from './runtime.mjs';
 import { achdSolverOptions } from './validation.mjs';
 import { achdChunks, achdCopy, achdWithScratch } from './memory.mjs';
-import { achdPackBlocks } from './case_names.mjs';
+import { achdNoJoint, achdPackBlocks } from './case_names.mjs';
 import { AchdHandle } from './handle.mjs';
 
 // The zero-copy solver: write the views, call solve(), read the views.
@@ -20,6 +20,8 @@ export class Solver extends AchdHandle {
     this._blocks = 0;
     this._blockColumns = 0;
     this._external = false;
+    this._virtual = false;
+    this._prescribed = new Array(robot.numJoints).fill(false);
   }
   _bufferOf(ptr, index) { return achdWasm.module._achd_solver_buffer(ptr, index); }
   _bufferNames() { return achdConstants().solver_buffers; }
@@ -28,7 +30,8 @@ export class Solver extends AchdHandle {
     return [['q', nj], ['qd', nj], ['ff_torques', nj], ['gravity', 3], ['alpha', 6 * mc], ['beta', mc],
       ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc + this._blockColumns], ['joint_torques', nj], ['constraint_torques', nj],
       ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6],
-      ['constraint_wrenches', 6 * this._blocks]];
+      ['constraint_wrenches', 6 * this._blocks], ['qdd_given', nj], ['w_fext', mc], ['w_ff', mc],
+      ['f_virtual', 6 * nl], ['prescribed_torques', nj], ['virtual_torques', nj]];
   }
   get q() { return this._view('q'); }
   get qd() { return this._view('qd'); }
@@ -45,6 +48,16 @@ export class Solver extends AchdHandle {
   get link_accelerations() { return this._view('link_accelerations'); }
   get constraint_wrench() { return this._view('constraint_wrench'); }
   get constraint_wrenches() { return this._view('constraint_wrenches'); }
+  // Issue 16's drivers: the prescribed joints' accelerations (read for the joints
+  // setPrescribed names), the tip columns' driver weights (1 until written; the first
+  // numConstraints are used), the virtual wrenches (read while useVirtualWrenches), and
+  // their results.
+  get qdd_given() { return this._view('qdd_given'); }
+  get w_fext() { return this._view('w_fext'); }
+  get w_ff() { return this._view('w_ff'); }
+  get f_virtual() { return this._view('f_virtual'); }
+  get prescribed_torques() { return this._view('prescribed_torques'); }
+  get virtual_torques() { return this._view('virtual_torques'); }
   get rank() { return achdWasm.module._achd_solver_rank(this._live()); }
   get sigma_min() { return achdSigmaMin(this._live()); }
   get numConstraints() { this._live(); return this._nc; }
@@ -75,6 +88,38 @@ export class Solver extends AchdHandle {
     achdWasm.module._achd_solver_use_external_wrenches(this._live(), on ? 1 : 0);
     this._external = on;
   }
+  get useVirtualWrenches() { this._live(); return this._virtual; }
+  set useVirtualWrenches(on) {
+    if (typeof on !== 'boolean') throw new Error('useVirtualWrenches must be true or false');
+    achdWasm.module._achd_solver_use_virtual_wrenches(this._live(), on ? 1 : 0);
+    this._virtual = on;
+  }
+  // The joints whose acceleration is given (the qdd_given view) instead of their torque:
+  // joint names, or one boolean per joint in model order; [] for none.
+  setPrescribed(joints) {
+    const ptr = this._live(), names = this._names, nj = names.numJoints;
+    if (!Array.isArray(joints)) throw new Error('setPrescribed: expected an array of joint names or of booleans');
+    const mask = new Array(nj).fill(false);
+    if (joints.length && typeof joints[0] === 'boolean') {
+      if (joints.length !== nj) throw new Error(`setPrescribed: expected ${nj} booleans (one per joint), got ${joints.length}`);
+      joints.forEach((on, i) => {
+        if (typeof on !== 'boolean') throw new Error(`setPrescribed: entry ${i} must be true or false`);
+        mask[i] = on;
+      });
+    } else {
+      for (const name of joints) {
+        const i = names.jointNames.indexOf(name);
+        if (i < 0) throw new Error(`setPrescribed: ${achdNoJoint(names, name)}`);
+        mask[i] = true;
+      }
+    }
+    achdWithScratch(Math.max(nj, 1), (p) => {
+      achdWasm.module.HEAPF64.set(mask.map((on) => (on ? 1 : 0)), p);
+      achdWasm.module._achd_solver_set_prescribed(ptr, 8 * p);
+    });
+    this._prescribed = mask;
+  }
+  get prescribed() { this._live(); return this._prescribed.slice(); }
   setOptions(options) {
     const ptr = this._live();
     achdWasm.module._achd_solver_set_options(ptr, ...achdSolverOptions(options));
@@ -107,6 +152,13 @@ export class Solver extends AchdHandle {
       sigma_min: achdSigmaMin(ptr),
       dropped: rows ? achdChunks(copy('dropped', rows * cols), rows) : [],
     };
+    // As the CLI prints them: virtual_torques with virtual wrenches, prescribed_torques
+    // (null where the torque was given) with a prescribed joint.
+    if (this._virtual) out.virtual_torques = copy('virtual_torques', nj);
+    if (this._prescribed.includes(true)) {
+      const torques = copy('prescribed_torques', nj);
+      out.prescribed_torques = torques.map((x, i) => (this._prescribed[i] ? x : null));
+    }
     if (model.lockedJoints.length) out.locked_joints = model.lockedJoints.map((j) => ({ name: j.name, value: j.value }));
     return out;
   }

@@ -15,12 +15,14 @@ enum SolverBuffer {
   kSolverQ, kSolverQd, kSolverFfTorques, kSolverGravity, kSolverAlpha, kSolverBeta, kSolverFExt,
   kSolverQdd, kSolverNu, kSolverJointTorques, kSolverConstraintTorques, kSolverTotalTorques,
   kSolverLinkAccelerations, kSolverConstraintWrench, kSolverDropped, kSolverConstraintWrenches,
+  kSolverQddGiven, kSolverWFext, kSolverWFf, kSolverFVirtual, kSolverPrescribedTorques, kSolverVirtualTorques,
   kNumSolverBuffers
 };
 inline constexpr const char* kSolverBufferNames[] = {
     "q", "qd", "ff_torques", "gravity", "alpha", "beta", "f_ext",
     "qdd", "nu", "joint_torques", "constraint_torques", "total_torques",
-    "link_accelerations", "constraint_wrench", "dropped", "constraint_wrenches"};
+    "link_accelerations", "constraint_wrench", "dropped", "constraint_wrenches",
+    "qdd_given", "w_fext", "w_ff", "f_virtual", "prescribed_torques", "virtual_torques"};
 static_assert(sizeof kSolverBufferNames / sizeof kSolverBufferNames[0] == kNumSolverBuffers,
               "one name per SolverBuffer");
 
@@ -31,8 +33,8 @@ static_assert(sizeof kSimulatorBufferNames / sizeof kSimulatorBufferNames[0] == 
               "one name per SimulatorBuffer");
 
 // achd_sim_result(sim, index): outputs of the solve at the start of the last step.
-enum SimulatorResult { kSimNu, kSimJointTorques, kSimQdd, kNumSimulatorResults };
-inline constexpr const char* kSimulatorResultNames[] = {"nu", "joint_torques", "qdd"};
+enum SimulatorResult { kSimNu, kSimJointTorques, kSimQdd, kSimPrescribedTorques, kNumSimulatorResults };
+inline constexpr const char* kSimulatorResultNames[] = {"nu", "joint_torques", "qdd", "prescribed_torques"};
 static_assert(sizeof kSimulatorResultNames / sizeof kSimulatorResultNames[0] == kNumSimulatorResults,
               "one name per SimulatorResult");
 

@@ -56,7 +56,8 @@ std::string constants() {
   s += "],\"direction_modes\":" + names(kDirectionModeNames) +
        ",\"limit_policies\":" + names(kLimitPolicyNames) + ",\"conventions\":" + names(kConventionNames) +
        ",\"singularity_policies\":" + names(kSingularityPolicyNames) +
-       ",\"direction_event_kinds\":" + names(kDirectionEventKindNames);
+       ",\"direction_event_kinds\":" + names(kDirectionEventKindNames) +
+       ",\"motion_kinds\":" + names(kMotionKindNames);
   s += ",\"case_gravity\":" + vector3(Case().gravity);
   s += ",\"options\":" + describe(Options()) + ",\"simulator_options\":" + describe(SimulatorOptions());
   s += ",\"solver_buffers\":" + names(kSolverBufferNames) +

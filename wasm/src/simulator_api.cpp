@@ -90,6 +90,28 @@ ACHD_EXPORT int achd_sim_set_direction_weights(achd::Simulator* sim, int index, 
   return achd::wasm::guarded([&] { sim->set_direction_weights(index, w_fext, w_ff); });
 }
 
+// Prescribed joint motion (Simulator::prescribe): kind an index into motion_kinds of
+// achd_constants(), the parameters of achd::JointMotion.
+ACHD_EXPORT int achd_sim_prescribe(achd::Simulator* sim, int joint, int kind, double position, double velocity,
+                                   double amplitude, double frequency, double phase) {
+  return achd::wasm::guarded([&] {
+    achd::JointMotion m;
+    m.kind = static_cast<achd::MotionKind>(kind);
+    m.position = position;
+    m.velocity = velocity;
+    m.amplitude = amplitude;
+    m.frequency = frequency;
+    m.phase = phase;
+    sim->prescribe(joint, m);
+  });
+}
+
+ACHD_EXPORT int achd_sim_release(achd::Simulator* sim, int joint) {
+  return achd::wasm::guarded([&] { sim->release(joint); });
+}
+
+ACHD_EXPORT int achd_sim_prescribed(const achd::Simulator* sim, int joint) { return sim->prescribed(joint) ? 1 : 0; }
+
 ACHD_EXPORT int achd_sim_direction_mode(const achd::Simulator* sim, int index) {
   return static_cast<int>(sim->direction_mode(index));
 }
@@ -110,6 +132,7 @@ ACHD_EXPORT const double* achd_sim_result(const achd::Simulator* sim, int which)
     case achd::wasm::kSimNu: return d.nu.data();
     case achd::wasm::kSimJointTorques: return d.joint_torques.data();
     case achd::wasm::kSimQdd: return d.qdd.data();
+    case achd::wasm::kSimPrescribedTorques: return d.prescribed_torques.data();
     default: return nullptr;
   }
 }

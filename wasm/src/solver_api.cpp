@@ -23,9 +23,19 @@ struct Solver {
     c.beta.setZero(kMaxConstraints);
     c.alpha.resize(6, 0);
     c.beta.resize(0);
+    // Driver weights of the tip's columns, kept as long as alpha (fixed storage too): 1 =
+    // KDL's priorities, which the solve treats as no weights at all.
+    c.w_fext.setOnes(kMaxConstraints);
+    c.w_ff.setOnes(kMaxConstraints);
+    c.w_fext.resize(0);
+    c.w_ff.resize(0);
+    // Prescribed joints: a mask of all false (no joint prescribed) until set_prescribed.
+    c.qdd_given.setZero(n);
+    c.prescribed.assign(n, false);
     // Blocks have fixed storage each: with this reserve, setting blocks never allocates.
     c.constraints.reserve(kMaxConstraintColumns);
     parked_f_ext.assign(model->num_links(), Vector6::Zero());
+    parked_f_virtual.assign(model->num_links(), Vector6::Zero());
   }
   std::shared_ptr<const Model> model;
   Case c;
@@ -35,6 +45,7 @@ struct Solver {
   // The f_ext buffer while external wrenches are off (c.f_ext is then empty); swapping
   // moves the buffer between the two vectors without reallocating it.
   std::vector<Vector6> parked_f_ext;
+  std::vector<Vector6> parked_f_virtual;  // the same for f_virtual (c.f_virtual empty = none)
 };
 
 }  // namespace achd::wasm
@@ -61,6 +72,7 @@ ACHD_EXPORT double* achd_solver_buffer(Solver* s, int which) {
   achd::Case& c = s->c;
   achd::Data& d = s->data;
   std::vector<achd::Vector6>& f_ext = c.f_ext.empty() ? s->parked_f_ext : c.f_ext;
+  std::vector<achd::Vector6>& f_virtual = c.f_virtual.empty() ? s->parked_f_virtual : c.f_virtual;
   switch (which) {
     case achd::wasm::kSolverQ: return c.q.data();
     case achd::wasm::kSolverQd: return c.qd.data();
@@ -79,6 +91,12 @@ ACHD_EXPORT double* achd_solver_buffer(Solver* s, int which) {
     case achd::wasm::kSolverDropped: return d.dropped.data();
     // Reserved for the Data's capacity when it was made: the address never changes.
     case achd::wasm::kSolverConstraintWrenches: return reinterpret_cast<double*>(d.constraint_wrenches.data());
+    case achd::wasm::kSolverQddGiven: return c.qdd_given.data();
+    case achd::wasm::kSolverWFext: return c.w_fext.data();
+    case achd::wasm::kSolverWFf: return c.w_ff.data();
+    case achd::wasm::kSolverFVirtual: return f_virtual.front().data();
+    case achd::wasm::kSolverPrescribedTorques: return d.prescribed_torques.data();
+    case achd::wasm::kSolverVirtualTorques: return d.virtual_torques.data();
     default: return nullptr;
   }
 }
@@ -90,13 +108,15 @@ ACHD_EXPORT int achd_solver_set_num_constraints(Solver* s, int nc) {
                         "] (maxConstraints), got " + std::to_string(nc));
     s->c.alpha.resize(6, nc);
     s->c.beta.resize(nc);
+    s->c.w_fext.resize(nc);
+    s->c.w_ff.resize(nc);
   });
 }
 
 // The constraint blocks of the solves that follow (Case::constraints), `count` blocks
 // packed in `packed`, each [link index, columns k, point x y z, alpha (6 k, column by
-// column), beta (k)] (the JS wrapper has checked the names and shapes). Within the
-// reserved storage: no allocation.
+// column), beta (k), w_fext (k), w_ff (k)] (the JS wrapper has checked the names and
+// shapes). Within the reserved storage: no allocation.
 ACHD_EXPORT int achd_solver_set_blocks(Solver* s, int count, const double* packed) {
   return achd::wasm::guarded([&] {
     if (count < 0 || count > achd::kMaxConstraintColumns)
@@ -115,6 +135,10 @@ ACHD_EXPORT int achd_solver_set_blocks(Solver* s, int count, const double* packe
       packed += 6 * k;
       b.beta = Eigen::Map<const Eigen::VectorXd>(packed, k);
       packed += k;
+      b.w_fext = Eigen::Map<const Eigen::VectorXd>(packed, k);
+      packed += k;
+      b.w_ff = Eigen::Map<const Eigen::VectorXd>(packed, k);
+      packed += k;
     }
   });
 }
@@ -124,6 +148,17 @@ ACHD_EXPORT int achd_solver_num_blocks(const Solver* s) { return static_cast<int
 ACHD_EXPORT void achd_solver_use_external_wrenches(Solver* s, int on) {
   if ((on != 0) == !s->c.f_ext.empty()) return;
   s->c.f_ext.swap(s->parked_f_ext);
+}
+
+ACHD_EXPORT void achd_solver_use_virtual_wrenches(Solver* s, int on) {
+  if ((on != 0) == !s->c.f_virtual.empty()) return;
+  s->c.f_virtual.swap(s->parked_f_virtual);
+}
+
+// The prescribed joints of the solves that follow (Case::prescribed): mask[i] != 0 for
+// joint i, whose acceleration is then the qdd_given view's entry i. All zero: none.
+ACHD_EXPORT void achd_solver_set_prescribed(Solver* s, const double* mask) {
+  for (size_t i = 0; i < s->c.prescribed.size(); ++i) s->c.prescribed[i] = mask[i] != 0;
 }
 
 // convention, policy: enum values (indices into kConventionNames, kSingularityPolicyNames);

@@ -7,6 +7,7 @@
 // (simulator.hpp).
 #include <cstdint>
 
+#include "achd/joint_motion.hpp"
 #include "achd/options.hpp"
 #include "achd/simulator.hpp"
 
@@ -62,6 +63,11 @@ static_assert(static_cast<int>(DirectionEventKind::Limited) == 0 &&
                   static_cast<int>(DirectionEventKind::Released) == 1 &&
                   static_cast<int>(DirectionEventKind::Resumed) == 2,
               "kDirectionEventKindNames follows DirectionEventKind");
+// MotionKind (prescribed joint motion): index = enum value.
+inline constexpr const char* kMotionKindNames[] = {"constant", "ramp", "sine"};
+static_assert(static_cast<int>(MotionKind::Constant) == 0 && static_cast<int>(MotionKind::Ramp) == 1 &&
+                  static_cast<int>(MotionKind::Sine) == 2,
+              "kMotionKindNames follows MotionKind");
 // Every Integrator, in enum order (names: integrator_name()).
 inline constexpr Integrator kIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler,
                                               Integrator::RK4, Integrator::DormandPrince,

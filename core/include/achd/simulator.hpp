@@ -17,6 +17,7 @@
 #include "achd/case.hpp"
 #include "achd/data.hpp"
 #include "achd/error.hpp"
+#include "achd/joint_motion.hpp"
 #include "achd/model.hpp"
 #include "achd/options.hpp"
 
@@ -151,6 +152,21 @@ class Simulator {
   // every step its target is re-anchored where the tip is (linear: e . p_tip; angular:
   // held angle 0), so that the yielding shows and the stabilisation does not pull it back.
   void set_direction_weights(int index, double w_fext, double w_ff);
+  // Prescribed joint motion (joint_motion.hpp): from now on joint `joint` follows
+  // `motion` in the simulated time t. It is put on the trajectory at once (q, qd at t),
+  // every solve gives it the trajectory's acceleration at the solve's time
+  // (Case::prescribed: the other joints and the held directions are solved around it, and
+  // data().prescribed_torques holds the torque it takes), and after every step its q and
+  // qd are set to the trajectory's at the new t (the integrator's values differ from them
+  // by its error only). Under LimitPolicy::Clamp a prescribed joint is not stopped at its
+  // limits (its motion is given; limit_hits() still lists it past one), and the impacts of
+  // the other joints leave its velocity as it is. reset() releases every prescribed joint.
+  // An achd::Error names the joint on a bad index or motion parameter.
+  void prescribe(int joint, const JointMotion& motion);
+  // The joint is driven by its torques again, from its current q and qd.
+  void release(int joint);
+  bool prescribed(int joint) const;
+  const JointMotion& motion(int joint) const;  // of a prescribed joint
   // One step of dt. A step whose solve fails (an achd::Error from the solver) or whose
   // state is not finite is undone: q, qd, t, the held angles and data() stay those of
   // the last good step, and an achd::Error names the step, the time, the integrator
@@ -198,10 +214,14 @@ class Simulator {
   std::int64_t events_not_kept() const;
 
  private:
-  // Joint accelerations (into `out`) and held-angle rates at one state.
+  // Joint accelerations (into `out`) and held-angle rates at one state, at time t_at
+  // (the prescribed joints' accelerations are their trajectories' then).
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                const std::array<double, kNumDirections>& angle, double w_n, Data& out,
+                const std::array<double, kNumDirections>& angle, double t_at, double w_n, Data& out,
                 std::array<double, kNumDirections>& angle_rate);
+  void check_joint(int joint, const char* what) const;
+  // Puts the prescribed joints on their trajectories at time t_at (q and qd).
+  void follow_trajectories(double t_at);
   // Each writes its first solve (at the step's start) into `first`.
   void step_explicit_euler(double dt, double w_n, Data& first);
   void step_semi_implicit_euler(double dt, double w_n, Data& first);
@@ -259,6 +279,9 @@ class Simulator {
   // LimitPolicy::Clamp: the stop each joint rests on (limit_stop()), the joints that
   // reached a limit in this step, and the impact solve's case and result (sized once).
   std::vector<signed char> limit_stop_, limit_reached_;
+  // Prescribed joint motion: per joint its motion and whether it is prescribed.
+  std::vector<JointMotion> motions_;
+  std::vector<char> moving_;
   Case impact_case_;
   Data limit_data_;
   std::array<double, kNumDirections> limit_angle_rate_{};

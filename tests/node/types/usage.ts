@@ -48,6 +48,19 @@ export async function usage(): Promise<void> {
   const blockWrenches: Float64Array = solver.constraint_wrenches;
   solver.solve();
   const qdd: Float64Array = solver.qdd;
+  // Issue 16's drivers: prescribed joints, driver weights, virtual wrenches.
+  const driven: Result = robot.solve({ q, gravity: [0, 0, -9.81], alpha: [[0, 0, 1, 0, 0, 0]], w_fext: [0], w_ff: [1],
+    qdd_given: [null, 0.5], f_virtual: { tool: [0, 0, 1, 0, 0, 0] },
+    constraints: [{ link: 'foot', alpha: [[1, 0, 0, 0, 0, 0]], w_fext: [0.5] }] });
+  const given: Array<number | null> | undefined = driven.prescribed_torques;
+  const virtualTorques: number[] | undefined = driven.virtual_torques;
+  solver.setPrescribed(['elbow']);
+  solver.qdd_given[1] = 0.5;
+  solver.w_fext[0] = 0;
+  solver.useVirtualWrenches = true;
+  const prescribedTorques: Float64Array = solver.prescribed_torques;
+  // @ts-expect-error qdd_given by name takes numbers (null only in the array form)
+  robot.solve({ q, gravity: [0, 0, -9.81], qdd_given: { elbow: null } });
   // @ts-expect-error views are read-only properties (write into them instead)
   solver.qdd = new Float64Array(7);
   // @ts-expect-error maxConstraints is fixed at creation
@@ -70,6 +83,13 @@ export async function usage(): Promise<void> {
   sim.setDirection('z', 'stick');
   const steps: number = sim.step(100, 1e-3, { onProgress: (done, total) => done < total, progressInterval: 10 });
   const held: number | null = sim.residuals().z;
+  sim.prescribe('shoulder', { motion: 'sine', position: 0, amplitude: 0.3, frequency: 0.5 });
+  sim.prescribe(0, { motion: 'ramp', velocity: 0.1 });
+  sim.release('shoulder');
+  const moving: string[] = sim.prescribedJoints();
+  const motorTorques: number[] = sim.prescribed_torques();
+  // @ts-expect-error not a motion kind
+  sim.prescribe('shoulder', { motion: 'square' });
   const tau: number[] = sim.joint_torques();
   const old: number[] = sim.jointTorques();  // deprecated alias, still typed
 
