@@ -168,7 +168,9 @@ export interface SolverOptions extends SolveOptions {
 
 /** The zero-copy solver. Write the input views, call solve(), read the output views. */
 export interface Solver {
+  /** joint rates (Robot.numJoints); q has Robot.numPositions numbers. */
   readonly numJoints: number;
+  readonly numPositions: number;
   readonly numLinks: number;
   readonly maxConstraints: number;
   readonly deleted: boolean;
@@ -379,11 +381,18 @@ export interface Robot {
   readonly tip: string | null;
   /** joints the loader held fixed: a chain's movable side joints. */
   readonly lockedJoints: LockedJoint[];
+  /** loaded with {floating: true}: a free joint between the world and the root link comes
+   * first in jointNames, named after the root, with 7 numbers in q ([x, y, z, qx, qy, qz,
+   * qw]) and 6 in qd, qdd and the torques ([v; w], world axes). */
+  readonly floating: boolean;
+  /** joint rates: the length of qd, qdd and the torques (6 + joints with a floating base). */
   readonly numJoints: number;
+  /** the length of q (7 + joints with a floating base, else numJoints). */
+  readonly numPositions: number;
   /** links after the root (fixed-joint links included). */
   readonly numLinks: number;
   readonly jointNames: string[];
-  readonly jointTypes: Array<'revolute' | 'continuous' | 'prismatic'>;
+  readonly jointTypes: Array<'revolute' | 'continuous' | 'prismatic' | 'floating'>;
   readonly limits: JointLimits[];
   readonly damping: number[];
   readonly friction: number[];
@@ -418,6 +427,9 @@ export interface LoadOptions {
   /** a joint of the chain with a <mimic> element: an Error naming it ('error', the
    * default) or a joint of its own, as KDL loads it ('independent'). */
   mimic?: 'error' | 'independent';
+  /** a free joint (6 DoF) between the world and the root link, whose mass then counts;
+   * default false (the root link is the fixed base). */
+  floating?: boolean;
 }
 
 export interface Achd {

@@ -42,9 +42,30 @@ void free_joint_poses(const double* q, Transform* X0, Vector3* r) {
   }
 }
 
+namespace {
+
+// y = R x and y = R^T x on three numbers, y may be x. Written out in scalars: Emscripten
+// 3.1.6's clang (-msimd128) got the first two rows of these Eigen products wrong when
+// they were inlined into free_joint_results (the last row right: the wasm results of a
+// floating base differed from the native ones there).
+void rotate(const Matrix3& R, const double* x, double* y) {
+  const double a = x[0], b = x[1], c = x[2];
+  y[0] = R(0, 0) * a + R(0, 1) * b + R(0, 2) * c;
+  y[1] = R(1, 0) * a + R(1, 1) * b + R(1, 2) * c;
+  y[2] = R(2, 0) * a + R(2, 1) * b + R(2, 2) * c;
+}
+void rotate_back(const Matrix3& R, const double* x, double* y) {
+  const double a = x[0], b = x[1], c = x[2];
+  y[0] = R(0, 0) * a + R(1, 0) * b + R(2, 0) * c;
+  y[1] = R(0, 1) * a + R(1, 1) * b + R(2, 1) * c;
+  y[2] = R(0, 2) * a + R(1, 2) * b + R(2, 2) * c;
+}
+
+}  // namespace
+
 void free_joint_rates(const Matrix3& R, const double* in, double* out) {
-  const Vector3 u = R.transpose() * Vector3(in[3], in[4], in[5]);
-  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = u[k];
+  for (int k = 0; k < 3; ++k) out[k] = in[k];
+  rotate_back(R, in + 3, out + 3);
 }
 
 Vector3 free_joint_rotation_product(const Matrix3& R, const double* u) {
@@ -53,23 +74,26 @@ Vector3 free_joint_rotation_product(const Matrix3& R, const double* u) {
 }
 
 void free_joint_accelerations_to_public(const Matrix3& R, const double* rates, double* qdd) {
-  const Vector3 w = R * Vector3(qdd[3], qdd[4], qdd[5]) + free_joint_rotation_product(R, rates + 3);
-  for (int k = 0; k < 3; ++k) qdd[3 + k] = w[k];
+  const Vector3 c = free_joint_rotation_product(R, rates + 3);
+  rotate(R, qdd + 3, qdd + 3);
+  for (int k = 0; k < 3; ++k) qdd[3 + k] += c[k];
 }
 
 void free_joint_accelerations_to_solver(const Matrix3& R, const double* rates, const double* in, double* out) {
-  const Vector3 u = R.transpose() * (Vector3(in[3], in[4], in[5]) - free_joint_rotation_product(R, rates + 3));
-  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = u[k];
+  const Vector3 c = free_joint_rotation_product(R, rates + 3);
+  const double x[3] = {in[3] - c[0], in[4] - c[1], in[5] - c[2]};
+  for (int k = 0; k < 3; ++k) out[k] = in[k];
+  rotate_back(R, x, out + 3);
 }
 
 void free_joint_torques_to_solver(const Matrix3& R, const double* in, double* out) {
-  const Vector3 n = R.transpose() * Vector3(in[3], in[4], in[5]);
-  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = n[k];
+  for (int k = 0; k < 3; ++k) out[k] = in[k];
+  rotate_back(R, in + 3, out + 3);
 }
 
 void free_joint_torques_to_public(const Matrix3& R, const double* in, double* out) {
-  const Vector3 n = R * Vector3(in[3], in[4], in[5]);
-  for (int k = 0; k < 3; ++k) out[k] = in[k], out[3 + k] = n[k];
+  for (int k = 0; k < 3; ++k) out[k] = in[k];
+  rotate(R, in + 3, out + 3);
 }
 
 const Case& free_joint_case(const Case& in, Case& out) {

@@ -82,6 +82,39 @@ test('README.md\'s quadruped example (JavaScript) runs as written', async () => 
   console.log(`# ${stdout.trim()}`);
 });
 
+// The sh block of "### Floating base", run whole as the one above: achd info reports the
+// free joint; the floating quadruped's feet stay put while its unpowered legs fold and the
+// trunk drops faster than g.
+test('README.md\'s floating quadruped example (command line) runs as written', async () => {
+  const text = readFileSync(join(repo, 'README.md'), 'utf8');
+  const section = text.slice(text.indexOf('\n### Floating base\n'));
+  const script = section.match(/^```sh\n([\s\S]*?)^```$/m)[1];
+  assert.match(script, /achd solve robots\/quadruped\.urdf --floating/);
+  const scratch = scratchDir();
+  try {
+    mkdirSync(join(scratch.dir, 'build'));
+    symlinkSync(nativeCli(), join(scratch.dir, 'build/achd'));
+    symlinkSync(join(repo, 'robots'), join(scratch.dir, 'robots'), 'dir');
+    const { code, stdout, stderr } = await run('bash', ['-e', '-c', script], '', scratch.dir);
+    assert.equal(stderr, '');
+    assert.equal(code, 0);
+    const [info, result] = stdout.split(/\n(?=\{)/).map((doc) => JSON.parse(doc));
+    assert.equal(info.floating, true);
+    assert.equal(info.joints[0].type, 'floating');
+    assert.equal(result.joints[0], 'trunk');
+    assert.equal(result.qdd.length, 18);
+    assert.equal(result.rank, 12);
+    assert.ok(result.qdd[2] < -9.81, `the trunk drops at ${result.qdd[2]} m/s^2`);
+    // the feet (links lf_foot ...): their linear accelerations held at 0
+    for (const foot of ['lf_foot', 'rf_foot', 'lh_foot', 'rh_foot']) {
+      const a = result.link_accelerations[result.links.indexOf(foot)];
+      assert.ok(Math.hypot(a[0], a[1], a[2]) < 1e-9, `${foot}: ${a}`);
+    }
+  } finally {
+    scratch.remove();
+  }
+});
+
 // The sh block of "## Trees and constraint blocks", run whole by bash in a directory like
 // the repository root: every command exits 0 and prints JSON; the solve holds the four feet.
 test('README.md\'s quadruped example (command line) runs as written', async () => {

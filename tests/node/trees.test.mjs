@@ -175,7 +175,8 @@ test('loadURDF options are checked, naming the option', () => {
   throws(() => achd.loadURDF(TREE_TEXT, { sideBranches: 'drop' }),
     "loadURDF: options.sideBranches: expected 'merge' or 'ignore', got 'drop'");
   throws(() => achd.loadURDF(TREE_TEXT, { root: 3 }), 'loadURDF: options.root must be a link name');
-  throws(() => achd.loadURDF(TREE_TEXT, { floating: true }), "loadURDF options: unknown field 'floating'");
+  throws(() => achd.loadURDF(TREE_TEXT, { floating: 1 }), 'loadURDF: options.floating must be true or false');
+  throws(() => achd.loadURDF(TREE_TEXT, { fixed: true }), "loadURDF options: unknown field 'fixed'");
 });
 
 // Needs the loader of trees (loadURDF without a tip, locked side joints).

@@ -28,27 +28,54 @@ export function achdNoJoint(robot, name) {
   return `no movable joint '${name}' below the root link '${robot.root}'`;
 }
 
+// Where joint `name`'s numbers are in a per-joint array, {start, count}, or null: a
+// floating base's free joint (first) has 7 in q (positions) and 6 in the others, every
+// other joint one.
+export function achdJointSlot(robot, name, positions) {
+  const j = robot.jointNames.indexOf(name);
+  if (j < 0) return null;
+  if (!robot.floating) return { start: j, count: 1 };
+  if (j === 0) return { start: 0, count: positions ? 7 : 6 };
+  return { start: j + (positions ? 6 : 5), count: 1 };
+}
+
+// The joint whose rate is entry i of qd, qdd or the torques.
+function achdJointAtRate(robot, i) {
+  return robot.jointNames[robot.floating ? Math.max(0, i - 5) : i];
+}
+
 // Why `name` names no link after the root.
 export function achdNoLink(robot, name) {
+  if (name === robot.root && robot.floating)
+    return `'${name}' is the floating root link, which does not take wrenches or constraint blocks yet (use a link fixed to it)`;
   if (name === robot.root) return `'${name}' is the root link, which is fixed (nothing acts on the model through it)`;
   return `no link '${name}'${robot.tip !== null ? ' on the chain' : ` below the root link '${robot.root}'`}`;
 }
 
-// q, qd, ff_torques: an object by joint name becomes the array in model order; anything
-// else is returned as given (achdWriteVector checks it).
-export function achdJointValues(value, field, robot) {
+// q (positions = true), qd, ff_torques: an object by joint name becomes the array in model
+// order (a floating base's free joint: an array of 7 in q, 6 in the others; not named: the
+// identity pose at the origin, at rest); anything else is returned as given
+// (achdWriteVector checks it).
+export function achdJointValues(value, field, robot, positions = false) {
+  const n = positions ? robot.numPositions : robot.numJoints;
   if (!achdIsPlainObject(value)) {
     if (value !== undefined && !achdIsArrayLike(value))
-      throw new Error(`${field} must be an array of ${robot.numJoints} numbers or an object {joint name: value}`);
+      throw new Error(`${field} must be an array of ${n} numbers or an object {joint name: value}`);
     return value;
   }
-  const out = new Array(robot.numJoints).fill(0);
+  const out = new Array(n).fill(0);
+  if (positions && robot.floating) out[6] = 1;  // qw: the identity orientation
   // (no destructuring in for-of: Emscripten's JS optimizer drops it)
   for (const name of Object.keys(value)) {
     const x = value[name];
-    const i = robot.jointNames.indexOf(name);
-    if (i < 0) throw new Error(`${field}: ${achdNoJoint(robot, name)}`);
-    out[i] = achdNumber(x, `${field}['${name}']`);
+    const slot = achdJointSlot(robot, name, positions);
+    if (!slot) throw new Error(`${field}: ${achdNoJoint(robot, name)}`);
+    if (slot.count === 1) {
+      out[slot.start] = achdNumber(x, `${field}['${name}']`);
+      continue;
+    }
+    achdCheckVector(x, `${field}['${name}'] (the floating base)`, slot.count);
+    for (let k = 0; k < slot.count; ++k) out[slot.start + k] = x[k];
   }
   return out;
 }
@@ -79,10 +106,15 @@ export function achdPrescribedJoints(value, robot) {
   const mask = new Array(nj).fill(false), values = new Array(nj).fill(0);
   if (achdIsPlainObject(value)) {
     for (const name of Object.keys(value)) {
-      const i = robot.jointNames.indexOf(name);
-      if (i < 0) throw new Error(`qdd_given: ${achdNoJoint(robot, name)}`);
-      values[i] = achdNumber(value[name], `qdd_given['${name}']`);
-      mask[i] = true;
+      const slot = achdJointSlot(robot, name, false);
+      if (!slot) throw new Error(`qdd_given: ${achdNoJoint(robot, name)}`);
+      if (slot.count === 1) {
+        values[slot.start] = achdNumber(value[name], `qdd_given['${name}']`);
+      } else {  // the free joint: [dv/dt; dw/dt], all six prescribed
+        achdCheckVector(value[name], `qdd_given['${name}'] (the floating base)`, slot.count);
+        for (let k = 0; k < slot.count; ++k) values[slot.start + k] = value[name][k];
+      }
+      mask.fill(true, slot.start, slot.start + slot.count);
     }
     return { mask, values };
   }
@@ -92,7 +124,7 @@ export function achdPrescribedJoints(value, robot) {
     throw new Error(`qdd_given: expected ${nj} values (one per joint, null where not prescribed), got ${value.length}`);
   for (let i = 0; i < nj; ++i) {
     if (value[i] === null) continue;
-    values[i] = achdNumber(value[i], `qdd_given[${i}] (joint '${robot.jointNames[i]}')`);
+    values[i] = achdNumber(value[i], `qdd_given[${i}] (joint '${achdJointAtRate(robot, i)}')`);
     mask[i] = true;
   }
   return { mask, values };

@@ -14,10 +14,14 @@ export function installAchd(Module) {
   // options.locked: {joint name: position} for a chain's movable side joints (others: 0).
   // options.sideBranches: 'merge' (default: what hangs off a chain rides on the body it
   // hangs from) or 'ignore' (dropped, as KDL's chain does); achd::SideBranches' order.
+  // options.floating: true for a free joint between the world and the root link (its 7
+  // positions [x, y, z, qx, qy, qz, qw] and 6 rates [v; w] come first).
   Module['loadURDF'] = function loadURDF(text, options) {
     if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches']);
+    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating']);
+    if (options.floating !== undefined && typeof options.floating !== 'boolean')
+      throw new Error('loadURDF: options.floating must be true or false');
     for (const key of ['root', 'tip'])
       if (options[key] !== undefined && typeof options[key] !== 'string')
         throw new Error(`loadURDF: options.${key} must be a link name`);
@@ -37,7 +41,7 @@ export function installAchd(Module) {
       achdWithString(tip, (t) => achdWithString(names.map((n) => `${n}\n`).join(''), (ln) =>
         achdWithScratch(values.length, (v) => {
           achdWasm.module.HEAPF64.set(values, v);
-          return achdWasm.module._achd_robot_load(x, r, t, mimic, sides, ln, 8 * v);
+          return achdWasm.module._achd_robot_load(x, r, t, mimic, sides, ln, 8 * v, options.floating ? 1 : 0);
         })))));
     if (!ptr) throw achdLastError();
     return new Robot(ptr);

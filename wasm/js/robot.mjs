@@ -17,7 +17,12 @@ export class Robot extends AchdHandle {
     this.tip = info.tip;  // null for a tree
     // Joints the loader held fixed (a chain's movable side joints), [{name, value}].
     this.lockedJoints = info.locked_joints;
-    this.numJoints = info.joints.length;
+    // With a floating base (options.floating) the free joint comes first in jointNames, named
+    // after the root link, with 7 of the numPositions numbers of q and 6 of the numJoints
+    // numbers of qd, qdd and the torques; without one both counts are the joints'.
+    this.floating = info.floating;
+    this.numJoints = info.num_joints;
+    this.numPositions = info.num_positions;
     this.numLinks = info.links.length;
     this.jointNames = info.joints.map((j) => j.name);
     this.jointTypes = info.joints.map((j) => j.type);
@@ -63,7 +68,7 @@ export class Robot extends AchdHandle {
     const s = this._solver, ptr = s._ptr, nj = this.numJoints, nl = this.numLinks;
     const names = s._bufferNames(), max = achdConstants().max_constraints;
     const at = (name) => achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)) >> 3;
-    achdWriteVector(achdJointValues(c.q, 'q', this), 'q', nj, at('q'));
+    achdWriteVector(achdJointValues(c.q, 'q', this, true), 'q', this.numPositions, at('q'));
     achdWriteVector(c.gravity, 'gravity', 3, at('gravity'));
     if (c.qd === undefined) achdWasm.module.HEAPF64.fill(0, at('qd'), at('qd') + nj);
     else achdWriteVector(achdJointValues(c.qd, 'qd', this), 'qd', nj, at('qd'));
@@ -106,15 +111,15 @@ export class Robot extends AchdHandle {
     s.solve();
     return s.result();
   }
-  _q(q, p) { achdWriteVector(achdJointValues(q, 'q', this), 'q', this.numJoints, p); }
+  _q(q, p) { achdWriteVector(achdJointValues(q, 'q', this, true), 'q', this.numPositions, p); }
   // [{name, position: [x, y, z], rotation: [9, row-major]}] per link after the root.
   forwardKinematics(q) {
-    const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
-    return achdWithScratch(nj + 12 * nl, (p) => {
+    const ptr = this._live(), nq = this.numPositions, nl = this.numLinks;
+    return achdWithScratch(nq + 12 * nl, (p) => {
       this._q(q, p);
-      if (achdWasm.module._achd_robot_forward_kinematics(ptr, 8 * p, 8 * (p + nj))) throw achdLastError();
+      if (achdWasm.module._achd_robot_forward_kinematics(ptr, 8 * p, 8 * (p + nq))) throw achdLastError();
       return this.linkNames.map((name, l) => {
-        const o = p + nj + 12 * l;
+        const o = p + nq + 12 * l;
         return { name, position: Array.from(achdWasm.module.HEAPF64.subarray(o, o + 3)),
           rotation: Array.from(achdWasm.module.HEAPF64.subarray(o + 3, o + 12)) };
       });
@@ -122,11 +127,11 @@ export class Robot extends AchdHandle {
   }
   // 6 rows (linear first) of nj numbers: [v; w] of the tip link's origin = J qd.
   tipJacobian(q) {
-    const ptr = this._live(), nj = this.numJoints;
-    return achdWithScratch(7 * nj, (p) => {
+    const ptr = this._live(), nj = this.numJoints, nq = this.numPositions;
+    return achdWithScratch(nq + 6 * nj, (p) => {
       this._q(q, p);
-      if (achdWasm.module._achd_robot_tip_jacobian(ptr, 8 * p, 8 * (p + nj))) throw achdLastError();
-      return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nj, p + 7 * nj)), nj);
+      if (achdWasm.module._achd_robot_tip_jacobian(ptr, 8 * p, 8 * (p + nq))) throw achdLastError();
+      return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nq, p + nq + 6 * nj)), nj);
     });
   }
   // M(q) as nj rows, rotor inertia included unless {rotorInertia: false}.
@@ -136,10 +141,11 @@ export class Robot extends AchdHandle {
     achdCheckObject(options, 'options', ['rotorInertia']);
     const rotor = options.rotorInertia === undefined ? true : options.rotorInertia;
     if (typeof rotor !== 'boolean') throw new Error('options.rotorInertia must be true or false');
-    return achdWithScratch(nj + nj * nj, (p) => {
+    const nq = this.numPositions;
+    return achdWithScratch(nq + nj * nj, (p) => {
       this._q(q, p);
-      if (achdWasm.module._achd_robot_mass_matrix(ptr, 8 * p, rotor ? 1 : 0, 8 * (p + nj))) throw achdLastError();
-      return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nj, p + nj + nj * nj)), Math.max(nj, 1));
+      if (achdWasm.module._achd_robot_mass_matrix(ptr, 8 * p, rotor ? 1 : 0, 8 * (p + nq))) throw achdLastError();
+      return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nq, p + nq + nj * nj)), Math.max(nj, 1));
     });
   }
   // Inverse dynamics: the joint torques for (q, qd, qdd) under gravity and f_ext (each by
@@ -151,11 +157,12 @@ export class Robot extends AchdHandle {
     const k = achdConstants();
     const effects = achdEffectBits(options.effects, k.options.effects, 'options.effects');
     const fv = achdPositive(options.frictionVelocity, k.options.friction_velocity, 'options.frictionVelocity');
-    return achdWithScratch(4 * nj + 3 + 6 * nl, (p) => {
-      const g = p + 4 * nj, f = g + 3;
+    const nq = this.numPositions;  // q first, then qd, qdd and the torques (nj each)
+    return achdWithScratch(nq + 3 * nj + 3 + 6 * nl, (p) => {
+      const v = p + nq, g = v + 3 * nj, f = g + 3;
       this._q(q, p);
-      achdWriteVector(achdJointValues(qd, 'qd', this), 'qd', nj, p + nj);
-      achdWriteVector(achdJointValues(qdd, 'qdd', this), 'qdd', nj, p + 2 * nj);
+      achdWriteVector(achdJointValues(qd, 'qd', this), 'qd', nj, v);
+      achdWriteVector(achdJointValues(qdd, 'qdd', this), 'qdd', nj, v + nj);
       achdWriteVector(options.gravity === undefined ? k.case_gravity : options.gravity, 'gravity', 3, g);
       if (options.f_ext !== undefined) {
         const f_ext = achdLinkWrenches(options.f_ext, this);
@@ -163,9 +170,9 @@ export class Robot extends AchdHandle {
           throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${f_ext.length}`);
         achdWriteSpatialList(f_ext, 'f_ext', nl, f, 'wrenches');
       }
-      if (achdWasm.module._achd_robot_rnea(ptr, 8 * p, 8 * (p + nj), 8 * (p + 2 * nj), 8 * g,
-        options.f_ext === undefined ? 0 : 8 * f, effects, fv, 8 * (p + 3 * nj))) throw achdLastError();
-      return Array.from(achdWasm.module.HEAPF64.subarray(p + 3 * nj, p + 4 * nj));
+      if (achdWasm.module._achd_robot_rnea(ptr, 8 * p, 8 * v, 8 * (v + nj), 8 * g,
+        options.f_ext === undefined ? 0 : 8 * f, effects, fv, 8 * (v + 2 * nj))) throw achdLastError();
+      return Array.from(achdWasm.module.HEAPF64.subarray(v + 2 * nj, v + 3 * nj));
     });
   }
   createSimulator(options) {

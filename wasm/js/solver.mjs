@@ -3,7 +3,7 @@ import { achdConstants } from './constants.mjs';
 import { achdLastError, achdSigmaMin, achdWasm } from './runtime.mjs';
 import { achdSolverOptions } from './validation.mjs';
 import { achdChunks, achdCopy, achdWithScratch } from './memory.mjs';
-import { achdNoJoint, achdPackBlocks } from './case_names.mjs';
+import { achdJointSlot, achdNoJoint, achdPackBlocks } from './case_names.mjs';
 import { AchdHandle } from './handle.mjs';
 
 // The zero-copy solver: write the views, call solve(), read the views.
@@ -14,8 +14,10 @@ export class Solver extends AchdHandle {
     this.numLinks = robot.numLinks;
     this.maxConstraints = maxConstraints;
     // The names results carry and blocks are given by (case_names.mjs reads them).
-    this._names = { root: robot.root, tip: robot.tip, numJoints: robot.numJoints, jointNames: robot.jointNames,
-      linkNames: robot.linkNames, lockedJoints: robot.lockedJoints };
+    this.numPositions = robot.numPositions;
+    this._names = { root: robot.root, tip: robot.tip, floating: robot.floating, numJoints: robot.numJoints,
+      numPositions: robot.numPositions, jointNames: robot.jointNames, linkNames: robot.linkNames,
+      lockedJoints: robot.lockedJoints };
     this._nc = 0;
     this._blocks = 0;
     this._blockColumns = 0;
@@ -27,7 +29,7 @@ export class Solver extends AchdHandle {
   _bufferNames() { return achdConstants().solver_buffers; }
   _layout() {
     const nj = this.numJoints, nl = this.numLinks, mc = this.maxConstraints;
-    return [['q', nj], ['qd', nj], ['ff_torques', nj], ['gravity', 3], ['alpha', 6 * mc], ['beta', mc],
+    return [['q', this.numPositions], ['qd', nj], ['ff_torques', nj], ['gravity', 3], ['alpha', 6 * mc], ['beta', mc],
       ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc + this._blockColumns], ['joint_torques', nj], ['constraint_torques', nj],
       ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6],
       ['constraint_wrenches', 6 * this._blocks], ['qdd_given', nj], ['w_fext', mc], ['w_ff', mc],
@@ -95,7 +97,8 @@ export class Solver extends AchdHandle {
     this._virtual = on;
   }
   // The joints whose acceleration is given (the qdd_given view) instead of their torque:
-  // joint names, or one boolean per joint in model order; [] for none.
+  // joint names (a floating base's free joint: its six rates), or one boolean per joint
+  // rate in model order; [] for none.
   setPrescribed(joints) {
     const ptr = this._live(), names = this._names, nj = names.numJoints;
     if (!Array.isArray(joints)) throw new Error('setPrescribed: expected an array of joint names or of booleans');
@@ -108,9 +111,9 @@ export class Solver extends AchdHandle {
       });
     } else {
       for (const name of joints) {
-        const i = names.jointNames.indexOf(name);
-        if (i < 0) throw new Error(`setPrescribed: ${achdNoJoint(names, name)}`);
-        mask[i] = true;
+        const slot = achdJointSlot(names, name, false);
+        if (!slot) throw new Error(`setPrescribed: ${achdNoJoint(names, name)}`);
+        mask.fill(true, slot.start, slot.start + slot.count);
       }
     }
     achdWithScratch(Math.max(nj, 1), (p) => {

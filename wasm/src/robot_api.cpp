@@ -32,15 +32,21 @@ std::string number(double x) {
   return buf;
 }
 
-// {"root", "tip" (null for a tree), "joints": [{name, type, lower, upper, velocity,
-// effort, damping, friction}], "links": [names after the root], "locked_joints": [{name,
-// value}]}
+// {"root", "tip" (null for a tree), "floating", "num_joints" (joint rates: qd's length),
+// "num_positions" (q's), "joints": [{name, type, lower, upper, velocity, effort, damping,
+// friction}] (a floating base's free joint once, type "floating"), "links": [names after
+// the root], "locked_joints": [{name, value}]}
 std::string describe(const Model& m) {
   std::string s = "{\"root\":" + quoted(m.root_name) + ",\"tip\":" + (m.has_tip() ? quoted(m.tip_name) : "null") +
-                  ",\"joints\":[";
-  for (int j = 0; j < m.num_joints(); ++j) {
+                  ",\"floating\":" + (m.floating ? "true" : "false") +
+                  ",\"num_joints\":" + std::to_string(m.num_joints()) +
+                  ",\"num_positions\":" + std::to_string(m.num_positions()) + ",\"joints\":[";
+  if (m.floating)
+    s += "{\"name\":" + quoted(m.root_name) + ",\"type\":\"floating\",\"lower\":-1e300,\"upper\":1e300,"
+         "\"velocity\":0,\"effort\":0,\"damping\":0,\"friction\":0}";
+  for (int j = m.floating ? 6 : 0; j < m.num_joints(); ++j) {
     const Body& b = m.bodies[j];
-    s += std::string(j ? "," : "") + "{\"name\":" + quoted(b.joint_name) + ",\"type\":" +
+    s += std::string(s.back() == '[' ? "" : ",") + "{\"name\":" + quoted(b.joint_name) + ",\"type\":" +
          quoted(joint_type_name(b.type)) + ",\"lower\":" + number(b.limits.lower) +
          ",\"upper\":" + number(b.limits.upper) + ",\"velocity\":" + number(b.limits.velocity) +
          ",\"effort\":" + number(b.limits.effort) + ",\"damping\":" + number(b.damping) +
@@ -66,12 +72,15 @@ using achd::wasm::Robot;
 // empty = the URDF's root link / the whole tree (achd::load_urdf_string). mimic: an
 // achd::MimicJoints value (0 error, 1 independent); side_branches an achd::SideBranches
 // value (0 merge, 1 ignore); locked: the joints to lock (UrdfOptions::locked), their
-// names one per line in locked_names and their values in locked_values.
+// names one per line in locked_names and their values in locked_values; floating != 0: a
+// free joint above the root link (UrdfOptions::floating).
 ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip, int mimic,
-                                   int side_branches, const char* locked_names, const double* locked_values) {
+                                   int side_branches, const char* locked_names, const double* locked_values,
+                                   int floating) {
   Robot* robot = nullptr;
   achd::wasm::guarded([&] {
     achd::UrdfOptions options;
+    options.floating = floating != 0;
     options.mimic = static_cast<achd::MimicJoints>(mimic);
     options.side_branches = static_cast<achd::SideBranches>(side_branches);
     std::string name;
@@ -92,11 +101,12 @@ ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char
 ACHD_EXPORT void achd_robot_delete(Robot* r) { delete r; }
 ACHD_EXPORT const char* achd_robot_info(const Robot* r) { return r->info.c_str(); }
 
-// out: per link after the root, position (3) then rotation (9, row-major), root frame.
+// q: num_positions() values. out: per link after the root, position (3) then rotation (9,
+// row-major), in the base (the world, with a floating base).
 ACHD_EXPORT int achd_robot_forward_kinematics(const Robot* r, const double* q, double* out) {
   return achd::wasm::guarded([&] {
     const std::vector<achd::Transform> poses =
-        achd::forward_kinematics(*r->model, achd::wasm::vec(q, r->model->num_joints()));
+        achd::forward_kinematics(*r->model, achd::wasm::vec(q, r->model->num_positions()));
     for (const achd::Transform& X : poses) {
       for (int k = 0; k < 3; ++k) *out++ = X.p[k];
       for (int i = 0; i < 3; ++i)
@@ -108,7 +118,7 @@ ACHD_EXPORT int achd_robot_forward_kinematics(const Robot* r, const double* q, d
 // out: the 6 x nj tip Jacobian, row-major, linear rows first (a tree is an error: no tip).
 ACHD_EXPORT int achd_robot_tip_jacobian(const Robot* r, const double* q, double* out) {
   return achd::wasm::guarded([&] {
-    const Eigen::MatrixXd J = achd::tip_jacobian(*r->model, achd::wasm::vec(q, r->model->num_joints()));
+    const Eigen::MatrixXd J = achd::tip_jacobian(*r->model, achd::wasm::vec(q, r->model->num_positions()));
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out, J.rows(), J.cols()) = J;
   });
 }
@@ -117,7 +127,7 @@ ACHD_EXPORT int achd_robot_tip_jacobian(const Robot* r, const double* q, double*
 ACHD_EXPORT int achd_robot_mass_matrix(const Robot* r, const double* q, int rotor, double* out) {
   return achd::wasm::guarded([&] {
     const int n = r->model->num_joints();
-    const Eigen::MatrixXd M = achd::crba(*r->model, achd::wasm::vec(q, n), rotor != 0);
+    const Eigen::MatrixXd M = achd::crba(*r->model, achd::wasm::vec(q, r->model->num_positions()), rotor != 0);
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out, n, n) = M;
   });
 }
@@ -133,7 +143,7 @@ ACHD_EXPORT int achd_robot_rnea(const Robot* r, const double* q, const double* q
     std::vector<achd::Vector6> wrenches;
     if (f_ext)
       for (int l = 0; l < m.num_links(); ++l) wrenches.emplace_back(f_ext + 6 * l);
-    const Eigen::VectorXd tau = achd::rnea(m, achd::wasm::vec(q, n), achd::wasm::vec(qd, n),
+    const Eigen::VectorXd tau = achd::rnea(m, achd::wasm::vec(q, m.num_positions()), achd::wasm::vec(qd, n),
                                            achd::wasm::vec(qdd, n), achd::Vector3(gravity),
                                            wrenches, effects, friction_velocity);
     Eigen::Map<Eigen::VectorXd>(out, n) = tau;

@@ -1,0 +1,166 @@
+// Floating bases in JS (issue 15), against the native CLI (ACHD_CLI, `--floating`):
+// loadURDF({floating: true}) describes the free joint as `achd info` does; its q takes the
+// root's position and quaternion and qd its [v; w], by name or in model order; and wasm
+// equals native to the bit on the tree robots of robots/index.json holding their default
+// links and on 100 random trees of the C++ suites, each made floating.
+import assert from 'node:assert/strict';
+import { mkdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { after, before, test } from 'node:test';
+
+import { loadAchd, nativeCli, pool, randomTreeFiles, relativeError, repo, runCli, scratchDir } from './helpers.mjs';
+import { rng } from './random_chain.mjs';
+
+const GRAVITY = [0, 0, -9.81];
+const XYZ = [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]];
+
+let achd, cli, scratch;
+before(async () => {
+  achd = await loadAchd();
+  cli = nativeCli();
+  scratch = scratchDir();
+});
+after(() => scratch.remove());
+
+let files = 0;
+async function nativeSolve(urdf, c, flags = []) {
+  const path = scratch.write(`case${files++}.json`, JSON.stringify(c));
+  return JSON.parse(await runCli(cli, ['solve', urdf, '--floating', ...flags, '--case', path]));
+}
+
+// Every field equal: names exactly, numbers to the bit (the CLI prints 17 digits).
+function assertSameResult(wasm, native, what) {
+  assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
+  for (const key of Object.keys(native)) {
+    if (key === 'joints' || key === 'links' || key === 'locked_joints') {
+      assert.deepEqual(wasm[key], native[key], `${what}: ${key}`);
+    } else if (Array.isArray(native[key])) {
+      const w = wasm[key].flat(), n = native[key].flat();
+      assert.equal(w.length, n.length, `${what}: ${key} length`);
+      assert.equal(relativeError(w, n), 0, `${what}: ${key}`);
+    } else {
+      assert.equal(relativeError([wasm[key]], [native[key]]), 0, `${what}: ${key}`);
+    }
+  }
+}
+
+// A random pose of the free joint: position, unit quaternion; and a random [v; w].
+function randomFreeJoint(r) {
+  const u = () => 2 * r() - 1;
+  const h = [u(), u(), u(), u()];
+  const norm = Math.hypot(...h);
+  return { q: [u(), u(), 0.5 + u() * 0.2, ...h.map((x) => x / norm)], qd: [u(), u(), u(), u(), u(), u()] };
+}
+
+function indexTrees() {
+  const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
+  return index.robots.filter((r) => !r.tip).map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8') }));
+}
+
+test('loadURDF({floating: true}) describes the free joint as `achd info --floating` does', async () => {
+  const quadruped = indexTrees().find((r) => r.name === 'quadruped');
+  const info = JSON.parse(await runCli(cli, ['info', quadruped.path, '--floating']));
+  const robot = achd.loadURDF(quadruped.text, { floating: true });
+  try {
+    assert.equal(robot.floating, true);
+    assert.deepEqual(robot.jointNames, info.joints.map((j) => j.name));
+    assert.deepEqual(robot.jointTypes, info.joints.map((j) => j.type));
+    assert.equal(robot.jointTypes[0], 'floating');
+    assert.equal(robot.numJoints, 6 + 12);
+    assert.equal(robot.numPositions, 7 + 12);
+    // At rest with no torques the whole robot falls with g and no joint moves.
+    const r = robot.solve({ q: { lf_kfe: -1.2 }, gravity: GRAVITY });
+    assert.deepEqual(r.joints, info.joints.map((j) => j.name));
+    r.qdd.forEach((x, i) => assert.ok(Math.abs(x - (i === 2 ? -9.81 : 0)) <= 1e-12, `qdd[${i}] = ${x}`));
+    // By name or in model order, the same solve.
+    const q = new Array(19).fill(0);
+    q[6] = 1;
+    q[7 + 2] = -1.2;
+    assert.deepEqual(robot.solve({ q, gravity: GRAVITY }).qdd, r.qdd);
+    assert.throws(() => robot.solve({ q: { trunk: [0, 0, 0, 1] }, gravity: GRAVITY }),
+      (e) => e.message === "q['trunk'] (the floating base): expected 7 values, got 4");
+    assert.throws(() => robot.solve({ q: { trunk: [0, 0, 0, 0, 0, 0, 0] }, gravity: GRAVITY }),
+      /the floating base's orientation quaternion \(qx, qy, qz, qw\) is zero/);
+    assert.throws(() => robot.createSimulator(), /floating base/);
+    assert.throws(() => achd.loadURDF(quadruped.text, { floating: 'yes' }),
+      (e) => e.message === 'loadURDF: options.floating must be true or false');
+  } finally {
+    robot.delete();
+  }
+});
+
+test('the tree robots floating, holding their default links in 3D: wasm == native, to the bit', async () => {
+  const r = rng(1503);
+  const jobs = [];
+  for (const entry of indexTrees()) {
+    const load = entry.mimic ? { floating: true, mimic: entry.mimic } : { floating: true };
+    const free = randomFreeJoint(r);
+    const robot = achd.loadURDF(entry.text, load);
+    const q = Object.fromEntries(robot.jointNames.slice(1).map((name, i) => [name, entry.q0[i]]));
+    robot.delete();
+    q[entry.root] = free.q;
+    const c = { q, qd: { [entry.root]: free.qd }, gravity: GRAVITY,
+      constraints: entry.constraints.map((link) => ({ link, alpha: XYZ })) };
+    jobs.push({ entry, load, c, what: entry.name });
+  }
+  const natives = await pool(jobs.map((j) => () =>
+    nativeSolve(j.entry.path, j.c, j.load.mimic ? ['--mimic', j.load.mimic] : [])));
+  jobs.forEach((j, i) => {
+    const robot = achd.loadURDF(j.entry.text, j.load);
+    try {
+      assertSameResult(robot.solve(j.c), natives[i], j.what);
+    } finally {
+      robot.delete();
+    }
+  });
+  assert.equal(jobs.length, 4);
+});
+
+test('100 random trees of the C++ suites made floating, with constraint blocks: wasm == native, to the bit', async () => {
+  const COUNT = 100;
+  const dir = join(scratch.dir, 'random_trees');
+  mkdirSync(dir);
+  execFileSync(randomTreeFiles(), [dir, '16', String(COUNT)]);
+  const r = rng(1601);
+  const jobs = [];
+  for (let k = 0; k < COUNT; ++k) {
+    const urdf = join(dir, `tree${k}.urdf`);
+    const fixed = JSON.parse(readFileSync(join(dir, `case${k}.json`), 'utf8'));
+    const free = randomFreeJoint(r);
+    const c = { ...fixed, q: [...free.q, ...fixed.q], qd: [...free.qd, ...(fixed.qd || fixed.q.map(() => 0))],
+      ff_torques: [0, 0, 0, 0, 0, 0, ...(fixed.ff_torques || fixed.q.map(() => 0))] };
+    jobs.push({ urdf, text: readFileSync(urdf, 'utf8'), c, what: `random tree ${k}` });
+  }
+  const natives = await pool(jobs.map((j) => () => nativeSolve(j.urdf, j.c)));
+  jobs.forEach((j, i) => {
+    const robot = achd.loadURDF(j.text, { floating: true });
+    try {
+      assertSameResult(robot.solve(j.c), natives[i], j.what);
+    } finally {
+      robot.delete();
+    }
+  });
+});
+
+test('the zero-copy solver on a floating base: q has numPositions numbers, solves do not grow memory', () => {
+  const quadruped = indexTrees().find((r) => r.name === 'quadruped');
+  const robot = achd.loadURDF(quadruped.text, { floating: true });
+  try {
+    const s = robot.createSolver();
+    assert.equal(s.q.length, robot.numPositions);
+    assert.equal(s.qd.length, robot.numJoints);
+    s.q.set([0, 0, 0.3, 0, 0, 0, 1, ...quadruped.q0]);
+    s.setConstraints(quadruped.constraints.map((link) => ({ link, alpha: XYZ })));
+    s.solve();
+    const expected = robot.solve({ q: Array.from(s.q), gravity: [0, 0, -9.81],
+      constraints: quadruped.constraints.map((link) => ({ link, alpha: XYZ })) });
+    assert.deepEqual(Array.from(s.qdd), expected.qdd);
+    const bytes = achd.memoryBytes();
+    for (let k = 0; k < 20000; ++k) s.solve();
+    assert.equal(achd.memoryBytes(), bytes);
+    s.delete();
+  } finally {
+    robot.delete();
+  }
+});
