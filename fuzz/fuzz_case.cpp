@@ -17,8 +17,8 @@ namespace {
 
 bool finite_results(const achd::Model& model, const achd::Data& d) {
   bool ok = d.qdd.allFinite() && d.joint_torques.allFinite() && d.constraint_torques.allFinite() &&
-            d.total_torques.allFinite() && d.prescribed_torques.allFinite() && d.nu.allFinite() &&
-            d.constraint_wrench.allFinite() && d.dropped.allFinite();
+            d.total_torques.allFinite() && d.prescribed_torques.allFinite() && d.virtual_torques.allFinite() &&
+            d.nu.allFinite() && d.constraint_wrench.allFinite() && d.dropped.allFinite();
   for (int l = 0; l <= model.num_links(); ++l) ok = ok && d.link_accelerations[l].allFinite();
   for (const achd::Vector6& w : d.constraint_wrenches) ok = ok && w.allFinite();
   return ok;

@@ -161,7 +161,8 @@ export class Simulation {
   }
 
   // Times the solve the simulator does at its current state, alone: one hybrid dynamics
-  // call with the held and accelerated directions as constraints.
+  // call with the held and accelerated directions as constraints, their driver weights and
+  // the prescribed joints.
   measureSolve() {
     const s = this.solver;
     s.q.set(this.sim.q);
@@ -172,7 +173,10 @@ export class Simulation {
     constrained.forEach((d, k) => {
       s.alpha.set(unitRow(d), 6 * k);
       s.beta[k] = 0;
+      s.w_fext[k] = this.settings.yielding[d] ? 0 : 1;
     });
+    s.setPrescribed(Object.keys(this.settings.prescribed));
+    s.qdd_given.fill(0);
     s.f_ext.set(this.sim.f_ext);
     const start = performance.now();
     for (let i = 0; i < SOLVE_TIMING_CALLS; i++) s.solve();

@@ -271,3 +271,49 @@ test('the zero-copy solver with drivers: robot.solve\'s result, and no memory gr
   assert.throws(() => solver.setPrescribed([true]), (e) => e.message === 'setPrescribed: expected 7 booleans (one per joint), got 1');
   solver.delete();
 });
+
+// The simulator's prescribed joint motion in JS: on the trajectory after every step (the
+// sine computed here with V8's Math.sin: within 1e-12 of the module's), the torque it
+// takes reported, released by name and by reset(), and bad motions named.
+test('sim.prescribe: the joint follows its sine, reports its torque, and bad motions are named', () => {
+  const sim = kuka.createSimulator({ integrator: 'rk4' });
+  try {
+    sim.reset(kukaEntry.q0);
+    const motion = { motion: 'sine', position: 0.3, amplitude: 0.5, frequency: 0.5, phase: 0.1 };
+    sim.prescribe('lwr_joint_1', motion);
+    sim.setDirection('z', 'hold');
+    assert.deepEqual(sim.prescribedJoints(), ['lwr_joint_1']);
+    const at = (t) => motion.position + motion.amplitude * Math.sin(2 * Math.PI * motion.frequency * t + motion.phase);
+    assert.ok(Math.abs(sim.q[0] - at(0)) < 1e-12, 'started on the trajectory');
+    let worst = 0;
+    for (let k = 0; k < 300; ++k) {
+      sim.step(1, 1e-3);
+      worst = Math.max(worst, Math.abs(sim.q[0] - at(sim.t)));
+    }
+    assert.ok(worst < 1e-12, `q off the trajectory by ${worst}`);
+    const torques = sim.prescribed_torques();
+    assert.notEqual(torques[0], 0);
+    assert.deepEqual(torques.slice(1), [0, 0, 0, 0, 0, 0]);
+    sim.release(0);
+    assert.deepEqual(sim.prescribedJoints(), []);
+    sim.prescribe(6, { motion: 'constant', position: 0.1 });
+    sim.reset(kukaEntry.q0);
+    assert.deepEqual(sim.prescribedJoints(), [], 'reset() releases every joint');
+    const message = (joint, m) => {
+      try {
+        sim.prescribe(joint, m);
+      } catch (e) {
+        return e.message;
+      }
+      return null;
+    };
+    assert.equal(message('nope', { motion: 'ramp' }), 'prescribe: unknown joint "nope" (index 0..6 or a joint name)');
+    assert.equal(message(0, { motion: 'square' }), "prescribe: motion.motion: expected 'constant', 'ramp', 'sine', got 'square'");
+    assert.equal(message(1, { motion: 'sine', frequency: -1 }), "joint 'lwr_joint_2': frequency must be >= 0 (Hz)");
+    assert.equal(message(1, { motion: 'ramp', amplitude: 2 }), "joint 'lwr_joint_2': amplitude is not a parameter of a 'ramp' motion");
+    assert.equal(message(1, { motion: 'ramp', speed: 2 }), "prescribe: motion: unknown field 'speed'");
+    assert.deepEqual(sim.prescribedJoints(), [], 'a refused motion changes nothing');
+  } finally {
+    sim.delete();
+  }
+});
