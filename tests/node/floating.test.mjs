@@ -2,9 +2,9 @@
 // loadURDF({floating: true}) describes the free joint as `achd info` does; its q takes the
 // root's position and quaternion and qd its [v; w], by name or in model order; and wasm
 // equals native to the bit on the tree robots of robots/index.json holding their default
-// links and on 100 random trees of the C++ suites, each made floating.
+// links and on 100 random trees of the C++ suites, each made floating (its root given a mass).
 import assert from 'node:assert/strict';
-import { mkdirSync, readFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { after, before, test } from 'node:test';
@@ -125,11 +125,16 @@ test('100 random trees of the C++ suites made floating, with constraint blocks: 
   const r = rng(1601);
   const jobs = [];
   for (let k = 0; k < COUNT; ++k) {
-    const urdf = join(dir, `tree${k}.urdf`);
+    // The random trees' root link is massless (a fixed base does not feel it): floating, a
+    // joint below it could take up a turn of the free joint alone. Given a mass and inertia:
+    const urdf = join(dir, `tree${k}_floating.urdf`);
+    writeFileSync(urdf, readFileSync(join(dir, `tree${k}.urdf`), 'utf8').replace('<link name="l0"/>',
+      '<link name="l0"><inertial><origin xyz="0.02 -0.01 0.03" rpy="0 0 0"/><mass value="1.5"/>' +
+      '<inertia ixx="0.01" iyy="0.02" izz="0.015" ixy="0" ixz="0" iyz="0"/></inertial></link>'));
     const fixed = JSON.parse(readFileSync(join(dir, `case${k}.json`), 'utf8'));
     const free = randomFreeJoint(r);
-    const c = { ...fixed, q: [...free.q, ...fixed.q], qd: [...free.qd, ...(fixed.qd || fixed.q.map(() => 0))],
-      ff_torques: [0, 0, 0, 0, 0, 0, ...(fixed.ff_torques || fixed.q.map(() => 0))] };
+    // (the cases name their joints; the free joint is named after the root link, l0)
+    const c = { ...fixed, q: { ...fixed.q, l0: free.q }, qd: { ...fixed.qd, l0: free.qd } };
     jobs.push({ urdf, text: readFileSync(urdf, 'utf8'), c, what: `random tree ${k}` });
   }
   const natives = await pool(jobs.map((j) => () => nativeSolve(j.urdf, j.c)));
