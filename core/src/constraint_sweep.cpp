@@ -115,7 +115,8 @@ void roll_to_base(const Model& model, Data& d, const ConstraintSource& s) {
   double* column = d.E.col(s.column).data();
   UnitConstraintForces<NC> E(column);
   double* ez = w.ez.data() + s.ez;
-  for (int i = s.body; i >= last_body(d); i = model.bodies[i].parent)
+  const int last = last_body(d);
+  for (int i = s.body; i >= last; i = model.bodies[i].parent)
     E.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
   E.store(column);
 }
@@ -128,7 +129,8 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
   CouplingSums<NC> sums;
   const double* ez = w.ez.data() + s.ez;
   int depth = 0;
-  for (int i = s.body; i >= last_body(d); i = model.bodies[i].parent) w.path[depth++] = i;
+  const int last = last_body(d);
+  for (int i = s.body; i >= last; i = model.bodies[i].parent) w.path[depth++] = i;
   while (depth > 0) {
     const int i = w.path[--depth];
     double known = w.u[i] * w.Dinv[i];
@@ -158,7 +160,8 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
   double probe = 0;
   for (int k = 0; k < s.columns; ++k)
     for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) = 0;
-  for (int i = common_ancestor(model, s.body, t.body); i >= last_body(d); i = model.bodies[i].parent) {
+  const int last = last_body(d);
+  for (int i = common_ancestor(model, s.body, t.body); i >= last; i = model.bodies[i].parent) {
     const double* es = w.ez.data() + s.ez + i * ss;
     const double* et = w.ez.data() + t.ez + i * st;
     for (int k = 0; k < s.columns; ++k) {
@@ -180,7 +183,8 @@ void add_constraint_torques(const Model& model, Data& d, const ConstraintSource&
   const Data::Workspace& w = d.workspace;
   const ConstraintMagnitudes<NC> nu(d.nu.data() + s.column);
   const double* ez = w.ez.data() + s.ez;
-  for (int i = s.body; i >= last_body(d); i = model.bodies[i].parent)
+  const int last = last_body(d);
+  for (int i = s.body; i >= last; i = model.bodies[i].parent)
     d.constraint_torques[i] -= nu.dot(ez + i * ez_stride<NC>());
 }
 
