@@ -308,7 +308,9 @@ export interface StepOptions {
 
 /** Time stepping under the hybrid solver. */
 export interface Simulator {
+  /** joint rates: qd's length; q has numPositions numbers (7 + joints with a floating base). */
   readonly numJoints: number;
+  readonly numPositions: number;
   readonly numLinks: number;
   readonly deleted: boolean;
   /** state views, writable. */

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "achd/error.hpp"
+#include "achd/kinematics.hpp"
 #include "achd/simulator.hpp"
 #include "held_directions.hpp"
 
@@ -71,7 +72,7 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
     if (!std::isfinite(first.qdd[i]))
       throw Error("the acceleration of joint '" + model_.bodies[i].joint_name + "' is not finite (qdd = " +
                   text(first.qdd[i]) + ")");
-  k_q_[0] = qd;
+  configuration_rate(model_, q, qd, k_q_[0]);
   k_qd_[0] = first.qdd;
 
   double h = substep_ > 0 ? substep_ : dt;  // the proposal carried over from the last call
@@ -111,7 +112,7 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
       for (int k = 0; k < kNumDirections; ++k) finite = finite && std::isfinite(as[k]);
       if (!finite) break;  // rejected below: a smaller substep
       evaluate(qs, qds, as, t + done + kC[s] * hs, w_n, stage_data_, k_angle_[s]);
-      k_q_[s] = qds;
+      configuration_rate(model_, qs, qds, k_q_[s]);
       k_qd_[s] = stage_data_.qdd;
     }
     // ||err||: RMS of err_i / (atol + rtol max(|x_i|, |x'_i|)) over q, qd, held angles.
@@ -123,14 +124,19 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
         sum += (e / scale) * (e / scale);
         ++count;
       };
-      for (int i = 0; i < n; ++i) {
-        double eq = 0, eqd = 0;
-        for (int j = 0; j < 7; ++j) {
-          eq += kE[j] * k_q_[j][i];
-          eqd += kE[j] * k_qd_[j][i];
+      // q has num_positions() numbers (one more than qd with a floating base's quaternion)
+      const int nq = static_cast<int>(q.size());
+      for (int i = 0; i < std::max(n, nq); ++i) {
+        if (i < nq) {
+          double eq = 0;
+          for (int j = 0; j < 7; ++j) eq += kE[j] * k_q_[j][i];
+          add(q[i], q_next_[i], hs * eq);
         }
-        add(q[i], q_next_[i], hs * eq);
-        add(qd[i], qd_next_[i], hs * eqd);
+        if (i < n) {
+          double eqd = 0;
+          for (int j = 0; j < 7; ++j) eqd += kE[j] * k_qd_[j][i];
+          add(qd[i], qd_next_[i], hs * eqd);
+        }
       }
       for (int k = 0; k < kNumDirections; ++k) {
         if (!held_angle(held_, k)) continue;
@@ -142,6 +148,7 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
     const double err = finite ? (count ? std::sqrt(sum / count) : 0) : INFINITY;
     if (err <= 1) {
       q = q_next_;  // copies: q and qd keep their buffers (the JS API views them)
+      normalise_configuration(model_, q);
       qd = qd_next_;
       held_.angle = angle_next_;
       // FSAL: k_7 at x' is k_1 of the next substep.

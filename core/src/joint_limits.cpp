@@ -31,6 +31,7 @@
 
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
+#include "achd/kinematics.hpp"
 #include "achd/simulator.hpp"
 #include "held_directions.hpp"
 #include "tip_kinematics.hpp"
@@ -70,7 +71,7 @@ void Simulator::update_limit_stops(double w_n) {
   for (int i = 0; i < n; ++i) {
     // A stop the caller moved the joint off (by setting q or qd, or the policy) is gone.
     const bool on_it = limit_stop_[i] && options_.limits == LimitPolicy::Clamp && qd[i] == 0 &&
-                       q[i] == limit_at(model_.bodies[i].limits, limit_stop_[i]);
+                       q[model_.position_index(i)] == limit_at(model_.bodies[i].limits, limit_stop_[i]);
     if (!on_it) limit_stop_[i] = 0;
     case_.prescribed[i] = limit_stop_[i] != 0 || moving_[i];
     resting = resting || on_it;
@@ -116,13 +117,13 @@ void Simulator::stop_at_limits() {
     const JointLimits& l = model_.bodies[i].limits;
     if (limit_stop_[i]) {
       // Resting: the step's prescribed qdd = 0 kept it there; these are exact.
-      q[i] = limit_at(l, limit_stop_[i]);
+      q[model_.position_index(i)] = limit_at(l, limit_stop_[i]);
       qd[i] = 0;
       limit_reached_[i] = 0;
       continue;
     }
     // A prescribed joint follows its trajectory through its limits: never stopped.
-    limit_reached_[i] = moving_[i] ? 0 : static_cast<signed char>(limit_side(l, q[i]));
+    limit_reached_[i] = moving_[i] ? 0 : static_cast<signed char>(limit_side(l, q[model_.position_index(i)]));
     reached = reached || limit_reached_[i];
   }
   if (!reached) return;
@@ -147,7 +148,7 @@ void Simulator::stop_at_limits() {
     double off = 0;
     for (int i = 0; i < n; ++i) {
       const double to_limit =
-          limit_reached_[i] ? limit_at(model_.bodies[i].limits, limit_reached_[i]) - q[i] : 0.0;
+          limit_reached_[i] ? limit_at(model_.bodies[i].limits, limit_reached_[i]) - q[model_.position_index(i)] : 0.0;
       impact_case_.qdd_given[i] = to_limit;
       off = std::max(off, std::abs(to_limit));
     }
@@ -162,9 +163,9 @@ void Simulator::stop_at_limits() {
     if (off == 0) break;
     impact_case_.q = q;
     solve_impact("position projection");
-    q += limit_data_.qdd;
+    integrate(model_, q, limit_data_.qdd, 1.0, q);  // the solve's qdd is the displacement
     for (int i = 0; i < n; ++i)
-      if (limit_reached_[i]) q[i] = limit_at(model_.bodies[i].limits, limit_reached_[i]);
+      if (limit_reached_[i]) q[model_.position_index(i)] = limit_at(model_.bodies[i].limits, limit_reached_[i]);
     body_motion(model_, q, qd, X0_, r_, v_);
   }
 

@@ -1,6 +1,7 @@
 #include "achd/kinematics.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "achd/error.hpp"
@@ -82,6 +83,54 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
       X0[i].p = p < 0 ? r[i] : Vector3(X0[p].p + r[i]);
     }
   }
+}
+
+void integrate(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h,
+               Eigen::VectorXd& out) {
+  out.resize(q.size());
+  if (!model.floating) {
+    out = q + h * v;
+    return;
+  }
+  // joints after the free joint: q[i + 1] += h v[i]
+  for (int i = kFreeJointBodies; i < model.num_joints(); ++i) out[i + 1] = q[i + 1] + h * v[i];
+  for (int k = 0; k < 3; ++k) out[k] = q[k] + h * v[k];
+  // the orientation: exp(h w) on the left (w in world axes); for a small turn the sine
+  // over the angle by its series, which stays accurate where the quotient would not
+  const Vector3 turn = h * Vector3(v[3], v[4], v[5]);
+  const double angle = turn.norm();
+  const double c = std::cos(angle / 2);
+  const double s = angle > 1e-4 ? std::sin(angle / 2) / angle : 0.5 - angle * angle / 48;
+  const Eigen::Quaterniond d(c, s * turn[0], s * turn[1], s * turn[2]);
+  Eigen::Quaterniond r(q[6], q[3], q[4], q[5]);
+  r.coeffs() /= r.coeffs().cwiseAbs().maxCoeff();  // (a quaternion of 1e-200 normalises too)
+  const Eigen::Quaterniond next = (d * r).normalized();
+  out[3] = next.x(), out[4] = next.y(), out[5] = next.z(), out[6] = next.w();
+}
+
+void configuration_rate(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                        Eigen::VectorXd& rate) {
+  rate.resize(q.size());
+  if (!model.floating) {
+    rate = v;
+    return;
+  }
+  for (int i = kFreeJointBodies; i < model.num_joints(); ++i) rate[i + 1] = v[i];
+  for (int k = 0; k < 3; ++k) rate[k] = v[k];
+  // d(quaternion)/dt = 1/2 [w; 0] (x) h: with h = (x, y, z; s) and w = (a, b, c)
+  const double a = v[3], b = v[4], c = v[5], x = q[3], y = q[4], z = q[5], s = q[6];
+  rate[3] = 0.5 * (a * s + b * z - c * y);
+  rate[4] = 0.5 * (b * s + c * x - a * z);
+  rate[5] = 0.5 * (c * s + a * y - b * x);
+  rate[6] = -0.5 * (a * x + b * y + c * z);
+}
+
+void normalise_configuration(const Model& model, Eigen::VectorXd& q) {
+  if (!model.floating) return;
+  Eigen::Quaterniond h(q[6], q[3], q[4], q[5]);
+  h.coeffs() /= h.coeffs().cwiseAbs().maxCoeff();
+  h.normalize();
+  q[3] = h.x(), q[4] = h.y(), q[5] = h.z(), q[6] = h.w();
 }
 
 ChainWorkspace::ChainWorkspace(const Model& model)

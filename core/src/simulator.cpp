@@ -8,6 +8,7 @@
 
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
+#include "achd/kinematics.hpp"
 #include "direction_events.hpp"
 #include "held_directions.hpp"
 #include "tip_kinematics.hpp"
@@ -39,12 +40,20 @@ std::string number(double x) {
   return buf;
 }
 
-// The first joint whose q or qd is not finite, as "joint 'elbow': qd = inf"; "" if none.
+// The first joint whose q or qd is not finite, as "joint 'elbow': qd = inf"; "" if none
+// (a floating base's free joint: its seven positions and six rates).
 std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
-  for (Eigen::Index i = 0; i < q.size() && i < qd.size(); ++i)
-    for (const auto& [name, v] : {std::pair<const char*, double>{"q", q[i]}, {"qd", qd[i]}})
+  if (model.floating)
+    for (int k = 0; k < 7; ++k)
+      if (!std::isfinite(q[k]) || (k < 6 && !std::isfinite(qd[k])))
+        return "joint '" + model.root_name + "' (the floating base): " + (std::isfinite(q[k]) ? "qd[" : "q[") +
+               std::to_string(k) + "] = " + number(std::isfinite(q[k]) ? qd[k] : q[k]);
+  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
+    const double x = q[model.position_index(i)];
+    for (const auto& [name, v] : {std::pair<const char*, double>{"q", x}, {"qd", qd[i]}})
       if (!std::isfinite(v))
         return "joint '" + model.bodies[i].joint_name + "': " + name + " = " + number(v);
+  }
   return "";
 }
 
@@ -115,11 +124,13 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
       events_(std::make_unique<DirectionEventLog>(kMaxDirectionEvents)),
       implicit_model_(model_),
       limit_data_(model_, kMaxConstraints) {
-  if (model_.floating)
-    throw Error("simulator: the model has a floating base (root link '" + model_.root_name +
-                "'); the simulator steps fixed-base robots only, so far");
+  // (the directions and their records are a link's: a floating root alone has none)
+  if (model_.num_links() == 0)
+    throw Error("simulator: the model has no link after the root link '" + model_.root_name +
+                "' (a link fixed to it will do)");
   const int n = model_.num_joints();
-  q = qd = ff_torques = Eigen::VectorXd::Zero(n);
+  q = Case::zeros(model_).q;  // num_positions(): a floating base upright at the origin
+  qd = ff_torques = Eigen::VectorXd::Zero(n);
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
   case_.f_ext.reserve(model_.num_links());
   limit_hits_.reserve(n);
@@ -136,8 +147,9 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   X0_.resize(n);
   r_.assign(n, Vector3::Zero());
   v_.assign(n, Vector6::Zero());
-  q0_ = qd0_ = q_stage_ = qd_stage_ = q_next_ = qd_next_ = Eigen::VectorXd::Zero(n);
-  for (auto& k : k_q_) k = Eigen::VectorXd::Zero(n);
+  q0_ = q_stage_ = q_next_ = q;
+  qd0_ = qd_stage_ = qd_next_ = Eigen::VectorXd::Zero(n);
+  for (auto& k : k_q_) k = Eigen::VectorXd::Zero(q.size());  // dq/dt: configuration_rate
   for (auto& k : k_qd_) k = Eigen::VectorXd::Zero(n);
   // Mass and centre of mass from the spatial inertia [m 1, -m [c]x; m [c]x, I_o].
   for (const Body& b : model_.bodies) {
@@ -157,7 +169,7 @@ std::int64_t Simulator::events_not_kept() const { return events_->not_kept(); }
 
 void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   const int n = model_.num_joints();
-  check_state(q0, n, "q0");
+  check_state(q0, model_.num_positions(), "q0");
   if (qd0.size()) check_state(qd0, n, "qd0");
   q = q0;
   if (qd0.size()) qd = qd0;
@@ -190,6 +202,9 @@ void Simulator::check_joint(int joint, const char* what) const {
 
 void Simulator::prescribe(int joint, const JointMotion& motion) {
   check_joint(joint, "prescribe");
+  if (model_.floating && joint < 6)
+    throw Error("prescribe: joint '" + model_.root_name + "' is the floating base's free joint; only its joints "
+                "after it take a motion");
   validate(motion, "joint '" + model_.bodies[joint].joint_name + "': ");
   if (!std::isfinite(t)) throw Error("prescribe: t is not finite");
   motions_[joint] = motion;
@@ -197,7 +212,7 @@ void Simulator::prescribe(int joint, const JointMotion& motion) {
   case_.prescribed[joint] = true;
   limit_stop_[joint] = 0;  // its motion is given: no stop holds it
   const JointSample at = sample(motion, t);
-  q[joint] = at.q;
+  q[model_.position_index(joint)] = at.q;
   qd[joint] = at.qd;
   case_.qdd_given[joint] = at.qdd;
 }
@@ -224,7 +239,7 @@ void Simulator::follow_trajectories(double t_at) {
   for (int i = 0; i < model_.num_joints(); ++i) {
     if (!moving_[i]) continue;
     const JointSample at = sample(motions_[i], t_at);
-    q[i] = at.q;
+    q[model_.position_index(i)] = at.q;
     qd[i] = at.qd;
   }
 }
@@ -324,7 +339,7 @@ void Simulator::step(double dt) {
   if (!(dt > 0) || !std::isfinite(dt)) throw Error("step: dt must be positive and finite");
   if (!std::isfinite(t)) throw Error("step: t is not finite");
   // The state the caller set (the fields q and qd: bad input, not a failed step).
-  check_state(q, model_.num_joints(), "q");
+  check_state(q, model_.num_positions(), "q");
   check_state(qd, model_.num_joints(), "qd");
   solver_ = options_.solver;
   solver_.effects = options_.effects;
@@ -452,7 +467,7 @@ void Simulator::run(std::int64_t steps, double dt) {
 void Simulator::step_explicit_euler(double dt, double w_n, Data& first) {
   stage_ = 0;
   evaluate(q, qd, held_.angle, t, w_n, first, k_angle_[0]);
-  q += dt * qd;
+  integrate(model_, q, qd, dt, q);
   qd += dt * first.qdd;
   for (int k = 0; k < kNumDirections; ++k) held_.angle[k] += dt * k_angle_[0][k];
 }
@@ -468,7 +483,7 @@ void Simulator::step_semi_implicit_euler(double dt, double w_n, Data& first) {
   for (int k = 0; k < kNumDirections; ++k)
     if (held_.mode[k] == DirectionMode::Hold && !is_linear_direction(k))
       held_.angle[k] += dt * direction_axis(k).dot(w);
-  q += dt * qd;
+  integrate(model_, q, qd, dt, q);
 }
 
 // Classical Runge-Kutta: k1 = f(x), k2 = f(x + dt/2 k1), k3 = f(x + dt/2 k2),
@@ -488,11 +503,12 @@ void Simulator::step_rk4(double dt, double w_n, Data& first) {
       for (int k = 0; k < kNumDirections; ++k) angle_stage_[k] = angle0_[k] + h * k_angle_[s - 1][k];
       evaluate(q_stage_, qd_stage_, angle_stage_, t + h, w_n, out, k_angle_[s]);
     }
-    k_q_[s] = s == 0 ? qd0_ : qd_stage_;
+    configuration_rate(model_, s == 0 ? q0_ : q_stage_, s == 0 ? qd0_ : qd_stage_, k_q_[s]);
     k_qd_[s] = out.qdd;
   }
   const double w = dt / 6;
   q = q0_ + w * (k_q_[0] + 2 * k_q_[1] + 2 * k_q_[2] + k_q_[3]);
+  normalise_configuration(model_, q);  // a floating base's quaternion back to unit length
   qd = qd0_ + w * (k_qd_[0] + 2 * k_qd_[1] + 2 * k_qd_[2] + k_qd_[3]);
   for (int k = 0; k < kNumDirections; ++k)
     held_.angle[k] = angle0_[k] + w * (k_angle_[0][k] + 2 * k_angle_[1][k] + 2 * k_angle_[2][k] + k_angle_[3][k]);
@@ -505,7 +521,8 @@ void Simulator::apply_limits() {
   if (options_.limits == LimitPolicy::Ignore) return;
   for (int i = 0; i < model_.num_joints(); ++i) {
     const JointLimits& l = model_.bodies[i].limits;
-    if (q[i] <= l.lower || q[i] >= l.upper) limit_hits_.push_back(i);
+    const double x = q[model_.position_index(i)];
+    if (x <= l.lower || x >= l.upper) limit_hits_.push_back(i);
   }
 }
 

@@ -2,7 +2,8 @@
 // loadURDF({floating: true}) describes the free joint as `achd info` does; its q takes the
 // root's position and quaternion and qd its [v; w], by name or in model order; and wasm
 // equals native to the bit on the tree robots of robots/index.json holding their default
-// links and on 100 random trees of the C++ suites, each made floating (its root given a mass).
+// links and on 100 random trees of the C++ suites, each made floating (its root given a mass);
+// the JS simulator steps a floating base (a free fall).
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -82,7 +83,17 @@ test('loadURDF({floating: true}) describes the free joint as `achd info --floati
       (e) => e.message === "q['trunk'] (the floating base): expected 7 values, got 4");
     assert.throws(() => robot.solve({ q: { trunk: [0, 0, 0, 0, 0, 0, 0] }, gravity: GRAVITY }),
       /the floating base's orientation quaternion \(qx, qy, qz, qw\) is zero/);
-    assert.throws(() => robot.createSimulator(), /floating base/);
+    // The simulator steps it: a free fall from rest is one body falling, z = z0 - g t^2 / 2
+    // (RK4 is exact on a quadratic), the quaternion kept unit, the joints where they were.
+    const sim = robot.createSimulator({ integrator: 'rk4' });
+    assert.equal(sim.q.length, 19);
+    const q0 = [0, 0, 1, 0.1, -0.2, 0.3, 0.9, ...quadruped.q0];
+    sim.reset(q0);
+    sim.step(1000, 1e-3);
+    const h = Math.hypot(0.1, -0.2, 0.3, 0.9);
+    const expected = [0, 0, 1 - 9.81 / 2, 0.1 / h, -0.2 / h, 0.3 / h, 0.9 / h, ...quadruped.q0];
+    assert.ok(relativeError(Array.from(sim.q), expected) < 1e-9, `q after 1 s: ${Array.from(sim.q)}`);
+    sim.delete();
     assert.throws(() => achd.loadURDF(quadruped.text, { floating: 'yes' }),
       (e) => e.message === 'loadURDF: options.floating must be true or false');
   } finally {

@@ -14,14 +14,16 @@ export class Simulator extends AchdHandle {
   constructor(robot, ptr) {
     super('Simulator', ptr, achdWasm.module._achd_sim_delete);
     this.numJoints = robot.numJoints;
+    this.numPositions = robot.numPositions;  // q's length (7 + joints with a floating base)
     this.numLinks = robot.numLinks;
+    this._robot = robot;
     this._linkNames = robot.linkNames;
     this._jointNames = robot.jointNames;
   }
   _bufferOf(ptr, index) { return achdWasm.module._achd_sim_buffer(ptr, index); }
   _bufferNames() { return achdConstants().simulator_buffers; }
   _layout() {
-    return [['q', this.numJoints], ['qd', this.numJoints], ['t', 1], ['ff_torques', this.numJoints],
+    return [['q', this.numPositions], ['qd', this.numJoints], ['t', 1], ['ff_torques', this.numJoints],
       ['f_ext', 6 * this.numLinks]];
   }
   get q() { return this._view('q'); }
@@ -64,12 +66,12 @@ export class Simulator extends AchdHandle {
   get substeps() { return achdWasm.module._achd_sim_substeps(this._live()); }
   get rejectedSubsteps() { return achdWasm.module._achd_sim_rejected_substeps(this._live()); }
   reset(q, qd) {
-    const ptr = this._live(), n = this.numJoints;
-    achdWithScratch(2 * n, (p) => {
-      achdWriteVector(q, 'q', n, p);
-      if (qd === undefined) achdWasm.module.HEAPF64.fill(0, p + n, p + 2 * n);
-      else achdWriteVector(qd, 'qd', n, p + n);
-      if (achdWasm.module._achd_sim_reset(ptr, 8 * p, 8 * (p + n))) throw achdLastError();
+    const ptr = this._live(), n = this.numJoints, nq = this.numPositions;
+    achdWithScratch(nq + n, (p) => {
+      achdWriteVector(q, 'q', nq, p);
+      if (qd === undefined) achdWasm.module.HEAPF64.fill(0, p + nq, p + nq + n);
+      else achdWriteVector(qd, 'qd', n, p + nq);
+      if (achdWasm.module._achd_sim_reset(ptr, 8 * p, 8 * (p + nq))) throw achdLastError();
     });
     this._buffer = null;  // reset() may have given q and qd new buffers
   }
@@ -120,10 +122,13 @@ export class Simulator extends AchdHandle {
   // Names of the prescribed joints, root to tip.
   prescribedJoints() {
     const ptr = this._live();
-    return this._jointNames.filter((_, i) => achdWasm.module._achd_sim_prescribed(ptr, i) !== 0);
+    return this._jointNames.filter((name, i) =>
+      (!this._robot.floating || i > 0) && achdWasm.module._achd_sim_prescribed(ptr, this._rateIndex(i)) !== 0);
   }
+  // jointNames index -> the joint's entry in qd (behind a floating base's six rates).
+  _rateIndex(i) { return this._robot.floating && i > 0 ? i + 5 : i; }
   _jointIndex(joint, what) {
-    const index = typeof joint === 'string' ? this._jointNames.indexOf(joint) : joint;
+    const index = typeof joint === 'string' ? this._rateIndex(this._jointNames.indexOf(joint)) : joint;
     if (!Number.isInteger(index) || index < 0 || index >= this.numJoints)
       throw new Error(`${what}: unknown joint ${JSON.stringify(joint)} (index 0..${this.numJoints - 1} or a joint name)`);
     return index;

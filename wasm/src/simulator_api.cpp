@@ -73,8 +73,9 @@ ACHD_EXPORT double achd_sim_rejected_substeps(const achd::Simulator* sim) {
 
 ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const double* qd) {
   return achd::wasm::guarded([&] {
-    const int n = static_cast<int>(sim->q.size());
-    sim->reset(Eigen::Map<const Eigen::VectorXd>(q, n), Eigen::Map<const Eigen::VectorXd>(qd, n));
+    // q: num_positions() numbers (a floating base's 7 first), qd: num_joints()
+    const int nq = static_cast<int>(sim->q.size()), n = static_cast<int>(sim->qd.size());
+    sim->reset(Eigen::Map<const Eigen::VectorXd>(q, nq), Eigen::Map<const Eigen::VectorXd>(qd, n));
   });
 }
 

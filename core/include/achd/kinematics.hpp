@@ -56,6 +56,22 @@ Eigen::MatrixXd link_jacobian(const Model& model, const Eigen::VectorXd& q, int 
 void link_jacobian(const Model& model, const Eigen::VectorXd& q, int link, const Vector3& point,
                    ChainWorkspace& ws, Eigen::MatrixXd& J);
 
+// The configuration reached from q by moving with the rates v (one per joint, as qd) for
+// a time h: each joint's position by h v_i; a floating base's origin by h v_lin and its
+// orientation by the turn exp(h w) about the world axes (its quaternion multiplied on the
+// left by [sin(|h w|/2) w/|w|, cos(|h w|/2)], then normalised). What the integrators use
+// for q' = "q + h qd". `out` may be q; sized as q; allocates nothing when it has that size.
+void integrate(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double h,
+               Eigen::VectorXd& out);
+
+// dq/dt for the rates v: v_i for each joint; a floating base's position v_lin and its
+// quaternion 1/2 [w; 0] (x) quaternion (w in world axes). The integrators of the simulator
+// combine these as vectors, then normalise_configuration(); sized as q.
+void configuration_rate(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                        Eigen::VectorXd& rate);
+// A floating base's quaternion made unit again (nothing else changes).
+void normalise_configuration(const Model& model, Eigen::VectorXd& q);
+
 // Joint transform of one body at q: parent body frame -> body frame.
 Transform joint_transform(const Body& body, double q);
 

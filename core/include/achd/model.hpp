@@ -76,6 +76,9 @@ struct Model {
   int num_joints() const { return static_cast<int>(bodies.size()); }
   // Configuration numbers (q): num_joints(), plus 1 with a floating base (its quaternion).
   int num_positions() const { return num_joints() + (floating ? 1 : 0); }
+  // Where joint i's position is in q: q[i], or q[i + 1] behind a floating base's quaternion
+  // (i >= 6; the free joint's own seven numbers are q[0..6]).
+  int position_index(int joint) const { return floating && joint >= 6 ? joint + 1 : joint; }
   int num_links() const { return static_cast<int>(links.size()); }
   bool has_tip() const { return !tip_name.empty(); }
   const Link& tip() const { return links.back(); }  // when has_tip()

@@ -134,7 +134,9 @@ class Simulator {
   Simulator(Simulator&&) noexcept;
   Simulator& operator=(Simulator&&) noexcept;
 
-  // State, root to tip. Setting them directly is allowed; reset() also restarts t,
+  // State, root to tip: q holds Model::num_positions() numbers (a floating base's 7 first:
+  // position and unit quaternion, kept unit by every step), qd num_joints() (its [v; w]
+  // first, world axes). Setting them directly is allowed; reset() also restarts t,
   // releases every direction and clears the drift and limit records.
   // t is t0 + k dt after the k-th step of dt since t was last set (by reset(), by the
   // caller, or by a change of dt): computed, not summed, so that k steps of dt from 0
