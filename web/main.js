@@ -10,14 +10,16 @@
 import { ChainView } from './chain_view.js';
 import { Controls } from './controls.js';
 import { EventsNotice } from './events_notice.js';
+import { ForceArrows } from './force_arrows.js';
 import { JointSliders } from './joint_sliders.js';
 import { LinkHover } from './link_hover.js';
 import { ServedFiles } from './mesh_files.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
-import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, motionFrom, parseHash } from './settings.js';
+import { DIRECTIONS, GRAVITY, checkDirection, defaultSettings, formatHash, hashRobot, motionFrom, parseHash } from './settings.js';
 import { Simulation } from './simulation.js';
+import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
 import { urdfVisuals } from './urdf_visuals.js';
 import './accuracy_panel.js';
@@ -29,6 +31,10 @@ const NUMBERS_EVERY_MS = 200;
 const SOLVE_TIMING_EVERY_MS = 1000;
 const RATE_WINDOW_MS = 1000;
 const CUSTOM = 'custom';
+// The arrows' scale (web/force_arrows.js) takes the robot's weight and size: at least
+// these, for a URDF with massless or tiny links.
+const MIN_MASS = 0.1;
+const MIN_REACH = 0.2;
 
 const page = {
   achd: null,
@@ -110,6 +116,13 @@ window.achdDemo = {
     if (!page.sim) throw new Error('achdDemo.setYield: no robot loaded yet (await achdDemo.ready)');
     setYield(name, Boolean(on));
   },
+  // The constraint wrench the view draws at the tip and its two arrows' ends (base frame):
+  // {wrench, metersPerNewton, metersPerNewtonMeter, force: {shown, from, to, length},
+  // moment: {...}}, and the torque bars: [{joint, torque, effort, fraction, over}].
+  forces() {
+    if (!page.sim) throw new Error('achdDemo.forces: no robot loaded yet (await achdDemo.ready)');
+    return { ...arrows.drawn(), torques: torqueBars.state() };
+  },
   // The tip link's origin in the base frame, m.
   tipPosition() {
     if (!page.sim) throw new Error('achdDemo.tipPosition: no robot loaded yet (await achdDemo.ready)');
@@ -161,6 +174,8 @@ function showError(message) {
 
 const view = new ChainView(document.getElementById('view'));
 const notice = new EventsNotice(document.getElementById('sim-events-list'), document.getElementById('sim-events-none'));
+const arrows = new ForceArrows(view);
+const torqueBars = new TorqueBars(document.getElementById('torque-bars'));
 const readouts = new Readouts(document.getElementById('numbers'), document.getElementById('plots'));
 const push = new PushDrag(view, {
   canPush: (link) => Boolean(page.sim) && link > 0 && page.settings.effects.externalWrenches,
@@ -194,7 +209,8 @@ const controls = new Controls({
   },
   effect: (key, on) => changeSetting(() => (page.settings.effects[key] = on), true),
 });
-new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name);
+new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name,
+  (x, y) => arrows.describe(x, y));
 const viewNote = document.getElementById('view-note');
 const sliders = new JointSliders(document.getElementById('joint-sliders'), document.getElementById('btn-start-pose'), {
   onPose: (q) => {
@@ -351,6 +367,8 @@ function loadRobot(source, { keepDirections = false } = {}) {
   page.lastSolveTiming = -Infinity;
   page.rate = { wall: 0, sim: 0, shown: null };
   showLook(sim, source);
+  arrows.setRobot(reachOf(page.links), Math.hypot(...GRAVITY) * Math.max(sim.mass, MIN_MASS), sim.robot.tip);
+  torqueBars.setRobot(sim.robot);
   sliders.setRobot(sim.robot, sim.q);
   if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
     robotSelect.add(new Option(`own URDF`, CUSTOM));
@@ -358,6 +376,12 @@ function loadRobot(source, { keepDirections = false } = {}) {
   robotSelect.value = source.name;
   errorBox.hidden = true;
   writeHash();
+}
+
+// The robot's size for the arrows' scale: the farthest link origin from the root at the
+// start pose, at least MIN_REACH.
+function reachOf(links) {
+  return links.reduce((r, l) => Math.max(r, Math.hypot(...l.position)), MIN_REACH);
 }
 
 // Builds the robot in the view from its URDF's visuals (meshes from source.files) and
@@ -498,6 +522,11 @@ function frame() {
     view.render();
     readouts.sample(sim);
     readouts.drawCharts();
+    const last = readouts.last;
+    if (last) {
+      arrows.update(page.links[page.links.length - 1].position, last.constrained, last.nu);
+      torqueBars.show(last.torques, now);
+    }
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
       page.lastNumbers = now;
       readouts.showNumbers();
