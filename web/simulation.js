@@ -28,6 +28,7 @@ export class Simulation {
   // naming the problem and owns nothing in that case.
   constructor(achd, source, settings) {
     this.name = source.name;
+    this.source = source;
     this.robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip });
     try {
       const tree = urdfTree(source.text);
