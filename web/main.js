@@ -585,16 +585,17 @@ function frame() {
       page.lastSolveTiming = now;
     }
     page.links = sim.links();
-    const p = push.current();
-    view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to });
-    view.render();
+    // The last solve's numbers first, so that the arrows drawn are this state's.
     readouts.sample(sim);
-    readouts.drawCharts();
     const last = readouts.last;
     if (last) {
       arrows.update(page.links[page.links.length - 1].position, last.constrained, last.nu);
       torqueBars.show(last.torques, now);
     }
+    const p = push.current();
+    view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to });
+    view.render();
+    readouts.drawCharts();
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
       page.lastNumbers = now;
       readouts.showNumbers();
@@ -617,13 +618,15 @@ window.addEventListener('hashchange', () => {
   if (!page.index || location.hash === page.writtenHash) return;
   const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default, page.offer), page.offer);
   const robot = settings.robot;
-  const shownRef = page.settings.own?.ref;
+  // The robot and own URDF shown stay in the settings until another one has loaded.
+  const linked = settings.own;
   settings.robot = page.settings.robot;
+  settings.own = page.settings.own;
   Object.assign(page.settings, settings);
   page.sim?.rebuild();
   controls.show(page.settings, page.playing);
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
-  if (robot === CUSTOM && settings.own && settings.own.ref !== shownRef) openLinkedUrdf(settings.own);
+  if (robot === CUSTOM && linked && linked.ref !== page.settings.own?.ref) openLinkedUrdf(linked);
   else if (robot !== page.settings.robot) selectRobot(robot, { keepDirections: true });
   else writeHash();
 });

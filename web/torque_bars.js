@@ -1,10 +1,10 @@
 // Joint torque bars: per movable joint, joint_torques of the simulator's last solve (the
 // torques a controller must command, ff - J^T alpha nu) against the URDF's effort limit.
-// A bar grows from the middle, right for a positive torque, left for a negative one, its
-// full half-width the effort limit; past the limit it turns red (and stops growing a
-// little beyond the end). A joint whose URDF gives no effort limit (0 or absent) has no
-// bar scale: only its number shows. Bars move by transform, numbers are written at most
-// every `NUMBERS_EVERY_MS`: a frame changes no layout and allocates nothing.
+// A bar grows from the middle, right for a positive torque, left for a negative one; ticks
+// mark plus and minus the effort limit (the track's half-width is 1.1 limits); past the
+// limit the bar turns red, and it stops growing at the track's end. A joint whose URDF gives no effort limit (0 or absent) has no
+// bar scale: only its number shows. Bars move by transform, written only when they change,
+// and numbers at most every `NUMBERS_EVERY_MS`: a frame changes no layout.
 
 const NUMBERS_EVERY_MS = 200;
 // How far past the limit a bar is drawn, relative to it.
@@ -38,7 +38,7 @@ export class TorqueBars {
       const value = document.createElement('span');
       value.className = 'torque-value';
       row.append(label, track, value);
-      return { row, bar, value, effort, unit, over: false, torque: 0, fraction: 0 };
+      return { row, bar, value, effort, unit, over: false, torque: 0, fraction: 0, drawn: 0 };
     });
     this.list.replaceChildren(...this.rows.map((r) => r.row));
     this.lastNumbers = -Infinity;
@@ -54,8 +54,11 @@ export class TorqueBars {
       r.torque = tau;
       if (r.effort > 0) {
         r.fraction = tau / r.effort;
-        const drawn = Math.max(-DRAWN_PAST_LIMIT, Math.min(DRAWN_PAST_LIMIT, r.fraction));
-        r.bar.style.transform = `scaleX(${drawn / DRAWN_PAST_LIMIT})`;
+        const drawn = Math.max(-DRAWN_PAST_LIMIT, Math.min(DRAWN_PAST_LIMIT, r.fraction)) / DRAWN_PAST_LIMIT;
+        if (drawn !== r.drawn) {
+          r.drawn = drawn;
+          r.bar.style.transform = `scaleX(${drawn})`;
+        }
         const over = Math.abs(tau) > r.effort;
         if (over !== r.over) {
           r.over = over;
