@@ -1,6 +1,6 @@
 // Own URDFs first class (issue 17), in Chromium: an own URDF picked with the file input
 // travels in the page's link compressed and reopens, with the link's held direction, in
-// a browser profile that never saw it; one too long for a link (the 200-joint chain) is
+// a browser profile that never saw it, and in an open page whose address is set to it; one too long for a link (the 200-joint chain) is
 // kept in the browser's storage under its SHA-256, and its link reopens it in a new page
 // of that browser and explains itself in another; the page says which form each link
 // has; the accuracy panel studies an own URDF; no console errors.
@@ -49,6 +49,7 @@ test('a share link restores an own URDF', async (t) => {
 
       const other = await openPage({ hash });
       others.push(other);
+      await waitForShare(other.page);
       const there = await shown(other.page);
       assert.equal(there.error, null);
       assert.equal(there.select, 'custom');
@@ -59,6 +60,24 @@ test('a share link restores an own URDF', async (t) => {
       assert.match(there.note, /travels in this page's link/);
       await other.page.waitForFunction(() => window.achdDemo.state().t > 0.2);
       assert.deepEqual(other.consoleErrors, []);
+    });
+
+    await t.test('the link put in the address of an open page opens it there, without a reload', async () => {
+      const ownHash = await page.evaluate(() => location.hash);
+      await page.selectOption('#robot-select', 'ur5');
+      await page.waitForFunction(() => window.achdDemo.state().robot === 'ur5');
+      assert.doesNotMatch(await page.evaluate(() => location.hash), /urdf=/);
+      await page.evaluate((hash) => {
+        window.achdMarker = true;  // gone if the page reloaded
+        location.hash = hash;
+      }, ownHash);
+      await page.waitForFunction(() => window.achdDemo.state().robot === 'custom');
+      const back = await shown(page);
+      assert.equal(back.source.text, ownText);
+      assert.equal(back.state.directions.z, 'hold');
+      assert.equal(await page.evaluate(() => window.achdMarker), true);
+      await waitForShare(page);
+      assert.equal(await page.evaluate(() => location.hash), ownHash);
     });
 
     let localHash;
@@ -79,12 +98,14 @@ test('a share link restores an own URDF', async (t) => {
       second.on('pageerror', (err) => consoleErrors.push(`page error: ${err.message}`));
       await second.goto(page.url());
       await second.evaluate(() => window.achdDemo.ready);
+      await waitForShare(second);
       const there = await shown(second);
       assert.equal(there.error, null);
       assert.equal(there.state.robot, 'custom');
       assert.equal(there.source.text, longText);
       assert.equal(there.source.tip, 'link200');
       assert.equal(there.state.q.length, 200);
+      assert.match(there.note, /kept in this browser's storage/);
       await second.close();
     });
 
@@ -97,19 +118,26 @@ test('a share link restores an own URDF', async (t) => {
       assert.deepEqual(other.consoleErrors, []);
     });
 
-    await t.test('the accuracy panel studies an own URDF', async () => {
-      await page.evaluate((text) => window.achdDemo.loadURDF(text, 'base_link', 'link2'), planarText);
-      await page.locator('.accuracy-run').click();
-      const status = page.locator('.accuracy-status');
-      await page.waitForFunction(() => !/running|…/.test(document.querySelector('.accuracy-status').textContent), null, { timeout: 120000 });
-      const text = await status.textContent();
-      assert.match(text, /^own URDF: reference self-check/);
-      assert.ok(await page.locator('.accuracy-live svg circle').count() > 10);
-    });
-
     assert.deepEqual(consoleErrors, []);
   } finally {
     for (const other of others) await other.close();
+    await session.close();
+  }
+});
+
+test('the accuracy panel studies an own URDF', async () => {
+  const session = await openPage();
+  const { page, consoleErrors } = session;
+  try {
+    await page.evaluate((text) => window.achdDemo.loadURDF(text, 'base_link', 'link2'), planarText);
+    await page.locator('.accuracy-run').click();
+    const status = page.locator('.accuracy-status');
+    await page.waitForFunction(() => !/running|…/.test(document.querySelector('.accuracy-status').textContent), null, { timeout: 120000 });
+    const text = await status.textContent();
+    assert.match(text, /^own URDF: reference self-check/);
+    assert.ok(await page.locator('.accuracy-live svg circle').count() > 10);
+    assert.deepEqual(consoleErrors, []);
+  } finally {
     await session.close();
   }
 });
