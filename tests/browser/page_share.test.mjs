@@ -3,7 +3,7 @@
 // a browser profile that never saw it, and in an open page whose address is set to it; one too long for a link (the 200-joint chain) is
 // kept in the browser's storage under its SHA-256, and its link reopens it in a new page
 // of that browser and explains itself in another; the page says which form each link
-// has; the accuracy panel studies an own URDF; no console errors.
+// has; no console errors.
 import assert from 'node:assert/strict';
 import { createHash } from 'node:crypto';
 import { readFile } from 'node:fs/promises';
@@ -15,7 +15,6 @@ const index = JSON.parse(await read('robots/index.json'));
 // An own UR5: the index's URDF under another robot name, so that it is not the list's.
 const ownText = (await read('robots/ur5.urdf')).replace(/<robot name="[^"]*"/, '<robot name="my_arm"');
 const longText = await read('robots/chain200.urdf');
-const planarText = await read('robots/planar2.urdf');
 
 const state = (page) => page.evaluate(() => window.achdDemo.state());
 const shown = (page) => page.evaluate(() => ({
@@ -121,23 +120,6 @@ test('a share link restores an own URDF', async (t) => {
     assert.deepEqual(consoleErrors, []);
   } finally {
     for (const other of others) await other.close();
-    await session.close();
-  }
-});
-
-test('the accuracy panel studies an own URDF', async () => {
-  const session = await openPage();
-  const { page, consoleErrors } = session;
-  try {
-    await page.evaluate((text) => window.achdDemo.loadURDF(text, 'base_link', 'link2'), planarText);
-    await page.locator('.accuracy-run').click();
-    const status = page.locator('.accuracy-status');
-    await page.waitForFunction(() => !/running|…/.test(document.querySelector('.accuracy-status').textContent), null, { timeout: 120000 });
-    const text = await status.textContent();
-    assert.match(text, /^own URDF: reference self-check/);
-    assert.ok(await page.locator('.accuracy-live svg circle').count() > 10);
-    assert.deepEqual(consoleErrors, []);
-  } finally {
     await session.close();
   }
 });
