@@ -2,7 +2,7 @@
 // `achd accuracy` (tools/accuracy_study.hpp) run live with the wasm module on the robot
 // the page shows, short: each integrator the module has (achd.constants.integrators),
 // the fixed-step ones at dt = 10, 5, 2, 1, 0.5 ms and the adaptive one at 10 ms output
-// steps once per tolerance, over 0.5 s from the robot's index pose with the page's held
+// steps once per tolerance, over 0.5 s from the robot's start pose with the page's held
 // directions and the simulator's default effects and policy; error = max|q(T) - q_ref(T)|
 // (rad) against RK4 at 0.125 ms (whose own error, the change when its step is halved, is
 // shown), cost = median of 3 timed runs per step. Beside it: the native figures of the
@@ -69,20 +69,17 @@ function mount(root) {
   showNative(root.querySelector('.accuracy-native-table'));
 }
 
-// The robot of the page (from robots/index.json) in a separate module instance, so the
-// page's own simulator keeps its state.
+// The robot of the page (one of robots/index.json or an own URDF, as it was loaded) in a
+// separate module instance, so the page's own simulator keeps its state.
 async function loadRobot() {
   await window.achdDemo.ready;
   const state = window.achdDemo.state();
-  const index = await (await fetch('../robots/index.json')).json();
-  const entry = index.robots.find((r) => r.name === state.robot);
-  if (!entry) throw new Error(`robot "${state.robot}" is not in robots/index.json (own URDFs are not studied)`);
-  const urdf = await (await fetch(`../${entry.urdf}`)).text();
+  const source = window.achdDemo.robotSource();
   const { default: createAchd } = await import('./dist/achd.mjs');
   const achd = await createAchd();
-  const robot = achd.loadURDF(urdf, { root: entry.root, tip: entry.tip });
+  const robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip });
   const held = Object.entries(state.directions).filter(([, mode]) => mode !== 'free');
-  return { name: entry.name, robot, q0: entry.q0, held, integrators: achd.constants.integrators.map(looks) };
+  return { name: source.title, robot, q0: source.q0, held, integrators: achd.constants.integrators.map(looks) };
 }
 
 // The runs of the study: a fixed-step integrator once per step of STEPS_MS, an adaptive

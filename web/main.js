@@ -10,15 +10,18 @@
 import { ChainView } from './chain_view.js';
 import { Controls } from './controls.js';
 import { EventsNotice } from './events_notice.js';
+import { ForceArrows } from './force_arrows.js';
 import { JointSliders } from './joint_sliders.js';
 import { LinkHover } from './link_hover.js';
 import { ServedFiles } from './mesh_files.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
-import { DIRECTIONS, checkDirection, defaultSettings, formatHash, hashRobot, motionFrom, parseHash } from './settings.js';
+import { DIRECTIONS, GRAVITY, checkDirection, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, parseHash } from './settings.js';
 import { Simulation } from './simulation.js';
+import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
+import { LINK_CHARACTERS, openSharedUrdf, shareUrdf } from './urdf_share.js';
 import { urdfVisuals } from './urdf_visuals.js';
 import './accuracy_panel.js';
 
@@ -29,6 +32,12 @@ const NUMBERS_EVERY_MS = 200;
 const SOLVE_TIMING_EVERY_MS = 1000;
 const RATE_WINDOW_MS = 1000;
 const CUSTOM = 'custom';
+// What the page calls an own URDF opened from a link (its file name is not in the link).
+const LINKED_NAME = 'The URDF of the link';
+// The arrows' scale (web/force_arrows.js) takes the robot's weight and size: at least
+// these, for a URDF with massless or tiny links.
+const MIN_MASS = 0.1;
+const MIN_REACH = 0.2;
 
 const page = {
   achd: null,
@@ -52,7 +61,13 @@ const page = {
   // The robot's visuals: {meshes: outcomes of web/chain_view.js's setChain (null while
   // they load), problems: visuals the URDF has but that could not be read}.
   look: { meshes: [], problems: [] },
-};
+  // The last own URDF loaded ({name: CUSTOM, text, root, tip, fileName, files}): the robot
+  // list's "own URDF" entry reopens it.
+  ownSource: null,
+  // How the link holds the own URDF shown: {form: 'link' | 'local', ref, characters}, or
+  // {error}; null while it is worked out, and for a robot of the list.
+  share: null,
+}
 
 let markReady;
 let failReady;
@@ -80,7 +95,15 @@ window.achdDemo = {
       lost: [...notice.lost],
       plots: readouts.plotRanges(),
       look: { meshes: page.look.meshes?.map((m) => ({ ...m })) ?? null, problems: [...page.look.problems] },
+      share: page.share && { ...page.share },
     };
+  },
+  // The robot shown as it was loaded: {name, text (its URDF), root, tip, q0 (start pose)}.
+  robotSource() {
+    if (!page.sim) throw new Error('achdDemo.robotSource: no robot loaded yet (await achdDemo.ready)');
+    const s = page.sim.source;
+    return { name: s.name, title: s.fileName ?? robotSelect.selectedOptions[0]?.text ?? s.name, text: s.text,
+      root: page.sim.robot.root, tip: page.sim.robot.tip, q0: [...page.sim.q0] };
   },
   // The 3D view's camera (column-major 4x4 matrices as three.js stores them) and the
   // canvas's size in CSS pixels and its place on the page, or null without WebGL.
@@ -109,6 +132,13 @@ window.achdDemo = {
     checkDirection(name, 'free');
     if (!page.sim) throw new Error('achdDemo.setYield: no robot loaded yet (await achdDemo.ready)');
     setYield(name, Boolean(on));
+  },
+  // The constraint wrench the view draws at the tip and its two arrows' ends (base frame):
+  // {wrench, metersPerNewton, metersPerNewtonMeter, force: {shown, from, to, length},
+  // moment: {...}}, and the torque bars: [{joint, torque, effort, fraction, over}].
+  forces() {
+    if (!page.sim) throw new Error('achdDemo.forces: no robot loaded yet (await achdDemo.ready)');
+    return { ...arrows.drawn(), torques: torqueBars.state() };
   },
   // The tip link's origin in the base frame, m.
   tipPosition() {
@@ -161,6 +191,8 @@ function showError(message) {
 
 const view = new ChainView(document.getElementById('view'));
 const notice = new EventsNotice(document.getElementById('sim-events-list'), document.getElementById('sim-events-none'));
+const arrows = new ForceArrows(view);
+const torqueBars = new TorqueBars(document.getElementById('torque-bars'));
 const readouts = new Readouts(document.getElementById('numbers'), document.getElementById('plots'));
 const push = new PushDrag(view, {
   canPush: (link) => Boolean(page.sim) && link > 0 && page.settings.effects.externalWrenches,
@@ -194,7 +226,8 @@ const controls = new Controls({
   },
   effect: (key, on) => changeSetting(() => (page.settings.effects[key] = on), true),
 });
-new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name);
+new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name,
+  (x, y) => arrows.describe(x, y));
 const viewNote = document.getElementById('view-note');
 const sliders = new JointSliders(document.getElementById('joint-sliders'), document.getElementById('btn-start-pose'), {
   onPose: (q) => {
@@ -209,7 +242,7 @@ const sliders = new JointSliders(document.getElementById('joint-sliders'), docum
 const upload = new UrdfUpload({
   onLoad: (text, root, tip, fileName, files) => {
     try {
-      loadRobot({ name: CUSTOM, text, root, tip, files });
+      loadRobot({ name: CUSTOM, text, root, tip, fileName, files });
       upload.hide();
     } catch (err) {
       showError(`${fileName}: ${err.message}`);
@@ -351,13 +384,64 @@ function loadRobot(source, { keepDirections = false } = {}) {
   page.lastSolveTiming = -Infinity;
   page.rate = { wall: 0, sim: 0, shown: null };
   showLook(sim, source);
+  arrows.setRobot(reachOf(page.links), Math.hypot(...GRAVITY) * Math.max(sim.mass, MIN_MASS), sim.robot.tip);
+  torqueBars.setRobot(sim.robot);
   sliders.setRobot(sim.robot, sim.q);
   if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
     robotSelect.add(new Option(`own URDF`, CUSTOM));
   }
   robotSelect.value = source.name;
   errorBox.hidden = true;
+  if (source.name === CUSTOM) {
+    page.ownSource = source;
+    shareOwn(sim, source);
+  } else {
+    page.settings.own = null;
+    page.share = null;
+    showShareNote(source);
+  }
   writeHash();
+}
+
+// Puts the own URDF in the page's link (in it, or kept in this browser's storage and named
+// by it: web/urdf_share.js) and says on the page which.
+function shareOwn(sim, source) {
+  page.settings.own = null;
+  page.share = null;
+  showShareNote(source);
+  shareUrdf(source.text).then((share) => {
+    if (page.sim !== sim) return;
+    page.settings.own = { ref: share.ref, root: sim.robot.root, tip: sim.robot.tip };
+    page.share = share;
+    writeHash();
+    showShareNote(source);
+  }, (err) => {
+    if (page.sim !== sim) return;
+    page.share = { error: err.message };
+    showShareNote(source);
+  });
+}
+
+function showShareNote(source) {
+  const note = document.getElementById('share-note');
+  note.hidden = source.name !== CUSTOM;
+  if (note.hidden) return;
+  const name = source.fileName ?? 'The own URDF';
+  const s = page.share;
+  note.classList.toggle('share-failed', Boolean(s?.error));
+  note.textContent = !s ? `${name}: preparing its link…`
+    : s.error ? `${name}: ${s.error}.`
+      : s.form === 'link' ? `${name} travels in this page's link (${s.characters} characters, compressed): ` +
+        'the address opens it in any browser. Mesh files are not in the link.'
+        : `${name} is kept in this browser's storage and this page's link names it (${s.ref}): the address ` +
+          `reopens it in this browser only (compressed it takes ${s.characters} characters, more than the ` +
+          `${LINK_CHARACTERS} a link carries). Mesh files are not kept.`;
+}
+
+// The robot's size for the arrows' scale: the farthest link origin from the root at the
+// start pose, at least MIN_REACH.
+function reachOf(links) {
+  return links.reduce((r, l) => Math.max(r, Math.hypot(...l.position)), MIN_REACH);
 }
 
 // Builds the robot in the view from its URDF's visuals (meshes from source.files) and
@@ -413,11 +497,19 @@ function servedFiles(entry) {
 }
 
 async function selectRobot(name, options) {
+  if (name === CUSTOM && page.ownSource) {
+    try {
+      loadRobot(page.ownSource, options);
+    } catch {
+      robotSelect.value = page.settings.robot;  // shown by loadRobot
+    }
+    return;
+  }
   const entry = page.index.robots.find((r) => r.name === name);
   if (!entry) return;
   try {
     const text = await fetchText(entry.urdf);
-    loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry) }, options);
+    loadRobot(indexSource(entry, text), options);
   } catch (err) {
     robotSelect.value = page.settings.robot;
     showError(`${entry.name}: ${err.message}`);
@@ -493,10 +585,16 @@ function frame() {
       page.lastSolveTiming = now;
     }
     page.links = sim.links();
+    // The last solve's numbers first, so that the arrows drawn are this state's.
+    readouts.sample(sim);
+    const last = readouts.last;
+    if (last) {
+      arrows.update(page.links[page.links.length - 1].position, last.constrained, last.nu);
+      torqueBars.show(last.torques, now);
+    }
     const p = push.current();
     view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to });
     view.render();
-    readouts.sample(sim);
     readouts.drawCharts();
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
       page.lastNumbers = now;
@@ -520,14 +618,29 @@ window.addEventListener('hashchange', () => {
   if (!page.index || location.hash === page.writtenHash) return;
   const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default, page.offer), page.offer);
   const robot = settings.robot;
+  // The robot and own URDF shown stay in the settings until another one has loaded.
+  const linked = settings.own;
   settings.robot = page.settings.robot;
+  settings.own = page.settings.own;
   Object.assign(page.settings, settings);
   page.sim?.rebuild();
   controls.show(page.settings, page.playing);
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
-  if (robot !== page.settings.robot) selectRobot(robot, { keepDirections: true });
+  if (robot === CUSTOM && linked && linked.ref !== page.settings.own?.ref) openLinkedUrdf(linked);
+  else if (robot !== page.settings.robot) selectRobot(robot, { keepDirections: true });
   else writeHash();
 });
+
+// An own URDF named by an edited link (urdf=, root=, tip=), with the link's directions.
+async function openLinkedUrdf(own) {
+  try {
+    const text = await openSharedUrdf(own.ref);
+    loadRobot({ name: CUSTOM, text, root: own.root, tip: own.tip, fileName: LINKED_NAME }, { keepDirections: true });
+  } catch (err) {
+    showError(`the own URDF of the link: ${err.message}`);
+    writeHash();
+  }
+}
 
 async function loadModule() {
   let createAchd;
@@ -546,12 +659,28 @@ async function readIndexAndRobot() {
   index.robots = index.robots.filter((r) => r.tip);  // the page shows chains; a tree entry has no tip
   const problems = [];
   let robot = hashRobot(location.hash, index.default);
+  if (robot === CUSTOM) {
+    const own = hashOwn(location.hash);
+    try {
+      if (!own) throw new Error(`robot=${CUSTOM} needs urdf=, root= and tip=`);
+      const text = await openSharedUrdf(own.ref);
+      return { index, problems, entry: { name: CUSTOM, root: own.root, tip: own.tip, fileName: LINKED_NAME }, text };
+    } catch (err) {
+      problems.push(`the own URDF of the link: ${err.message}`);
+      robot = index.default;
+    }
+  }
   if (!index.robots.some((r) => r.name === robot)) {
-    problems.push(`robot "${robot}" is not in robots/index.json (an own URDF cannot be shared by link)`);
+    problems.push(`robot "${robot}" is not in robots/index.json`);
     robot = index.default;
   }
   const entry = index.robots.find((r) => r.name === robot);
   return { index, problems, entry, text: await fetchText(entry.urdf) };
+}
+
+// The source of an index robot, its meshes read from this server.
+function indexSource(entry, text) {
+  return { name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry) };
 }
 
 async function start() {
@@ -565,8 +694,16 @@ async function start() {
   problems.push(...parsed.problems);
   controls.offer(page.offer);
   controls.show(page.settings, page.playing);
-  loadRobot({ name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry) },
-    { keepDirections: true });
+  try {
+    loadRobot(entry.name === CUSTOM ? { ...entry, text } : indexSource(entry, text), { keepDirections: true });
+  } catch (err) {
+    // An own URDF of the link that does not load: the default robot instead, and why.
+    if (entry.name !== CUSTOM) throw err;
+    problems.push(err.message);
+    const fallback = index.robots.find((r) => r.name === index.default);
+    page.settings.robot = fallback.name;
+    loadRobot(indexSource(fallback, await fetchText(fallback.urdf)), { keepDirections: true });
+  }
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
   requestAnimationFrame(frame);
 }

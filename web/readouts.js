@@ -75,7 +75,8 @@ export class Readouts {
     const nu = sim.sim.nu();
     const torques = sim.sim.joint_torques();
     const energy = sim.sim.energy();
-    this.last = { sim, residuals, nu, torques, energy };
+    // constrained: the directions of this solve's constraints, in nu's order.
+    this.last = { sim, residuals, nu, torques, energy, constrained: this.constrained };
     this.charts.residuals.push(this.held.map((d) => residuals[d]));
     // nu lists the constraints in direction order, as the simulator builds alpha.
     this.charts.nu.push(this.constrained.map((_, k) => nu[k]));

@@ -3,7 +3,8 @@
 // integrator's relative tolerance), its defaults, and its round trip through the URL hash
 // so that a view can be shared, e.g.
 // #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping&dirs=z:hold,rx:0.5&yield=z
-// (prescribed joints belong to the robot's run and are not in the hash).
+// (prescribed joints belong to the robot's run and are not in the hash). An own URDF is
+// robot=custom&urdf=<deflate:… or local:…, web/urdf_share.js>&root=<link>&tip=<link>.
 // Values are the scene files' words (achd.constants); the simulator's option keys are
 // the same words in camelCase. Which integrators and policies exist, and the defaults,
 // are the module's (`offer`, web/module_offer.js): this file keeps no list of its own.
@@ -48,6 +49,8 @@ export function defaultSettings(robot, offer) {
     yielding: Object.fromEntries(DIRECTIONS.map((d) => [d, false])),
     // joint name -> {motion, position, velocity, amplitude, frequency, phase} in page time
     prescribed: {},
+    // an own URDF's place in the link: {ref (urdf=), root, tip}, or null
+    own: null,
   };
 }
 
@@ -109,6 +112,11 @@ export function checkDirection(name, mode) {
 export function formatHash(s) {
   const params = new URLSearchParams();
   params.set('robot', s.robot);
+  if (s.own) {
+    params.set('urdf', s.own.ref);
+    params.set('root', s.own.root);
+    params.set('tip', s.own.tip);
+  }
   params.set('integrator', s.integrator);
   if (isAdaptive(s.integrator)) params.set('rtol', String(s.rtol));
   params.set('dt', String(s.dt));
@@ -128,6 +136,13 @@ export function hashRobot(hash, fallback) {
   return new URLSearchParams(hash.replace(/^#/, '')).get('robot') ?? fallback;
 }
 
+// The own URDF a hash names, {ref, root, tip} (all three given), or null.
+export function hashOwn(hash) {
+  const params = new URLSearchParams(hash.replace(/^#/, ''));
+  const [ref, root, tip] = ['urdf', 'root', 'tip'].map((k) => params.get(k));
+  return ref !== null && root !== null && tip !== null ? { ref, root, tip } : null;
+}
+
 // Reads a hash over the defaults, taking only names the module offers; returns the
 // settings and the complaints about parts it ignored, so the page can say why a shared
 // link did not fully apply.
@@ -136,6 +151,10 @@ export function parseHash(hash, defaults, offer) {
   const problems = [];
   const params = new URLSearchParams(hash.replace(/^#/, ''));
   if (params.has('robot')) s.robot = params.get('robot');
+  if (params.has('urdf')) {
+    s.own = hashOwn(hash);
+    if (!s.own) problems.push('urdf= needs root= and tip= (the chain of the own URDF)');
+  }
   if (params.has('integrator')) {
     const v = current('integrator', params.get('integrator'));
     if (offer.integrators.includes(v)) s.integrator = v;

@@ -28,6 +28,7 @@ export class Simulation {
   // naming the problem and owns nothing in that case.
   constructor(achd, source, settings) {
     this.name = source.name;
+    this.source = source;
     this.robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip });
     try {
       const tree = urdfTree(source.text);
@@ -212,6 +213,10 @@ export class Simulation {
       yielding: { ...this.settings.yielding },
       prescribed: structuredClone(this.settings.prescribed),
       residuals: this.sim.residuals(),
+      // of the solve at the start of the last step: nu in direction order (the constrained
+      // ones), joint_torques per joint
+      nu: this.sim.nu(),
+      joint_torques: this.sim.joint_torques(),
       stepMicros: this.currentStepMicros(),
     };
   }

@@ -69,8 +69,12 @@ test('joint sliders and link names on the page', async (t) => {
     });
 
     await t.test('hovering a link names it', async () => {
-      // The middle of lwr_link_3's body: 0.1 m along its z axis.
-      const camera = await page.evaluate(() => window.achdDemo.camera());
+      // The middle of lwr_link_3's body: 0.1 m along its z axis. The view in sight first
+      // (filling a slider scrolled the page to it).
+      const camera = await page.evaluate(() => {
+        window.scrollTo(0, 0);
+        return window.achdDemo.camera();
+      });
       const link = robot.forwardKinematics(entry.q0).find((l) => l.name === 'lwr_link_3');
       const r = link.rotation;
       const p = [0, 1, 2].map((i) => link.position[i] + 0.1 * r[3 * i + 2]);

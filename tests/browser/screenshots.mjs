@@ -9,13 +9,26 @@
 //   docs/screenshots/robot.png    the UR5 at its start pose, drawn from its URDF's visuals
 //   docs/screenshots/sliders.png  the LWR posed with the joint sliders, paused, the pointer on a
 //                                 link naming it
-// Usage: node tests/browser/screenshots.mjs   (after the wasm build)
+//   docs/screenshots/forces.png   the LWR with its tip held in place (x, y, z, rx, ry) and pushed
+//                                 sideways at its elbow: the constraint force and moment arrows
+//                                 at the tip (the pointer on the force showing its numbers) and
+//                                 the joint torque bars against the URDF's effort limits
+// Usage: node tests/browser/screenshots.mjs [name...]   (after the wasm build; names: the
+// files' without .png, all of them when none is given)
 import { mkdir } from 'node:fs/promises';
 import { openPage } from './launch.mjs';
 
 const out = new URL('../../docs/screenshots/', import.meta.url);
 await mkdir(out, { recursive: true });
+const wanted = process.argv.slice(2);
+const SHOTS = ['default', 'boundary', 'robot', 'sliders', 'forces'];
+for (const name of wanted) {
+  if (!SHOTS.includes(name) && name !== 'held') throw new Error(`no screenshot "${name}" (${[...SHOTS, 'held'].join(', ')})`);
+}
+// default.png and held.png come from one session.
+const want = (name) => !wanted.length || wanted.includes(name) || (name === 'default' && wanted.includes('held'));
 
+if (want('default')) {
 const session = await openPage({ viewport: { width: 1400, height: 1000 } });
 try {
   const { page } = session;
@@ -35,7 +48,9 @@ try {
 } finally {
   await session.close();
 }
+}
 
+if (want('boundary')) {
 const boundary = await openPage({
   viewport: { width: 1400, height: 1000 },
   hash: '#robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping,friction,external_wrenches' +
@@ -59,7 +74,9 @@ try {
 } finally {
   await boundary.close();
 }
+}
 
+if (want('robot')) {
 const look = await openPage({ viewport: { width: 1400, height: 1000 }, hash: '#robot=ur5' });
 try {
   const { page } = look;
@@ -73,7 +90,9 @@ try {
 } finally {
   await look.close();
 }
+}
 
+if (want('sliders')) {
 const posed = await openPage({ viewport: { width: 1400, height: 1000 } });
 try {
   const { page } = posed;
@@ -92,4 +111,31 @@ try {
   if (posed.consoleErrors.length) throw new Error(`console errors: ${posed.consoleErrors.join('\n')}`);
 } finally {
   await posed.close();
+}
+}
+
+if (want('forces')) {
+  const held = await openPage({
+    viewport: { width: 1400, height: 1000 },
+    hash: '#robot=kuka_lwr4&integrator=rk4&dt=0.001&dirs=x:hold,y:hold,z:hold,rx:hold,ry:hold',
+  });
+  try {
+    const { page } = held;
+    await page.evaluate(() => window.achdDemo.push('lwr_link_4', [0, 150, 0, 0, 0, 0]));
+    await page.waitForTimeout(1500);
+    const { f, camera } = await page.evaluate(() => {
+      window.achdDemo.pause();
+      return { f: window.achdDemo.forces(), camera: window.achdDemo.camera() };
+    });
+    // The pointer on the force arrow's middle: the page shows its numbers.
+    const mul = (m, v) => [0, 1, 2, 3].map((i) => m[i] * v[0] + m[4 + i] * v[1] + m[8 + i] * v[2] + m[12 + i] * v[3]);
+    const clip = mul(camera.projection, mul(camera.worldInverse, [...f.force.from.map((v, i) => (v + f.force.to[i]) / 2), 1]));
+    const { left, top, width, height } = camera.rect;
+    await page.mouse.move(left + ((clip[0] / clip[3] + 1) / 2) * width, top + ((1 - clip[1] / clip[3]) / 2) * height);
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: new URL('forces.png', out).pathname });
+    if (held.consoleErrors.length) throw new Error(`console errors: ${held.consoleErrors.join('\n')}`);
+  } finally {
+    await held.close();
+  }
 }

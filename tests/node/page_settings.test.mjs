@@ -6,7 +6,7 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 
-import { EFFECTS, MOTION_PARAMETERS, defaultSettings, formatHash, hashRobot, motionFrom, motionInSimulatorTime, parseHash,
+import { EFFECTS, MOTION_PARAMETERS, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, motionInSimulatorTime, parseHash,
   simulatorOptions } from '../../web/settings.js';
 import { moduleOffer } from '../../web/module_offer.js';
 import { loadAchd } from './helpers.mjs';
@@ -29,6 +29,18 @@ test('the hash writes the scene names and reads them back', () => {
   assert.deepEqual(parseHash(hash, defaultSettings('kuka_lwr4', OFFER), OFFER), { settings: s, problems: [] });
   assert.equal(hashRobot(hash, 'kuka_lwr4'), 'ur5');
   assert.equal(hashRobot('#dt=0.001', 'kuka_lwr4'), 'kuka_lwr4');
+});
+
+test('an own URDF\'s place in the link (urdf=, root=, tip=) goes after the robot and comes back', () => {
+  const s = defaultSettings('custom', OFFER);
+  s.own = { ref: 'local:0123456789abcdef', root: 'base link', tip: 'tool' };
+  const hash = formatHash(s);
+  assert.ok(hash.startsWith('#robot=custom&urdf=local:0123456789abcdef&root=base+link&tip=tool&integrator='), hash);
+  assert.deepEqual(parseHash(hash, defaultSettings('ur5', OFFER), OFFER), { settings: s, problems: [] });
+  assert.deepEqual(hashOwn(hash), s.own);
+  assert.equal(hashOwn('#robot=custom&urdf=deflate:AA&root=a'), null);
+  assert.deepEqual(parseHash('#robot=custom&urdf=deflate:AA', defaultSettings('ur5', OFFER), OFFER).problems,
+    ['urdf= needs root= and tip= (the chain of the own URDF)']);
 });
 
 test('directions that yield to pushes are stored in the hash; prescribed joints are not', () => {

@@ -1,0 +1,163 @@
+// The constraint wrench at the tip, alpha nu of the simulator's last solve, drawn as two
+// arrows from the tip link's origin: the force f (linear part, N) and the moment m (angular
+// part, N m, a double-headed arrow along its axis, the usual notation for a moment). It is
+// the wrench the tip exerts on the constraint; the robot receives -alpha nu.
+//
+// Scale, fixed per robot so that a length reads as a value: an arrow of length
+// `reach / 2` stands for the robot's weight W = m g (the force) or W * reach (the moment),
+// so length = |f| * reach / (2 W) and |m| / (2 W). Arrows are drawn over the robot
+// (no depth test), unlit, in colours no direction glyph uses. Updating them each frame
+// sets transforms only: nothing is allocated.
+import * as THREE from 'three';
+import { DIRECTIONS } from './settings.js';
+
+export const FORCE_COLOR = '#c2185b';
+export const MOMENT_COLOR = '#5e35b1';
+const UP = new THREE.Vector3(0, 1, 0);  // three's cylinders and cones are built along +y
+// Below this length (m) an arrow is not drawn: no direction to show.
+const SHORTEST = 1e-9;
+
+class Arrow {
+  // heads: 1 (a force) or 2 (a moment); radius: the shaft's, m.
+  constructor(color, heads, radius) {
+    const material = new THREE.MeshBasicMaterial({ color, depthTest: false, depthWrite: false, transparent: true });
+    this.group = new THREE.Group();
+    this.group.renderOrder = 10;
+    this.headLength = radius * 7;
+    this.shaft = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, 1, 12), material);
+    this.heads = [];
+    const cone = new THREE.ConeGeometry(radius * 2.6, 1, 16);
+    for (let k = 0; k < heads; k++) this.heads.push(new THREE.Mesh(cone, material));
+    for (const mesh of [this.shaft, ...this.heads]) {
+      mesh.renderOrder = 10;
+      this.group.add(mesh);
+    }
+    this.group.visible = false;
+    this.length = 0;
+  }
+
+  // From `origin` along `vector` (a THREE.Vector3, modified: normalised) for `length` m;
+  // the heads take their share of the length, so the arrow ends exactly there.
+  set(origin, vector, length) {
+    this.length = length;
+    this.group.visible = length > SHORTEST;
+    if (!this.group.visible) return;
+    this.group.position.copy(origin);
+    this.group.quaternion.setFromUnitVectors(UP, vector.normalize());
+    const heads = this.heads.length;
+    const head = Math.min(this.headLength, length / (heads + 1));
+    const shaft = length - heads * head;
+    this.shaft.scale.set(1, shaft, 1);
+    this.shaft.position.set(0, shaft / 2, 0);
+    // Heads stacked at the end, the last one's point at `length`.
+    this.heads.forEach((mesh, k) => {
+      mesh.scale.set(1, head, 1);
+      mesh.position.set(0, shaft + head * (k + 0.5), 0);
+    });
+  }
+
+  dispose() {
+    for (const mesh of [this.shaft, ...this.heads]) mesh.geometry.dispose();
+    this.shaft.material.dispose();
+  }
+}
+
+export class ForceArrows {
+  // view: the ChainView whose scene the arrows go in.
+  constructor(view) {
+    this.view = view;
+    this.enabled = view.enabled;
+    this.wrench = new Float64Array(6);
+    this.tip = new THREE.Vector3();
+    this.scratch = new THREE.Vector3();
+    this.metersPerNewton = 0;
+    this.metersPerNewtonMeter = 0;
+    this.force = null;
+    this.moment = null;
+    this.tipName = '';
+  }
+
+  // A new robot: reach (m, the length of its chain), weight (N) and the tip link's name.
+  setRobot(reach, weight, tipName) {
+    this.metersPerNewton = reach / (2 * weight);
+    this.metersPerNewtonMeter = 1 / (2 * weight);
+    this.tipName = tipName;
+    this.wrench.fill(0);
+    if (!this.enabled) return;
+    this.force?.dispose();
+    this.moment?.dispose();
+    if (this.group) this.view.scene.remove(this.group);
+    const radius = this.view.radius * 0.55;
+    this.force = new Arrow(FORCE_COLOR, 1, radius);
+    this.moment = new Arrow(MOMENT_COLOR, 2, radius * 0.8);
+    this.group = new THREE.Group();
+    this.group.add(this.force.group, this.moment.group);
+    this.view.scene.add(this.group);
+  }
+
+  // tip: [x, y, z] of the tip link's origin; constrained: the directions that were not
+  // free in the last solve (names, DIRECTIONS order); nu: its multipliers, one per such
+  // direction. alpha's columns are the unit base axes of those directions, so alpha nu
+  // has nu[k] in the row of the k-th constrained direction and 0 elsewhere.
+  update(tip, constrained, nu) {
+    this.wrench.fill(0);
+    for (let k = 0; k < constrained.length && k < nu.length; k++) this.wrench[DIRECTIONS.indexOf(constrained[k])] = nu[k];
+    if (!this.enabled || !this.force) return;
+    const w = this.wrench;
+    this.tip.fromArray(tip);
+    this.scratch.set(w[0], w[1], w[2]);
+    this.force.set(this.tip, this.scratch, this.scratch.length() * this.metersPerNewton);
+    this.scratch.set(w[3], w[4], w[5]);
+    this.moment.set(this.tip, this.scratch, this.scratch.length() * this.metersPerNewtonMeter);
+  }
+
+  hide() {
+    this.wrench.fill(0);
+    if (this.force) {
+      this.force.group.visible = false;
+      this.moment.group.visible = false;
+    }
+  }
+
+  // What is drawn, for tests and the hover: the wrench, and per arrow its ends in the
+  // base frame (from the meshes' world matrices) and whether it shows.
+  drawn() {
+    const ends = (arrow) => {
+      if (!arrow) return { shown: false, from: null, to: null, length: 0 };
+      arrow.group.updateMatrixWorld(true);
+      const from = new THREE.Vector3().setFromMatrixPosition(arrow.group.matrixWorld);
+      const to = new THREE.Vector3(0, arrow.length, 0).applyMatrix4(arrow.group.matrixWorld);
+      return { shown: arrow.group.visible, from: from.toArray(), to: to.toArray(), length: from.distanceTo(to) };
+    };
+    return {
+      wrench: Array.from(this.wrench),
+      metersPerNewton: this.metersPerNewton,
+      metersPerNewtonMeter: this.metersPerNewtonMeter,
+      force: ends(this.force),
+      moment: ends(this.moment),
+    };
+  }
+
+  // The text for the pointer at (clientX, clientY) when it is over a shown arrow, else null.
+  describe(clientX, clientY) {
+    if (!this.enabled || !this.force) return null;
+    this.view.ray(clientX, clientY);
+    const hit = this.view.raycaster.intersectObject(this.group, true).find((h) => visible(h.object));
+    if (!hit) return null;
+    const w = this.wrench;
+    const f = Math.hypot(w[0], w[1], w[2]);
+    const m = Math.hypot(w[3], w[4], w[5]);
+    const v = (a, b, c) => `(${fmt(a)}, ${fmt(b)}, ${fmt(c)})`;
+    return `constraint wrench α ν at ${this.tipName} (on the constraint; the robot receives −α ν)\n` +
+      `force ${v(w[0], w[1], w[2])} N, |f| = ${fmt(f)} N\n` +
+      `moment ${v(w[3], w[4], w[5])} N m, |m| = ${fmt(m)} N m\n` +
+      `scale: 1 N = ${fmt(1000 * this.metersPerNewton)} mm, 1 N m = ${fmt(1000 * this.metersPerNewtonMeter)} mm`;
+  }
+}
+
+const fmt = (v) => Number(v).toPrecision(3);
+
+function visible(object) {
+  for (let o = object; o; o = o.parent) if (!o.visible) return false;
+  return true;
+}

@@ -1,0 +1,70 @@
+// Own URDFs in the page's link. A URDF whose compressed text is short enough travels in
+// the link itself: urdf=deflate:<base64url of its deflate-raw bytes> (CompressionStream),
+// which opens it in any browser. A longer one is kept in this browser's localStorage under
+// its hash, and the link names it: urdf=local:<first 16 hex digits of its SHA-256>, which
+// reopens it in this browser only. Mesh files are never in the link.
+
+// Longest compressed URDF, in base64url characters, that a link carries: links of a few
+// kilobytes pass through mail and chat programs intact.
+export const LINK_CHARACTERS = 8000;
+const STORAGE_PREFIX = 'achd:urdf:';
+const CARRIED = 'deflate:';
+const KEPT = 'local:';
+
+// {ref: the hash's urdf= value, form: 'link' | 'local', characters: length of the
+// compressed text in base64url}. Throws when the URDF is too long for a link and the
+// browser's storage refuses it.
+export async function shareUrdf(text) {
+  const packed = toBase64url(await transform(new TextEncoder().encode(text), new CompressionStream('deflate-raw')));
+  if (packed.length <= LINK_CHARACTERS) return { ref: CARRIED + packed, form: 'link', characters: packed.length };
+  const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', new TextEncoder().encode(text)));
+  const key = Array.from(digest.subarray(0, 8), (b) => b.toString(16).padStart(2, '0')).join('');
+  try {
+    localStorage.setItem(STORAGE_PREFIX + key, text);
+  } catch (err) {
+    throw new Error(`it is too long for a link (${packed.length} characters compressed, at most ${LINK_CHARACTERS}) ` +
+      `and this browser's storage refused it (${err.name}): it cannot be shared by link`);
+  }
+  return { ref: KEPT + key, form: 'local', characters: packed.length };
+}
+
+// The URDF text a urdf= value names; throws an Error saying why it cannot be had.
+export async function openSharedUrdf(ref) {
+  if (ref.startsWith(CARRIED)) {
+    let bytes;
+    try {
+      bytes = await transform(fromBase64url(ref.slice(CARRIED.length)), new DecompressionStream('deflate-raw'));
+    } catch (err) {
+      throw new Error(`the URDF carried in the link is damaged (${err.message}); was the link cut short?`);
+    }
+    return new TextDecoder().decode(bytes);
+  }
+  if (ref.startsWith(KEPT)) {
+    const key = ref.slice(KEPT.length);
+    const text = localStorage.getItem(STORAGE_PREFIX + key);
+    if (text === null) {
+      throw new Error(`the own URDF of this link (${ref}) is not in this browser's storage: such a link reopens ` +
+        'a URDF only in the browser that loaded it; load the file here');
+    }
+    return text;
+  }
+  throw new Error(`urdf= must start with ${CARRIED} or ${KEPT}, got "${ref.slice(0, 20)}"`);
+}
+
+async function transform(bytes, stream) {
+  const out = new Response(new Blob([bytes]).stream().pipeThrough(stream));
+  return new Uint8Array(await out.arrayBuffer());
+}
+
+function toBase64url(bytes) {
+  let binary = '';
+  const CHUNK = 0x8000;
+  for (let i = 0; i < bytes.length; i += CHUNK) binary += String.fromCharCode(...bytes.subarray(i, i + CHUNK));
+  return btoa(binary).replaceAll('+', '-').replaceAll('/', '_').replace(/=+$/, '');
+}
+
+function fromBase64url(text) {
+  if (!/^[A-Za-z0-9_-]*$/.test(text)) throw new Error('characters other than base64url');
+  const binary = atob(text.replaceAll('-', '+').replaceAll('_', '/'));
+  return Uint8Array.from(binary, (c) => c.charCodeAt(0));
+}
