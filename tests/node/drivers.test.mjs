@@ -10,7 +10,7 @@ import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 
-import { cliOptionFlags, loadAchd, nativeCli, pool, randomTreeFiles, relativeError, repo, robots, runCli, scratchDir } from './helpers.mjs';
+import { assertSameResult, cliOptionFlags, loadAchd, nativeCli, pool, randomTreeFiles, repo, robots, runCli, scratchDir } from './helpers.mjs';
 import { randomCase, randomChain, rng } from './random_chain.mjs';
 
 const GRAVITY = [0, 0, -9.81];
@@ -48,23 +48,6 @@ async function nativeError(urdf, load, c) {
   return null;
 }
 
-// Every field equal: names exactly, numbers to the bit (17 digits in the CLI), nulls
-// (prescribed_torques of joints whose torque was given) where the CLI has them.
-function assertSameResult(wasm, native, what) {
-  assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
-  for (const key of Object.keys(native)) {
-    if (key === 'joints' || key === 'links' || key === 'locked_joints') {
-      assert.deepEqual(wasm[key], native[key], `${what}: ${key}`);
-    } else if (Array.isArray(native[key])) {
-      const w = wasm[key].flat(), n = native[key].flat();
-      assert.equal(w.length, n.length, `${what}: ${key} length`);
-      assert.deepEqual(w.map((x) => x === null), n.map((x) => x === null), `${what}: ${key} nulls`);
-      assert.equal(relativeError(w.filter((x) => x !== null), n.filter((x) => x !== null)), 0, `${what}: ${key}`);
-    } else {
-      assert.equal(relativeError([wasm[key]], [native[key]]), 0, `${what}: ${key}`);
-    }
-  }
-}
 
 async function runParity(jobs) {
   const natives = await pool(jobs.map((j) => () => nativeSolve(j.urdf, j.load, j.c, j.options)));

@@ -10,7 +10,7 @@ import { join } from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { after, before, test } from 'node:test';
 
-import { loadAchd, nativeCli, pool, randomTreeFiles, relativeError, repo, runCli, scratchDir } from './helpers.mjs';
+import { assertSameResult, loadAchd, nativeCli, pool, randomTreeFiles, relativeError, repo, runCli, scratchDir } from './helpers.mjs';
 import { rng } from './random_chain.mjs';
 
 const GRAVITY = [0, 0, -9.81];
@@ -30,21 +30,6 @@ async function nativeSolve(urdf, c, flags = []) {
   return JSON.parse(await runCli(cli, ['solve', urdf, '--floating', ...flags, '--case', path]));
 }
 
-// Every field equal: names exactly, numbers to the bit (the CLI prints 17 digits).
-function assertSameResult(wasm, native, what) {
-  assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
-  for (const key of Object.keys(native)) {
-    if (key === 'joints' || key === 'links' || key === 'locked_joints') {
-      assert.deepEqual(wasm[key], native[key], `${what}: ${key}`);
-    } else if (Array.isArray(native[key])) {
-      const w = wasm[key].flat(), n = native[key].flat();
-      assert.equal(w.length, n.length, `${what}: ${key} length`);
-      assert.equal(relativeError(w, n), 0, `${what}: ${key}`);
-    } else {
-      assert.equal(relativeError([wasm[key]], [native[key]]), 0, `${what}: ${key}`);
-    }
-  }
-}
 
 // A random pose of the free joint: position, unit quaternion; and a random [v; w].
 function randomFreeJoint(r) {

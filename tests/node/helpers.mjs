@@ -1,6 +1,7 @@
 // Shared by the Node tests and bench/wasm_vs_native.mjs: the built module, the native
-// CLI (the Release build), the relative error (docs/design.md section 4.6) and
-// robots/index.json.
+// CLI (the Release build), the relative error (docs/design.md section 4.6), the
+// comparison of a wasm result with the CLI's and robots/index.json.
+import assert from 'node:assert/strict';
 import { execFile, execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -98,4 +99,22 @@ export function randomTreeFiles() {
     execFileSync('cmake', ['--build', 'build', '--target', 'random_tree_files', '-j2'], { cwd: repo, stdio: 'inherit' });
   }
   return tool;
+}
+
+// Every field equal: names exactly, numbers to the bit (17 digits in the CLI), nulls
+// (prescribed_torques of joints whose torque was given) where the CLI has them.
+export function assertSameResult(wasm, native, what) {
+  assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
+  for (const key of Object.keys(native)) {
+    if (key === 'joints' || key === 'links' || key === 'locked_joints') {
+      assert.deepEqual(wasm[key], native[key], `${what}: ${key}`);
+    } else if (Array.isArray(native[key])) {
+      const w = wasm[key].flat(), n = native[key].flat();
+      assert.equal(w.length, n.length, `${what}: ${key} length`);
+      assert.deepEqual(w.map((x) => x === null), n.map((x) => x === null), `${what}: ${key} nulls`);
+      assert.equal(relativeError(w.filter((x) => x !== null), n.filter((x) => x !== null)), 0, `${what}: ${key}`);
+    } else {
+      assert.equal(relativeError([wasm[key]], [native[key]]), 0, `${what}: ${key}`);
+    }
+  }
 }

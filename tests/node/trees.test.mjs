@@ -12,7 +12,7 @@ import { after, before, test } from 'node:test';
 
 import { execFileSync } from 'node:child_process';
 
-import { cliOptionFlags, loadAchd, nativeCli, pool, randomTreeFiles, relativeError, repo, robots, runCli, scratchDir } from './helpers.mjs';
+import { assertSameResult, cliOptionFlags, loadAchd, nativeCli, pool, randomTreeFiles, repo, robots, runCli, scratchDir } from './helpers.mjs';
 import { randomChain, randomCase, rng } from './random_chain.mjs';
 
 const TREE = join(repo, 'tests/fixtures/small_tree.urdf');
@@ -60,22 +60,6 @@ async function nativeError(urdf, load, c) {
   return null;
 }
 
-// Every field of the wasm result equals the native one: names equal, numbers to the bit
-// (the CLI prints 17 significant digits); the same fields.
-function assertSameResult(wasm, native, what) {
-  assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
-  for (const key of Object.keys(native)) {
-    if (key === 'joints' || key === 'links' || key === 'locked_joints') {
-      assert.deepEqual(wasm[key], native[key], `${what}: ${key}`);
-    } else if (Array.isArray(native[key])) {
-      const w = wasm[key].flat(), n = native[key].flat();
-      assert.equal(w.length, n.length, `${what}: ${key} length`);
-      assert.equal(relativeError(w, n), 0, `${what}: ${key}`);
-    } else {
-      assert.equal(relativeError([wasm[key]], [native[key]]), 0, `${what}: ${key}`);
-    }
-  }
-}
 
 // Each job {urdf, text, load, c, options, what}: wasm == native.
 async function runParity(jobs) {
