@@ -10,7 +10,7 @@ import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 
-import { assertSameResult, cliOptionFlags, loadAchd, nativeCli, pool, randomTreeFiles, repo, robots, runCli, scratchDir } from './helpers.mjs';
+import { assertSameResult, loadAchd, nativeCli, nativeError, nativeSolve, pool, randomTreeFiles, repo, robots, scratchDir } from './helpers.mjs';
 import { randomCase, randomChain, rng } from './random_chain.mjs';
 
 const GRAVITY = [0, 0, -9.81];
@@ -25,32 +25,12 @@ before(async () => {
 });
 after(() => scratch.remove());
 
-let files = 0;
-function loadFlags(load) {
-  const flags = [];
-  if (load.root !== undefined) flags.push('--root', load.root);
-  if (load.tip !== undefined) flags.push('--tip', load.tip);
-  return flags;
-}
-function nativeSolve(urdf, load, c, options) {
-  const casePath = scratch.write(`case${files++}.json`, JSON.stringify(c));
-  return runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath, ...cliOptionFlags(options)])
-    .then((out) => JSON.parse(out));
-}
-// The message of a CLI error, without "achd: error: FILE: ".
-async function nativeError(urdf, load, c) {
-  const casePath = scratch.write(`bad${files++}.json`, JSON.stringify(c));
-  try {
-    await runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath]);
-  } catch (e) {
-    return e.message.slice(e.message.lastIndexOf(`${casePath}: `) + casePath.length + 2).trim();
-  }
-  return null;
-}
+const solveNative = (urdf, load, c, options) => nativeSolve(cli, scratch, urdf, load, c, options);
+const errorNative = (urdf, load, c) => nativeError(cli, scratch, urdf, load, c);
 
 
 async function runParity(jobs) {
-  const natives = await pool(jobs.map((j) => () => nativeSolve(j.urdf, j.load, j.c, j.options)));
+  const natives = await pool(jobs.map((j) => () => solveNative(j.urdf, j.load, j.c, j.options)));
   jobs.forEach((j, i) => {
     const robot = achd.loadURDF(j.text, j.load);
     try {
@@ -191,7 +171,7 @@ test('bad drivers: the CLI\'s message, word for word, naming the field and index
     { ...base, f_virtual: { lwr_link_3: [0, 0, 1] } },
     { ...base, f_virtual: 'up' },
   ];
-  const natives = await pool(bad.map((c) => () => nativeError(kukaEntry.path, load, c)));
+  const natives = await pool(bad.map((c) => () => errorNative(kukaEntry.path, load, c)));
   bad.forEach((c, i) => {
     assert.ok(natives[i], `case ${i}: the CLI refused it`);
     assert.throws(() => kuka.solve(c), (e) => {

@@ -10,7 +10,7 @@ import { join } from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { after, before, test } from 'node:test';
 
-import { assertSameResult, loadAchd, nativeCli, pool, randomTreeFiles, relativeError, repo, runCli, scratchDir } from './helpers.mjs';
+import { assertSameResult, loadAchd, nativeCli, nativeSolve, pool, randomTreeFiles, relativeError, repo, runCli, scratchDir } from './helpers.mjs';
 import { rng } from './random_chain.mjs';
 
 const GRAVITY = [0, 0, -9.81];
@@ -24,11 +24,6 @@ before(async () => {
 });
 after(() => scratch.remove());
 
-let files = 0;
-async function nativeSolve(urdf, c, flags = []) {
-  const path = scratch.write(`case${files++}.json`, JSON.stringify(c));
-  return JSON.parse(await runCli(cli, ['solve', urdf, '--floating', ...flags, '--case', path]));
-}
 
 
 // A random pose of the free joint: position, unit quaternion; and a random [v; w].
@@ -101,7 +96,7 @@ test('the tree robots floating, holding their default links in 3D: wasm == nativ
     jobs.push({ entry, load, c, what: entry.name });
   }
   const natives = await pool(jobs.map((j) => () =>
-    nativeSolve(j.entry.path, j.c, j.load.mimic ? ['--mimic', j.load.mimic] : [])));
+    nativeSolve(cli, scratch, j.entry.path, j.load, j.c)));
   jobs.forEach((j, i) => {
     const robot = achd.loadURDF(j.entry.text, j.load);
     try {
@@ -133,7 +128,7 @@ test('100 random trees of the C++ suites made floating, with constraint blocks: 
     const c = { ...fixed, q: { ...fixed.q, l0: free.q }, qd: { ...fixed.qd, l0: free.qd } };
     jobs.push({ urdf, text: readFileSync(urdf, 'utf8'), c, what: `random tree ${k}` });
   }
-  const natives = await pool(jobs.map((j) => () => nativeSolve(j.urdf, j.c)));
+  const natives = await pool(jobs.map((j) => () => nativeSolve(cli, scratch, j.urdf, { floating: true }, j.c)));
   jobs.forEach((j, i) => {
     const robot = achd.loadURDF(j.text, { floating: true });
     try {

@@ -118,3 +118,34 @@ export function assertSameResult(wasm, native, what) {
     }
   }
 }
+
+// The CLI flags of loadURDF's options.
+export function loadFlags(load = {}) {
+  const flags = [];
+  if (load.mimic !== undefined) flags.push('--mimic', load.mimic);
+  if (load.root !== undefined) flags.push('--root', load.root);
+  if (load.tip !== undefined) flags.push('--tip', load.tip);
+  for (const [name, value] of Object.entries(load.locked || {})) flags.push('--lock', `${name}=${value}`);
+  if (load.sideBranches === 'ignore') flags.push('--convention', 'kdl');
+  if (load.floating) flags.push('--floating');
+  return flags;
+}
+
+let caseFiles = 0;
+// `achd solve` (the native CLI `cli`) of case c, written into `scratch` (scratchDir()), the
+// robot loaded as loadURDF(text, load) loads it: the result object.
+export async function nativeSolve(cli, scratch, urdf, load, c, options) {
+  const casePath = scratch.write(`case${caseFiles++}.json`, JSON.stringify(c));
+  return JSON.parse(await runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath, ...cliOptionFlags(options)]));
+}
+
+// The message of the CLI's error on case c, without "achd: error: FILE: "; null if it solved.
+export async function nativeError(cli, scratch, urdf, load, c) {
+  const casePath = scratch.write(`bad${caseFiles++}.json`, JSON.stringify(c));
+  try {
+    await runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath]);
+  } catch (e) {
+    return e.message.slice(e.message.lastIndexOf(`${casePath}: `) + casePath.length + 2).trim();
+  }
+  return null;
+}

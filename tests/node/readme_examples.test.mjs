@@ -82,14 +82,14 @@ test('README.md\'s quadruped example (JavaScript) runs as written', async () => 
   console.log(`# ${stdout.trim()}`);
 });
 
-// The sh block of "### Floating base", run whole as the one above: achd info reports the
-// free joint; the floating quadruped's feet stay put while its unpowered legs fold and the
-// trunk drops faster than g.
-test('README.md\'s floating quadruped example (command line) runs as written', async () => {
+// The first sh block under README.md's `heading`, run whole by bash in a directory like the
+// repository root (build/achd and robots/ linked there): it must exit 0 with nothing on
+// stderr; returns the JSON documents it printed, one per command.
+async function runReadmeShell(heading, expect) {
   const text = readFileSync(join(repo, 'README.md'), 'utf8');
-  const section = text.slice(text.indexOf('\n### Floating base\n'));
+  const section = text.slice(text.indexOf(`\n${heading}\n`));
   const script = section.match(/^```sh\n([\s\S]*?)^```$/m)[1];
-  assert.match(script, /achd solve robots\/quadruped\.urdf --floating/);
+  assert.match(script, expect);
   const scratch = scratchDir();
   try {
     mkdirSync(join(scratch.dir, 'build'));
@@ -98,49 +98,41 @@ test('README.md\'s floating quadruped example (command line) runs as written', a
     const { code, stdout, stderr } = await run('bash', ['-e', '-c', script], '', scratch.dir);
     assert.equal(stderr, '');
     assert.equal(code, 0);
-    const [info, result] = stdout.split(/\n(?=\{)/).map((doc) => JSON.parse(doc));
-    assert.equal(info.floating, true);
-    assert.equal(info.joints[0].type, 'floating');
-    assert.equal(result.joints[0], 'trunk');
-    assert.equal(result.qdd.length, 18);
-    assert.equal(result.rank, 12);
-    assert.ok(result.qdd[2] < -9.81, `the trunk drops at ${result.qdd[2]} m/s^2`);
-    // the feet (links lf_foot ...): their linear accelerations held at 0
-    for (const foot of ['lf_foot', 'rf_foot', 'lh_foot', 'rh_foot']) {
-      const a = result.link_accelerations[result.links.indexOf(foot)];
-      assert.ok(Math.hypot(a[0], a[1], a[2]) < 1e-9, `${foot}: ${a}`);
-    }
+    return stdout.split(/\n(?=\{)/).map((doc) => JSON.parse(doc));
   } finally {
     scratch.remove();
+  }
+}
+
+// The sh block of "### Floating base", run whole as the one above: achd info reports the
+// free joint; the floating quadruped's feet stay put while its unpowered legs fold and the
+// trunk drops faster than g.
+test('README.md\'s floating quadruped example (command line) runs as written', async () => {
+  const [info, result] = await runReadmeShell('### Floating base', /achd solve robots\/quadruped\.urdf --floating/);
+  assert.equal(info.floating, true);
+  assert.equal(info.joints[0].type, 'floating');
+  assert.equal(result.joints[0], 'trunk');
+  assert.equal(result.qdd.length, 18);
+  assert.equal(result.rank, 12);
+  assert.ok(result.qdd[2] < -9.81, `the trunk drops at ${result.qdd[2]} m/s^2`);
+  // the feet (links lf_foot ...): their linear accelerations held at 0
+  for (const foot of ['lf_foot', 'rf_foot', 'lh_foot', 'rh_foot']) {
+    const a = result.link_accelerations[result.links.indexOf(foot)];
+    assert.ok(Math.hypot(a[0], a[1], a[2]) < 1e-9, `${foot}: ${a}`);
   }
 });
 
 // The sh block of "## Trees and constraint blocks", run whole by bash in a directory like
 // the repository root: every command exits 0 and prints JSON; the solve holds the four feet.
 test('README.md\'s quadruped example (command line) runs as written', async () => {
-  const text = readFileSync(join(repo, 'README.md'), 'utf8');
-  const section = text.slice(text.indexOf('\n## Trees and constraint blocks\n'));
-  const script = section.match(/^```sh\n([\s\S]*?)^```$/m)[1];
-  assert.match(script, /achd solve robots\/quadruped\.urdf/);
-  const scratch = scratchDir();
-  try {
-    mkdirSync(join(scratch.dir, 'build'));
-    symlinkSync(nativeCli(), join(scratch.dir, 'build/achd'));
-    symlinkSync(join(repo, 'robots'), join(scratch.dir, 'robots'), 'dir');
-    const { code, stdout, stderr } = await run('bash', ['-e', '-c', script], '', scratch.dir);
-    assert.equal(stderr, '');
-    assert.equal(code, 0);
-    // The outputs, one JSON document per command: info's, then solve's.
-    const [info, result] = stdout.split(/\n(?=\{)/).map((doc) => JSON.parse(doc));
-    assert.equal(info.joints.length, 12);
-    assert.equal(info.tip, null);
-    assert.equal(result.nu.length, 12);
-    assert.equal(result.constraint_wrenches.length, 4);
-    assert.equal(result.rank, 12);
-    assert.ok(Math.max(...result.qdd.map(Math.abs)) < 1e-9, `qdd ${result.qdd}`);
-  } finally {
-    scratch.remove();
-  }
+  // The outputs, one JSON document per command: info's, then solve's.
+  const [info, result] = await runReadmeShell('## Trees and constraint blocks', /achd solve robots\/quadruped\.urdf/);
+  assert.equal(info.joints.length, 12);
+  assert.equal(info.tip, null);
+  assert.equal(result.nu.length, 12);
+  assert.equal(result.constraint_wrenches.length, 4);
+  assert.equal(result.rank, 12);
+  assert.ok(Math.max(...result.qdd.map(Math.abs)) < 1e-9, `qdd ${result.qdd}`);
 });
 
 test('wasm/README.md\'s example runs as written with the npm package installed', async () => {

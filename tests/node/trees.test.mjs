@@ -12,7 +12,7 @@ import { after, before, test } from 'node:test';
 
 import { execFileSync } from 'node:child_process';
 
-import { assertSameResult, cliOptionFlags, loadAchd, nativeCli, pool, randomTreeFiles, repo, robots, runCli, scratchDir } from './helpers.mjs';
+import { assertSameResult, loadAchd, loadFlags, nativeCli, nativeError, nativeSolve, pool, randomTreeFiles, repo, robots, runCli, scratchDir } from './helpers.mjs';
 import { randomChain, randomCase, rng } from './random_chain.mjs';
 
 const TREE = join(repo, 'tests/fixtures/small_tree.urdf');
@@ -29,41 +29,16 @@ before(async () => {
 });
 after(() => scratch.remove());
 
-// The CLI flags of loadURDF's options.
-function loadFlags(load) {
-  const flags = [];
-  if (load.mimic !== undefined) flags.push('--mimic', load.mimic);
-  if (load.root !== undefined) flags.push('--root', load.root);
-  if (load.tip !== undefined) flags.push('--tip', load.tip);
-  for (const [name, value] of Object.entries(load.locked || {})) flags.push('--lock', `${name}=${value}`);
-  if (load.sideBranches === 'ignore') flags.push('--convention', 'kdl');
-  return flags;
-}
-
-let files = 0;
-function nativeSolve(urdf, load, c, options) {
-  const casePath = scratch.write(`case${files++}.json`, JSON.stringify(c));
-  return runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath, ...cliOptionFlags(options)])
-    .then((out) => JSON.parse(out));
-}
+const solveNative = (urdf, load, c, options) => nativeSolve(cli, scratch, urdf, load, c, options);
+const errorNative = (urdf, load, c) => nativeError(cli, scratch, urdf, load, c);
 async function nativeInfo(urdf, load) {
   return JSON.parse(await runCli(cli, ['info', urdf, ...loadFlags(load)]));
-}
-// The message of a CLI error, without "achd: error: FILE: ".
-async function nativeError(urdf, load, c) {
-  const casePath = scratch.write(`bad${files++}.json`, JSON.stringify(c));
-  try {
-    await runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath]);
-  } catch (e) {
-    return e.message.slice(e.message.lastIndexOf(`${casePath}: `) + casePath.length + 2).trim();
-  }
-  return null;
 }
 
 
 // Each job {urdf, text, load, c, options, what}: wasm == native.
 async function runParity(jobs) {
-  const natives = await pool(jobs.map((j) => () => nativeSolve(j.urdf, j.load, j.c, j.options)));
+  const natives = await pool(jobs.map((j) => () => solveNative(j.urdf, j.load, j.c, j.options)));
   jobs.forEach((j, i) => {
     const robot = achd.loadURDF(j.text, j.load);
     try {
@@ -100,7 +75,7 @@ test('inputs by name give the results of the arrays (q, qd, ff_torques by joint,
 
 test('results name their joints and links and carry one wrench per block, as the CLI\'s', async () => {
   const wasm = kuka.solve(kukaCase());
-  const native = await nativeSolve(kukaEntry.path, { root: kukaEntry.root, tip: kukaEntry.tip }, kukaCase());
+  const native = await solveNative(kukaEntry.path, { root: kukaEntry.root, tip: kukaEntry.tip }, kukaCase());
   assert.deepEqual(wasm.joints, kuka.jointNames);
   assert.deepEqual(wasm.links, [kuka.root, ...kuka.linkNames]);
   assert.equal(wasm.links.length, wasm.link_accelerations.length);
@@ -137,7 +112,7 @@ test('bad blocks and names: the CLI\'s message, word for word', async () => {
     { f_ext: { lwr_link_2: [0, 0] } },
   ];
   const natives = await pool(bad.map((fields) => () =>
-    nativeError(kukaEntry.path, { root: kukaEntry.root, tip: kukaEntry.tip }, { ...kukaCase(), ...fields })));
+    errorNative(kukaEntry.path, { root: kukaEntry.root, tip: kukaEntry.tip }, { ...kukaCase(), ...fields })));
   bad.forEach((fields, i) => {
     const what = JSON.stringify(fields).slice(0, 120);
     assert.ok(natives[i], `${what}: the CLI accepted it`);
@@ -145,7 +120,7 @@ test('bad blocks and names: the CLI\'s message, word for word', async () => {
       `${what}: JS should say "${natives[i]}"`);
   });
   // ... and the robot keeps working.
-  assert.deepEqual(kuka.solve(kukaCase()).qdd, (await nativeSolve(kukaEntry.path,
+  assert.deepEqual(kuka.solve(kukaCase()).qdd, (await solveNative(kukaEntry.path,
     { root: kukaEntry.root, tip: kukaEntry.tip }, kukaCase())).qdd);
 });
 
