@@ -18,10 +18,14 @@ constexpr double kResumeAfter = 0.05;
 
 }  // namespace
 
-DirectionEventLog::DirectionEventLog(std::size_t capacity) : capacity_(capacity) { events_.reserve(capacity); }
+DirectionEventLog::DirectionEventLog(std::size_t capacity, int max_sets)
+    : state_(max_sets), last_damped_(max_sets), ratio_(max_sets), damped_(max_sets), capacity_(capacity) {
+  events_.reserve(capacity);
+  column_.reserve(kMaxConstraintColumns);
+}
 
 void DirectionEventLog::clear() {
-  state_.fill(State::Ok);
+  for (auto& s : state_) s.fill(State::Ok);
   events_.clear();
   not_kept_ = 0;
 }
@@ -31,50 +35,56 @@ void DirectionEventLog::record(const DirectionEvent& e) {
   else ++not_kept_;
 }
 
-unsigned DirectionEventLog::update(const HeldDirections& held, const Data& first, double t, std::int64_t step,
-                                   int link) {
+void DirectionEventLog::update(const std::vector<LinkDirections>& sets, const Data& first, double t,
+                               std::int64_t step, std::vector<unsigned>& resumed) {
   // The active directions in column order, and the largest lambda / sigma attributed to
   // each (0: none of its eigen-directions is damped; inf: sigma = 0).
-  int direction_of_column[kNumDirections];
-  int nc = 0;
-  for (int k = 0; k < kNumDirections; ++k)
-    if (held.active(k)) direction_of_column[nc++] = k;
-  std::array<double, kNumDirections> ratio{};
-  std::array<bool, kNumDirections> damped{};
+  column_.clear();
+  const int nsets = static_cast<int>(sets.size());
+  for (int s = 0; s < nsets; ++s) {
+    ratio_[s].fill(0);
+    damped_[s].fill(false);
+    for (int k = 0; k < kNumDirections; ++k)
+      if (sets[s].held.active(k)) column_.emplace_back(s, k);
+  }
+  const Eigen::Index nc = static_cast<Eigen::Index>(column_.size());
   const Eigen::Index ndamped = first.damped.rows() == nc ? first.damped.cols() : 0;
   for (Eigen::Index j = 0; j < ndamped; ++j) {
     Eigen::Index column = 0;
     first.damped.col(j).cwiseAbs().maxCoeff(&column);
-    const int k = direction_of_column[column];
+    const auto [s, k] = column_[column];
     const double sigma = first.damped_sigma[j], lambda = first.damped_lambda[j];
     const double r = sigma > 0 ? lambda / sigma : std::numeric_limits<double>::infinity();
-    damped[k] = true;
-    ratio[k] = std::max(ratio[k], r);
+    damped_[s][k] = true;
+    ratio_[s][k] = std::max(ratio_[s][k], r);
   }
-  unsigned resumed = 0;
   bool any = false;
-  DirectionEvent e{t, step, link, 0, DirectionEventKind::Limited, 0.0};
-  for (int k = 0; k < kNumDirections; ++k) {
-    if (!held.active(k)) {
-      state_[k] = State::Ok;
-      continue;
+  DirectionEvent e{t, step, 0, 0, DirectionEventKind::Limited, 0.0};
+  for (int s = 0; s < nsets; ++s) {
+    resumed[s] = 0;
+    std::array<State, kNumDirections>& state = state_[s];
+    for (int k = 0; k < kNumDirections; ++k) {
+      if (!sets[s].held.active(k)) {
+        state[k] = State::Ok;
+        continue;
+      }
+      if (damped_[s][k]) last_damped_[s][k] = t;
+      State next = state[k];
+      if (ratio_[s][k] >= kReleasedRatio) next = State::Released;
+      else if (state[k] == State::Ok && damped_[s][k]) next = State::Limited;
+      else if (state[k] != State::Ok && !damped_[s][k] && t - last_damped_[s][k] >= kResumeAfter) next = State::Ok;
+      if (next == state[k]) continue;
+      if (!any) e.sigma_min = sigma_min(first);  // computed once, only when something changed
+      any = true;
+      e.link = sets[s].link;
+      e.direction = k;
+      e.kind = next == State::Ok ? DirectionEventKind::Resumed
+               : next == State::Limited ? DirectionEventKind::Limited : DirectionEventKind::Released;
+      record(e);
+      if (state[k] == State::Released && next == State::Ok) resumed[s] |= 1u << k;
+      state[k] = next;
     }
-    if (damped[k]) last_damped_[k] = t;
-    State next = state_[k];
-    if (ratio[k] >= kReleasedRatio) next = State::Released;
-    else if (state_[k] == State::Ok && damped[k]) next = State::Limited;
-    else if (state_[k] != State::Ok && !damped[k] && t - last_damped_[k] >= kResumeAfter) next = State::Ok;
-    if (next == state_[k]) continue;
-    if (!any) e.sigma_min = sigma_min(first);  // computed once, only when something changed
-    any = true;
-    e.direction = k;
-    e.kind = next == State::Ok ? DirectionEventKind::Resumed
-             : next == State::Limited ? DirectionEventKind::Limited : DirectionEventKind::Released;
-    record(e);
-    if (state_[k] == State::Released && next == State::Ok) resumed |= 1u << k;
-    state_[k] = next;
   }
-  return resumed;
 }
 
 }  // namespace achd

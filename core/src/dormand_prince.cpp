@@ -56,17 +56,13 @@ std::string text(double x) {
   return buf;
 }
 
-bool held_angle(const HeldDirections& h, int k) {
-  return h.mode[k] == DirectionMode::Hold && !is_linear_direction(k);
-}
-
 }  // namespace
 
 void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
   const int n = model_.num_joints();
   const double rtol = options_.rtol, atol = options_.atol;
   stage_ = 0;
-  evaluate(q, qd, held_.angle, t, w_n, first, k_angle_[0]);
+  evaluate(q, qd, angles_, t, w_n, first, k_angle_[0]);
   // No substep size helps when the acceleration at the start is not finite.
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(first.qdd[i]))
@@ -97,19 +93,18 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
       stage_ = s;
       Eigen::VectorXd& qs = s == 6 ? q_next_ : q_stage_;
       Eigen::VectorXd& qds = s == 6 ? qd_next_ : qd_stage_;
-      std::array<double, kNumDirections>& as = s == 6 ? angle_next_ : angle_stage_;
+      HeldAngles& as = s == 6 ? angle_next_ : angle_stage_;
       qs = q;
       qds = qd;
-      as = held_.angle;
+      as = angles_;
       for (int j = 0; j < s; ++j) {
         if (kA[s][j] == 0) continue;
         const double c = hs * kA[s][j];
         qs += c * k_q_[j];
         qds += c * k_qd_[j];
-        for (int k = 0; k < kNumDirections; ++k) as[k] += c * k_angle_[j][k];
+        as += c * k_angle_[j];
       }
-      finite = qs.allFinite() && qds.allFinite();
-      for (int k = 0; k < kNumDirections; ++k) finite = finite && std::isfinite(as[k]);
+      finite = qs.allFinite() && qds.allFinite() && as.allFinite();
       if (!finite) break;  // rejected below: a smaller substep
       evaluate(qs, qds, as, t + done + kC[s] * hs, w_n, stage_data_, k_angle_[s]);
       configuration_rate(model_, qs, qds, k_q_[s]);
@@ -138,23 +133,25 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
           add(qd[i], qd_next_[i], hs * eqd);
         }
       }
-      for (int k = 0; k < kNumDirections; ++k) {
-        if (!held_angle(held_, k)) continue;
-        double e = 0;
-        for (int j = 0; j < 7; ++j) e += kE[j] * k_angle_[j][k];
-        add(held_.angle[k], angle_next_[k], hs * e);
-      }
+      for (size_t set = 0; set < sets_.size(); ++set)
+        for (int k = 0; k < kNumDirections; ++k) {
+          if (sets_[set].held.mode[k] != DirectionMode::Hold || is_linear_direction(k)) continue;
+          const size_t a = set * kNumDirections + k;
+          double e = 0;
+          for (int j = 0; j < 7; ++j) e += kE[j] * k_angle_[j][a];
+          add(angles_[a], angle_next_[a], hs * e);
+        }
     }
     const double err = finite ? (count ? std::sqrt(sum / count) : 0) : INFINITY;
     if (err <= 1) {
       q = q_next_;  // copies: q and qd keep their buffers (the JS API views them)
       normalise_configuration(model_, q);
       qd = qd_next_;
-      held_.angle = angle_next_;
+      angles_ = angle_next_;
       // FSAL: k_7 at x' is k_1 of the next substep.
       k_q_[0].swap(k_q_[6]);
       k_qd_[0].swap(k_qd_[6]);
-      k_angle_[0] = k_angle_[6];
+      k_angle_[0].swap(k_angle_[6]);
       ++substeps_;
       double next = hs * (rejections ? std::min(1.0, growth(err)) : growth(err));
       // A last substep cut short to end on dt does not shrink the proposal.

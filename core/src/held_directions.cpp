@@ -2,6 +2,12 @@
 
 namespace achd {
 
+std::string direction_label(const Model& model, int link, int index) {
+  std::string label = std::string("direction ") + direction_name(index);
+  if (model.has_tip() && link == model.num_links() - 1) return label;
+  return label + " of link '" + model.links[link].name + "'";
+}
+
 int HeldDirections::count() const {
   int n = 0;
   for (int k = 0; k < kNumDirections; ++k) n += active(k);
@@ -40,16 +46,16 @@ unsigned yielding_directions(const HeldDirections& h) {
   return bits;
 }
 
-double direction_error(const HeldDirections& h, int k, const TipState& tip) {
+double direction_error(const HeldDirections& h, int k, const TipState& point, const double* angles) {
   if (h.mode[k] != DirectionMode::Hold) return 0;
-  if (is_linear_direction(k)) return direction_axis(k).dot(tip.pose.p) - h.target[k];
-  return h.angle[k];
+  if (is_linear_direction(k)) return direction_axis(k).dot(point.pose.p) - h.target[k];
+  return angles[k];
 }
 
-void direction_targets(const HeldDirections& h, const TipState& tip, double w_n, double zeta,
-                       bool velocity_products, ConstraintVector& beta) {
+void direction_targets(const HeldDirections& h, const TipState& point, const double* angles, double w_n,
+                       double zeta, bool velocity_products, ConstraintVector& beta) {
   beta.resize(h.count());
-  const Vector3 w_cross_v = tip.w.cross(tip.v);
+  const Vector3 w_cross_v = point.w.cross(point.v);
   int row = 0;
   for (int k = 0; k < kNumDirections; ++k) {
     if (!h.active(k)) continue;
@@ -57,8 +63,8 @@ void direction_targets(const HeldDirections& h, const TipState& tip, double w_n,
     const bool linear = is_linear_direction(k);
     double desired = h.setpoint[k];
     if (h.mode[k] == DirectionMode::Hold) {
-      const double rate = e.dot(linear ? tip.v : tip.w);
-      desired = -2 * zeta * w_n * rate - w_n * w_n * direction_error(h, k, tip);
+      const double rate = e.dot(linear ? point.v : point.w);
+      desired = -2 * zeta * w_n * rate - w_n * w_n * direction_error(h, k, point, angles);
     }
     beta[row++] = linear && velocity_products ? desired - e.dot(w_cross_v) : desired;
   }

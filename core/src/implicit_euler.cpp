@@ -9,6 +9,7 @@
 // is qd_{k+1} = qd_k + dt qdd with (M + dt C) qdd = tau(q_k, qd_k): the solve of the
 // explicit step with dt c_i added to joint i's axial inertia D_i, exactly where a rotor
 // inertia (armature) enters (the held directions' constraints are solved with it).
+// The joint PD controller's -kd_i qd_i (joint_control.cpp) counts in c_i like damping.
 // Then q_{k+1} = q_k + dt qd_{k+1} and the held angles advance with qd_{k+1}, as in
 // semi-implicit Euler. A joint's passive decay rate c_i / I_i is then damped for any dt
 // (the factor 1 / (1 + dt c_i / I_i) instead of 1 - dt c_i / I_i); the method is first order.
@@ -25,6 +26,7 @@ void Simulator::step_implicit_euler(double dt, double w_n, Data& first) {
   for (int i = 0; i < model_.num_joints(); ++i) {
     const Body& b = model_.bodies[i];
     double c = damping ? b.damping : 0.0;
+    if (control_on_) c += control_.kd[i];  // the PD controller's -kd qd is damping too
     if (friction && b.friction != 0) {
       const double ch = std::cosh(qd[i] / v_f);  // inf for |qd| >> v_f: c = 0
       c += b.friction / (v_f * ch * ch);

@@ -79,7 +79,7 @@ void Simulator::update_limit_stops(double w_n) {
   if (!resting) return;
   // The step's first solve, with the stops' joints prescribed: the torque each stop exerts.
   stage_ = 0;
-  evaluate(q, qd, held_.angle, t, w_n, limit_data_, limit_angle_rate_);
+  evaluate(q, qd, angles_, t, w_n, limit_data_, limit_angle_rate_);
   for (int i = 0; i < n; ++i) {
     if (!limit_stop_[i]) continue;
     const double ff = case_.ff_torques.size() ? case_.ff_torques[i] : 0.0;
@@ -129,21 +129,48 @@ void Simulator::stop_at_limits() {
   if (!reached) return;
   stage_ = -1;  // a failure here is no integrator stage's
 
-  // The held columns (beta filled below); accelerated directions are free.
-  int nc = 0;
-  for (int k = 0; k < kNumDirections; ++k) nc += held_.mode[k] == DirectionMode::Hold;
-  impact_case_.alpha.setZero(6, nc);
-  impact_case_.beta.setZero(nc);
-  for (int k = 0, col = 0; k < kNumDirections; ++k) {
-    if (held_.mode[k] != DirectionMode::Hold) continue;
-    impact_case_.alpha(k, col++) = 1;  // [e; 0] or [0; e]: direction k's 1 is in row k
+  // The held columns of every link, one block per link with some (beta filled below);
+  // accelerated directions are free.
+  impact_case_.constraints.clear();
+  for (const LinkDirections& set : sets_) {
+    int nc = 0;
+    for (int k = 0; k < kNumDirections; ++k) nc += set.held.mode[k] == DirectionMode::Hold;
+    if (!nc) continue;
+    ConstraintBlock& b = impact_case_.constraints.emplace_back();
+    b.link = set.link;
+    b.point = set.point;
+    b.alpha.setZero(6, nc);
+    b.beta.setZero(nc);
+    for (int k = 0, col = 0; k < kNumDirections; ++k)
+      if (set.held.mode[k] == DirectionMode::Hold) b.alpha(k, col++) = 1;  // [e; 0] or [0; e]: row k
   }
+  // Each held column's change since `before` (per set), from the points' states `now`.
+  const auto held_changes = [&](bool velocity) {
+    size_t b = 0;
+    double off = 0;
+    for (size_t s = 0; s < sets_.size(); ++s) {
+      const LinkDirections& set = sets_[s];
+      if (b >= impact_case_.constraints.size() || impact_case_.constraints[b].link != set.link) continue;
+      const TipState now = link_state(model_, X0_, v_, set.link, set.point);
+      const TipState& before = impact_points_[s];
+      ConstraintVector& beta = impact_case_.constraints[b++].beta;
+      for (int k = 0, col = 0; k < kNumDirections; ++k) {
+        if (set.held.mode[k] != DirectionMode::Hold) continue;
+        const Vector3 e = direction_axis(k);
+        beta[col] = !velocity ? -held_change(k, before.pose, now.pose)
+                    : is_linear_direction(k) ? e.dot(before.v - now.v) : e.dot(before.w - now.w);
+        off = std::max(off, std::abs(beta[col++]));
+      }
+    }
+    return off;
+  };
   // A prescribed joint keeps its trajectory through an impact: dq_i = dqd_i = 0.
   for (int i = 0; i < n; ++i) impact_case_.prescribed[i] = limit_stop_[i] || limit_reached_[i] || moving_[i];
 
   // Position: back on the limit with the held quantities unchanged.
   body_motion(model_, q, qd, X0_, r_, v_);
-  const TipState before = tip_state(model_, X0_, v_);
+  for (size_t s = 0; s < sets_.size(); ++s)
+    impact_points_[s] = link_state(model_, X0_, v_, sets_[s].link, sets_[s].point);
   for (int it = 0; it < kProjectionIterations; ++it) {
     double off = 0;
     for (int i = 0; i < n; ++i) {
@@ -152,14 +179,7 @@ void Simulator::stop_at_limits() {
       impact_case_.qdd_given[i] = to_limit;
       off = std::max(off, std::abs(to_limit));
     }
-    if (it > 0) {
-      const Transform now = tip_state(model_, X0_, v_).pose;
-      for (int k = 0, col = 0; k < kNumDirections; ++k)
-        if (held_.mode[k] == DirectionMode::Hold) {
-          impact_case_.beta[col] = -held_change(k, before.pose, now);
-          off = std::max(off, std::abs(impact_case_.beta[col++]));
-        }
-    }
+    if (it > 0) off = std::max(off, held_changes(false));
     if (off == 0) break;
     impact_case_.q = q;
     solve_impact("position projection");
@@ -172,12 +192,7 @@ void Simulator::stop_at_limits() {
   // Velocity: the inelastic impact of the joints moving into their limits (a joint past
   // its limit but already moving back stays free), which also gives the held directions
   // back the velocities they had before the position went back (J changed with q).
-  const TipState now = tip_state(model_, X0_, v_);
-  for (int k = 0, col = 0; k < kNumDirections; ++k)
-    if (held_.mode[k] == DirectionMode::Hold) {
-      const Vector3 e = direction_axis(k);
-      impact_case_.beta[col++] = is_linear_direction(k) ? e.dot(before.v - now.v) : e.dot(before.w - now.w);
-    }
+  held_changes(true);
   for (int i = 0; i < n; ++i) {
     const bool into = limit_reached_[i] && limit_reached_[i] * qd[i] >= 0;
     if (limit_reached_[i] && !into) limit_reached_[i] = 0;

@@ -11,6 +11,7 @@
 #include "achd/kinematics.hpp"
 #include "direction_events.hpp"
 #include "held_directions.hpp"
+#include "message_number.hpp"
 #include "tip_kinematics.hpp"
 
 namespace achd {
@@ -32,14 +33,6 @@ void check_state(const Eigen::VectorXd& v, int n, const char* field) {
     if (!std::isfinite(v[i])) throw Error(std::string(field) + "[" + std::to_string(i) + "] is not finite");
 }
 
-// A double for messages: up to 15 significant digits, so 2183 * 0.001 reads 2.183.
-std::string number(double x) {
-  if (std::isnan(x)) return "NaN";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.15g", x);
-  return buf;
-}
-
 // The first joint whose q or qd is not finite, as "joint 'elbow': qd = inf"; "" if none
 // (a floating base's free joint: its seven positions and six rates).
 std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
@@ -47,12 +40,12 @@ std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const
     for (int k = 0; k < 7; ++k)
       if (!std::isfinite(q[k]) || (k < 6 && !std::isfinite(qd[k])))
         return "joint '" + model.root_name + "' (the floating base): " + (std::isfinite(q[k]) ? "qd[" : "q[") +
-               std::to_string(k) + "] = " + number(std::isfinite(q[k]) ? qd[k] : q[k]);
+               std::to_string(k) + "] = " + message_number(std::isfinite(q[k]) ? qd[k] : q[k]);
   for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
     const double x = q[model.position_index(i)];
     for (const auto& [name, v] : {std::pair<const char*, double>{"q", x}, {"qd", qd[i]}})
       if (!std::isfinite(v))
-        return "joint '" + model.bodies[i].joint_name + "': " + name + " = " + number(v);
+        return "joint '" + model.bodies[i].joint_name + "': " + name + " = " + message_number(v);
   }
   return "";
 }
@@ -60,36 +53,36 @@ std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const
 // The options step() reads, each a positive finite number (rtol, atol: >= 0, one > 0).
 void check_simulator_options(const SimulatorOptions& o) {
   const auto positive = [](double v, const char* name) {
-    if (!(v > 0) || !std::isfinite(v)) throw Error(std::string(name) + " must be positive and finite, got " + number(v));
+    if (!(v > 0) || !std::isfinite(v)) throw Error(std::string(name) + " must be positive and finite, got " + message_number(v));
   };
   positive(o.stabilisation_frequency, "stabilisation_frequency");
   positive(o.stabilisation_damping, "stabilisation_damping");
   for (const auto& [v, name] : {std::pair<double, const char*>{o.rtol, "rtol"}, {o.atol, "atol"}})
-    if (!(v >= 0) || !std::isfinite(v)) throw Error(std::string(name) + " must be finite and >= 0, got " + number(v));
+    if (!(v >= 0) || !std::isfinite(v)) throw Error(std::string(name) + " must be finite and >= 0, got " + message_number(v));
   if (o.rtol == 0 && o.atol == 0) throw Error("rtol and atol are both 0: at least one must be positive");
 }
 
 }  // namespace
 
 std::int64_t steps_for_duration(double duration, double dt) {
-  if (!(dt > 0) || !std::isfinite(dt)) throw Error("dt must be positive and finite, got " + number(dt));
+  if (!(dt > 0) || !std::isfinite(dt)) throw Error("dt must be positive and finite, got " + message_number(dt));
   if (!(duration >= 0) || !std::isfinite(duration))
-    throw Error("duration must be finite and >= 0, got " + number(duration));
-  const std::string what = "duration " + number(duration) + " s at dt " + number(dt) + " s";
+    throw Error("duration must be finite and >= 0, got " + message_number(duration));
+  const std::string what = "duration " + message_number(duration) + " s at dt " + message_number(dt) + " s";
   const double exact = duration / dt;  // inf when dt is far below duration
   if (!(exact <= static_cast<double>(kMaxSteps)))
-    throw Error(what + " is " + number(exact) + " steps, more than 2^53 = " + std::to_string(kMaxSteps) +
+    throw Error(what + " is " + message_number(exact) + " steps, more than 2^53 = " + std::to_string(kMaxSteps) +
                 " (the largest step count a double holds exactly)");
   const std::int64_t n = std::llround(exact);
   if (std::abs(static_cast<double>(n) * dt - duration) > 1e-9 * duration)
-    throw Error(what + " is " + number(exact) + " steps, not a whole number (within 1e-9 relative): " +
+    throw Error(what + " is " + message_number(exact) + " steps, not a whole number (within 1e-9 relative): " +
                 "make the duration a multiple of dt");
   // t = k dt (Simulator::t) advances at every step when dt is at least the spacing of
   // doubles at the end time; always so below 2^52 steps.
   const double end = static_cast<double>(n) * dt;
   if (n > 0 && dt < std::nextafter(end, INFINITY) - end)
     throw Error(what + " is " + std::to_string(n) + " steps, but dt is below the spacing of doubles at t = " +
-                number(end) + " s (" + number(std::nextafter(end, INFINITY) - end) + " s): t + dt == t");
+                message_number(end) + " s (" + message_number(std::nextafter(end, INFINITY) - end) + " s): t + dt == t");
   return n;
 }
 
@@ -118,12 +111,12 @@ const char* integrator_name(Integrator integrator) {
 Simulator::Simulator(const Model& model, const SimulatorOptions& options)
     : model_(model),
       options_(options),
-      data_{{Data(model_, kMaxConstraints), Data(model_, kMaxConstraints)}},  // the tip's directions
-      stage_data_(model_, kMaxConstraints),
+      data_{{Data(model_, kMaxConstraintColumns), Data(model_, kMaxConstraintColumns)}},
+      stage_data_(model_, kMaxConstraintColumns),
       case_(Case::zeros(model_)),
-      events_(std::make_unique<DirectionEventLog>(kMaxDirectionEvents)),
+      events_(std::make_unique<DirectionEventLog>(kMaxDirectionEvents, model_.num_links())),
       implicit_model_(model_),
-      limit_data_(model_, kMaxConstraints) {
+      limit_data_(model_, kMaxConstraintColumns) {
   // (the directions and their records are a link's: a floating root alone has none)
   if (model_.num_links() == 0)
     throw Error("simulator: the model has no link after the root link '" + model_.root_name +
@@ -133,6 +126,17 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   qd = ff_torques = Eigen::VectorXd::Zero(n);
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
   case_.f_ext.reserve(model_.num_links());
+  // Direction sets, their blocks and held angles: room for every link, so that setting a
+  // direction never moves them and no step allocates.
+  const int links = model_.num_links();
+  sets_.reserve(links);
+  block_set_.reserve(links);
+  case_.constraints.reserve(links);
+  impact_points_.resize(links);
+  anchored_.assign(links, 0);
+  for (HeldAngles* a : {&angles_, &angle0_, &angle_stage_, &angle_next_, &limit_angle_rate_})
+    a->setZero(links * kNumDirections);
+  for (HeldAngles& a : k_angle_) a.setZero(links * kNumDirections);
   limit_hits_.reserve(n);
   // Joints resting on a limit stop are prescribed (joint_limits.cpp); none at first.
   case_.qdd_given = Eigen::VectorXd::Zero(n);
@@ -144,6 +148,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   impact_case_ = Case::zeros(model_);
   impact_case_.qdd_given = case_.qdd_given;
   impact_case_.prescribed = case_.prescribed;
+  impact_case_.constraints.reserve(links);
   X0_.resize(n);
   r_.assign(n, Vector3::Zero());
   v_.assign(n, Vector6::Zero());
@@ -178,14 +183,16 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   steps_taken_ = 0;
   substeps_ = rejected_substeps_ = 0;
   substep_ = 0;
-  // a reset releases every direction; their driver weights stay
-  const HeldDirections before = held_;
-  held_ = HeldDirections{};
-  held_.w_fext = before.w_fext;
-  held_.w_ff = before.w_ff;
-  direction_columns(held_, case_.alpha);
-  direction_weights(held_, case_.w_fext, case_.w_ff);
-  max_residual_.fill(0);
+  // a reset releases every direction; their driver weights and points stay
+  for (LinkDirections& set : sets_) {
+    HeldDirections freed;
+    freed.w_fext = set.held.w_fext;
+    freed.w_ff = set.held.w_ff;
+    set.held = freed;
+    set.max_residual.fill(0);
+  }
+  angles_.setZero();
+  update_blocks();
   limit_hits_.clear();
   limit_stop_.assign(n, 0);
   moving_.assign(n, 0);
@@ -244,92 +251,39 @@ void Simulator::follow_trajectories(double t_at) {
   }
 }
 
-void Simulator::set_direction(int index, DirectionMode mode, double setpoint) {
-  check_direction(index);
-  if (!model_.has_tip())
-    throw Error(std::string("direction ") + kDirectionNames[index] +
-                ": the model is a tree (loaded without a tip); the simulator's directions act on a chain's tip");
-  if (!std::isfinite(setpoint))
-    throw Error(std::string("direction ") + kDirectionNames[index] + ": setpoint is not finite");
-  held_.mode[index] = mode;
-  held_.setpoint[index] = mode == DirectionMode::Accelerate ? setpoint : 0;
-  held_.angle[index] = 0;
-  held_.target[index] = 0;
-  if (mode == DirectionMode::Hold && is_linear_direction(index))
-    held_.target[index] = direction_axis(index).dot(tip_pose().p);
-  max_residual_[index] = 0;
-  events_->forget(index);
-  direction_columns(held_, case_.alpha);
-  direction_weights(held_, case_.w_fext, case_.w_ff);
-}
-
-DirectionMode Simulator::direction_mode(int index) const {
-  check_direction(index);
-  return held_.mode[index];
-}
-
-double Simulator::setpoint(int index) const {
-  check_direction(index);
-  return held_.setpoint[index];
-}
-
-Transform Simulator::tip_pose() const {
-  const ChainMotion& m = thread_chain_motion(model_, q, qd);
-  return tip_state(model_, m.X0, m.v).pose;
-}
-
-Vector6 Simulator::tip_velocity() const {
-  const ChainMotion& m = thread_chain_motion(model_, q, qd);
-  const TipState tip = tip_state(model_, m.X0, m.v);
-  Vector6 out;
-  out << tip.v, tip.w;
-  return out;
-}
-
-std::array<double, kNumDirections> Simulator::residuals() const {
-  const ChainMotion& m = thread_chain_motion(model_, q, qd);
-  const TipState tip = tip_state(model_, m.X0, m.v);
-  std::array<double, kNumDirections> r{};
-  for (int k = 0; k < kNumDirections; ++k) r[k] = direction_error(held_, k, tip);
-  return r;
-}
-
-std::array<double, kNumDirections> Simulator::max_residuals() const {
-  std::array<double, kNumDirections> r = residuals();
-  for (int k = 0; k < kNumDirections; ++k) r[k] = std::max(std::abs(r[k]), max_residual_[k]);
-  return r;
-}
-
-// x' = f(x) at x = (q, qd, angle): the held set's alpha (set with the directions) and
-// beta at this state, one solve, and the held angles' rates e . w_tip.
-void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_at,
-                         const std::array<double, kNumDirections>& angle, double t_at, double w_n, Data& out,
-                         std::array<double, kNumDirections>& angle_rate) {
+// x' = f(x) at x = (q, qd, held angles): each link's block (alpha set with its
+// directions) gets its beta at this state, one solve, and the held angles' rates e . w_link.
+void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_at, const HeldAngles& angles,
+                         double t_at, double w_n, Data& out, HeldAngles& angle_rates) {
   if (!q_at.allFinite() || !qd_at.allFinite())
     throw Error("the stage's state is not finite (" + non_finite_joint(model_, q_at, qd_at) + ")");
   body_motion(model_, q_at, qd_at, X0_, r_, v_);
-  const TipState tip = tip_state(model_, X0_, v_);
-  stage_held_ = held_;
-  stage_held_.angle = angle;
-  direction_targets(stage_held_, tip, w_n, options_.stabilisation_damping,
-                    options_.effects & kVelocityProducts, case_.beta);
-  if (!case_.beta.allFinite()) {
+  angle_rates.setZero();  // sets with no active direction have none
+  for (size_t b = 0; b < case_.constraints.size(); ++b) {
+    const int s = block_set_[b];
+    const LinkDirections& set = sets_[s];
+    const TipState at = link_state(model_, X0_, v_, set.link, set.point);
+    const double* angle = angles.data() + s * kNumDirections;
+    ConstraintVector& beta = case_.constraints[b].beta;
+    direction_targets(set.held, at, angle, w_n, options_.stabilisation_damping,
+                      options_.effects & kVelocityProducts, beta);
     // beta is the acceleration the solver enforces along each held or accelerated
     // direction, in index order (direction_columns).
-    int column = 0;
-    for (int k = 0; k < kNumDirections; ++k) {
-      if (!held_.active(k)) continue;
-      if (!std::isfinite(case_.beta[column++]))
-        throw Error(std::string("the acceleration to enforce along direction ") + kDirectionNames[k] +
-                    " is not finite (beta = " + number(case_.beta[column - 1]) + "; tip speed " +
-                    number(tip.v.norm()) + " m/s, " + number(tip.w.norm()) + " rad/s)");
+    for (int k = 0, column = 0; k < kNumDirections; ++k) {
+      if (!set.held.active(k)) continue;
+      if (!std::isfinite(beta[column++]))
+        throw Error("the acceleration to enforce along " + direction_label(model_, set.link, k) +
+                    " is not finite (beta = " + message_number(beta[column - 1]) + "; " +
+                    (model_.has_tip() && set.link == model_.num_links() - 1 ? "tip" : "point") + " speed " +
+                    message_number(at.v.norm()) + " m/s, " + message_number(at.w.norm()) + " rad/s)");
     }
+    for (int k = 0; k < kNumDirections; ++k)
+      angle_rates[s * kNumDirections + k] = set.held.mode[k] == DirectionMode::Hold && !is_linear_direction(k)
+                                                ? direction_axis(k).dot(at.w) : 0.0;
   }
-  for (int k = 0; k < kNumDirections; ++k)
-    angle_rate[k] = held_.mode[k] == DirectionMode::Hold && !is_linear_direction(k)
-                        ? direction_axis(k).dot(tip.w) : 0.0;
   for (int i = 0; i < model_.num_joints(); ++i)
     if (moving_[i]) case_.qdd_given[i] = sample(motions_[i], t_at).qdd;
+  apply_joint_control(q_at, qd_at);
   case_.q = q_at;
   case_.qd = qd_at;
   hybrid_dynamics(implicit_solve_ ? implicit_model_ : model_, out, case_, solver_);
@@ -356,21 +310,26 @@ void Simulator::step(double dt) {
   }
   // Record the residuals of the state this step starts from.
   body_motion(model_, q, qd, X0_, r_, v_);
-  const TipState tip = tip_state(model_, X0_, v_);
-  for (int k = 0; k < kNumDirections; ++k)
-    max_residual_[k] = std::max(max_residual_[k], std::abs(direction_error(held_, k, tip)));
+  for (size_t s = 0; s < sets_.size(); ++s) {
+    LinkDirections& set = sets_[s];
+    if (!set.held.count()) continue;
+    const TipState at = link_state(model_, X0_, v_, set.link, set.point);
+    for (int k = 0; k < kNumDirections; ++k)
+      set.max_residual[k] = std::max(set.max_residual[k],
+                                     std::abs(direction_error(set.held, k, at, angles_.data() + s * kNumDirections)));
+  }
 
   const double w_n = options_.stabilisation_frequency;
   // The state a failed step returns to.
   q0_ = q;
   qd0_ = qd;
-  angle0_ = held_.angle;
+  angle0_ = angles_;
   const std::int64_t substeps0 = substeps_, rejected0 = rejected_substeps_;
   Data& first = data_[1 - current_];
   const auto undo = [&] {
     q = q0_;
     qd = qd0_;
-    held_.angle = angle0_;
+    angles_ = angle0_;
     substeps_ = substeps0;
     rejected_substeps_ = rejected0;
     implicit_solve_ = false;
@@ -391,71 +350,59 @@ void Simulator::step(double dt) {
     throw step_failure(dt, e.what());
   }
   bool finite = q.allFinite() && qd.allFinite();
-  for (int k = 0; k < kNumDirections; ++k) finite = finite && std::isfinite(held_.angle[k]);
+  finite = finite && angles_.allFinite();
   if (!finite) {
     std::string cause = non_finite_joint(model_, q, qd);
-    for (int k = 0; k < kNumDirections && cause.empty(); ++k)
-      if (!std::isfinite(held_.angle[k]))
-        cause = std::string("held angle ") + kDirectionNames[k] + " = " + number(held_.angle[k]);
+    for (int j = 0; j < static_cast<int>(sets_.size() * kNumDirections) && cause.empty(); ++j)
+      if (!std::isfinite(angles_[j]))
+        cause = "the held angle of " + direction_label(model_, sets_[j / kNumDirections].link, j % kNumDirections) +
+                " = " + message_number(angles_[j]);
     undo();
     stage_ = -1;
     throw step_failure(dt, "the new state is not finite (" + cause + ")");
   }
   current_ = 1 - current_;
-  const unsigned resumed = events_->update(held_, first, t, steps_taken_, model_.num_links() - 1);
+  events_->update(sets_, first, t, steps_taken_, anchored_);
   ++t_steps_;
   ++steps_taken_;
   t = t_origin_ + static_cast<double>(t_steps_) * dt;
   t_written_ = t;
   follow_trajectories(t);
   apply_limits();
-  // resumed directions, and held ones that yield to a driver, continue from where the tip is
-  const unsigned anchored = resumed | yielding_directions(held_);
-  if (anchored) resume_from_tip(anchored);
-}
-
-void Simulator::set_direction_weights(int index, double w_fext, double w_ff) {
-  check_direction(index);
-  for (const auto& [name, w] : {std::pair<const char*, double>{"w_fext", w_fext}, {"w_ff", w_ff}})
-    if (!(w >= 0 && w <= 1))
-      throw Error(std::string("direction ") + kDirectionNames[index] + ": " + name + " must be in [0, 1], got " +
-                  number(w));
-  held_.w_fext[index] = w_fext;
-  held_.w_ff[index] = w_ff;
-  direction_weights(held_, case_.w_fext, case_.w_ff);
-}
-
-// A released Hold direction resumes where the tip is (linear: target = e . p_tip;
-// angular: held angle 0), so that the stabilisation does not yank it back to the target
-// it lost.
-void Simulator::resume_from_tip(unsigned directions) {
-  body_motion(model_, q, qd, X0_, r_, v_);
-  const Vector3 p = tip_state(model_, X0_, v_).pose.p;
-  for (int k = 0; k < kNumDirections; ++k) {
-    if (!(directions >> k & 1u) || held_.mode[k] != DirectionMode::Hold) continue;
-    if (is_linear_direction(k)) held_.target[k] = direction_axis(k).dot(p);
-    else held_.angle[k] = 0;
+  // resumed directions, and held ones that yield to a driver, continue from where their point is
+  bool anchor = false;
+  for (size_t s = 0; s < sets_.size(); ++s) {
+    anchored_[s] |= yielding_directions(sets_[s].held);
+    anchor = anchor || anchored_[s];
   }
+  if (anchor) anchor_directions(anchored_);
 }
 
 Error Simulator::step_failure(double dt, const std::string& cause) const {
+  // "held: z, rx" on a chain's tip; "held: x, y, z of link 'lf_foot', z of link 'rf_foot'"
   std::string held, accelerated;
-  for (int k = 0; k < kNumDirections; ++k) {
-    if (held_.mode[k] == DirectionMode::Hold) held += (held.empty() ? "" : ", ") + std::string(kDirectionNames[k]);
-    if (held_.mode[k] == DirectionMode::Accelerate)
-      accelerated += (accelerated.empty() ? "" : ", ") + std::string(kDirectionNames[k]) + " = " +
-                     number(held_.setpoint[k]) + (is_linear_direction(k) ? " m/s^2" : " rad/s^2");
+  for (const LinkDirections& set : sets_) {
+    std::string h;
+    for (int k = 0; k < kNumDirections; ++k) {
+      if (set.held.mode[k] == DirectionMode::Hold) h += (h.empty() ? "" : ", ") + std::string(direction_name(k));
+      if (set.held.mode[k] == DirectionMode::Accelerate)
+        accelerated += (accelerated.empty() ? "" : ", ") + direction_label(model_, set.link, k).substr(10) + " = " +
+                       message_number(set.held.setpoint[k]) + (is_linear_direction(k) ? " m/s^2" : " rad/s^2");
+    }
+    if (h.empty()) continue;
+    const std::string label = direction_label(model_, set.link, 0);  // "direction x[ of link '...']"
+    held += (held.empty() ? "" : ", ") + h + label.substr(11);
   }
   std::string where = integrator_name(options_.integrator);
   if (options_.integrator == Integrator::RK4 && stage_ >= 0) where += " stage " + std::to_string(stage_ + 1) + " of 4";
   if (options_.integrator == Integrator::DormandPrince)
     where += (stage_ >= 0 ? " stage " + std::to_string(stage_ + 1) + " of 7," : "") + " substep of " +
-             number(substep_) + " s";
+             message_number(substep_) + " s";
   if (!held.empty()) where += "; held: " + held;
   if (!accelerated.empty()) where += "; accelerated: " + accelerated;
   const double t_next = t_origin_ + static_cast<double>(t_steps_ + 1) * dt;
-  return Error("step " + std::to_string(steps_taken_ + 1) + " from t = " + number(t) + " s to " + number(t_next) +
-               " s (" + where + ") failed: " + cause + "; the state stays at t = " + number(t) + " s");
+  return Error("step " + std::to_string(steps_taken_ + 1) + " from t = " + message_number(t) + " s to " + message_number(t_next) +
+               " s (" + where + ") failed: " + cause + "; the state stays at t = " + message_number(t) + " s");
 }
 
 void Simulator::run(std::int64_t steps, double dt) {
@@ -466,23 +413,26 @@ void Simulator::run(std::int64_t steps, double dt) {
 // x_{k+1} = x_k + dt f(x_k)
 void Simulator::step_explicit_euler(double dt, double w_n, Data& first) {
   stage_ = 0;
-  evaluate(q, qd, held_.angle, t, w_n, first, k_angle_[0]);
+  evaluate(q, qd, angles_, t, w_n, first, k_angle_[0]);
   integrate(model_, q, qd, dt, q);
   qd += dt * first.qdd;
-  for (int k = 0; k < kNumDirections; ++k) held_.angle[k] += dt * k_angle_[0][k];
+  angles_ += dt * k_angle_[0];
 }
 
 // qd_{k+1} = qd_k + dt qdd(q_k, qd_k);  q_{k+1} = q_k + dt qd_{k+1}; the held angles
 // (positions too) advance with the new velocity: dt e . w(q_k, qd_{k+1}).
 void Simulator::step_semi_implicit_euler(double dt, double w_n, Data& first) {
   stage_ = 0;
-  evaluate(q, qd, held_.angle, t, w_n, first, k_angle_[0]);
+  evaluate(q, qd, angles_, t, w_n, first, k_angle_[0]);
   qd += dt * first.qdd;
   body_motion(model_, q, qd, X0_, r_, v_);
-  const Vector3 w = tip_state(model_, X0_, v_).w;
-  for (int k = 0; k < kNumDirections; ++k)
-    if (held_.mode[k] == DirectionMode::Hold && !is_linear_direction(k))
-      held_.angle[k] += dt * direction_axis(k).dot(w);
+  for (size_t s = 0; s < sets_.size(); ++s) {
+    const LinkDirections& set = sets_[s];
+    const Vector3 w = link_state(model_, X0_, v_, set.link, set.point).w;
+    for (int k = 0; k < kNumDirections; ++k)
+      if (set.held.mode[k] == DirectionMode::Hold && !is_linear_direction(k))
+        angles_[s * kNumDirections + k] += dt * direction_axis(k).dot(w);
+  }
   integrate(model_, q, qd, dt, q);
 }
 
@@ -500,7 +450,7 @@ void Simulator::step_rk4(double dt, double w_n, Data& first) {
       const double h = kStageStep[s] * dt;
       q_stage_ = q0_ + h * k_q_[s - 1];
       qd_stage_ = qd0_ + h * k_qd_[s - 1];
-      for (int k = 0; k < kNumDirections; ++k) angle_stage_[k] = angle0_[k] + h * k_angle_[s - 1][k];
+      angle_stage_ = angle0_ + h * k_angle_[s - 1];
       evaluate(q_stage_, qd_stage_, angle_stage_, t + h, w_n, out, k_angle_[s]);
     }
     configuration_rate(model_, s == 0 ? q0_ : q_stage_, s == 0 ? qd0_ : qd_stage_, k_q_[s]);
@@ -510,8 +460,7 @@ void Simulator::step_rk4(double dt, double w_n, Data& first) {
   q = q0_ + w * (k_q_[0] + 2 * k_q_[1] + 2 * k_q_[2] + k_q_[3]);
   normalise_configuration(model_, q);  // a floating base's quaternion back to unit length
   qd = qd0_ + w * (k_qd_[0] + 2 * k_qd_[1] + 2 * k_qd_[2] + k_qd_[3]);
-  for (int k = 0; k < kNumDirections; ++k)
-    held_.angle[k] = angle0_[k] + w * (k_angle_[0][k] + 2 * k_angle_[1][k] + 2 * k_angle_[2][k] + k_angle_[3][k]);
+  angles_ = angle0_ + w * (k_angle_[0] + 2 * k_angle_[1] + 2 * k_angle_[2] + k_angle_[3]);
 }
 
 // Report and Clamp: list the joints at or past a limit (Clamp has put them on it, see

@@ -36,20 +36,27 @@ const ChainMotion& thread_chain_motion(const Model& model, const Eigen::VectorXd
   return m;
 }
 
-TipState tip_state(const Model& model, const std::vector<Transform>& X0,
-                   const std::vector<Vector6>& v) {
-  const Link& tip = model.tip();
+TipState link_state(const Model& model, const std::vector<Transform>& X0, const std::vector<Vector6>& v,
+                    int link, const Vector3& point) {
+  const Link& l = model.links[link];
+  Transform at = l.offset;
+  at.p += l.offset.R * point;
   TipState s;
-  if (tip.body < 0) {
-    s.pose = tip.offset;
+  if (l.body < 0) {
+    s.pose = at;
     return s;
   }
-  const Transform& X = X0[tip.body];
-  const Vector6& vb = v[tip.body];
-  s.pose = X * tip.offset;
+  const Transform& X = X0[l.body];
+  const Vector6& vb = v[l.body];
+  s.pose = X * at;
   s.w = vb.tail<3>();
-  s.v = vb.head<3>() + vb.tail<3>().cross(X.R * tip.offset.p);
+  s.v = vb.head<3>() + vb.tail<3>().cross(X.R * at.p);
   return s;
+}
+
+TipState tip_state(const Model& model, const std::vector<Transform>& X0,
+                   const std::vector<Vector6>& v) {
+  return link_state(model, X0, v, model.num_links() - 1, Vector3::Zero());
 }
 
 }  // namespace achd

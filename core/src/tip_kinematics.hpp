@@ -1,6 +1,6 @@
 #pragma once
-// Pose and velocity of the tip link's origin in the base frame, with a caller-owned
-// workspace so that the simulator's step never allocates.
+// Pose and velocity of a point of a link (the tip's origin, or any link's point) in the
+// base frame, with a caller-owned workspace so that the simulator's step never allocates.
 #include <vector>
 
 #include <Eigen/Core>
@@ -10,8 +10,8 @@
 namespace achd {
 
 struct TipState {
-  Transform pose;  // base frame -> tip frame
-  Vector3 v = Vector3::Zero();  // linear velocity of the tip origin, base orientation
+  Transform pose;  // base frame -> the link's frame moved to the point
+  Vector3 v = Vector3::Zero();  // linear velocity of the point, base orientation
   Vector3 w = Vector3::Zero();  // angular velocity, base orientation
 };
 
@@ -36,8 +36,13 @@ struct ChainMotion {
 const ChainMotion& thread_chain_motion(const Model& model, const Eigen::VectorXd& q,
                                        const Eigen::VectorXd& qd);
 
-// The tip from body_motion's output: p = X0_b * offset;  v_tip = v_b + w_b x (R0 o),
-// w_tip = w_b, with o the tip's offset from its body's origin.
+// Point `point` (link frame) of link `link` (Model::links index) from body_motion's
+// output: p = X0_b * (offset * point);  v_p = v_b + w_b x (R0 o), w_p = w_b, with o the
+// point's offset from its body's origin (base axes: R0 o = p - p_b).
+TipState link_state(const Model& model, const std::vector<Transform>& X0, const std::vector<Vector6>& v,
+                    int link, const Vector3& point);
+
+// The tip link's origin (link_state of the last link at its origin).
 TipState tip_state(const Model& model, const std::vector<Transform>& X0,
                    const std::vector<Vector6>& v);
 

@@ -416,7 +416,7 @@ TEST(Simulator, ReleasedHeldDirectionResumesWhereTheTipIs) {
   sim.reset(q0, {});
   sim.set_direction(0, DirectionMode::Hold);
   sim.set_direction(4, DirectionMode::Hold);
-  const double target = sim.directions().target[0];
+  const double target = sim.direction_sets().front().held.target[0];
   const auto resumed_x = [&] {
     for (const DirectionEvent& e : sim.events())
       if (e.direction == 0 && e.kind == DirectionEventKind::Resumed) return true;
@@ -431,7 +431,7 @@ TEST(Simulator, ReleasedHeldDirectionResumesWhereTheTipIs) {
   ASSERT_TRUE(resumed_x()) << "x never resumed in 5 s";
   const double x = sim.tip_pose().p.x();
   EXPECT_GT(std::abs(x - target), 1e-7);         // it did drift while released (7.9e-7 m)
-  EXPECT_EQ(sim.directions().target[0], x);      // and holds from where it is
+  EXPECT_EQ(sim.direction_sets().front().held.target[0], x);      // and holds from where it is
   EXPECT_EQ(sim.residuals()[0], 0.0);
 }
 

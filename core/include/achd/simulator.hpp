@@ -1,13 +1,16 @@
 #pragma once
-// Time stepping of a chain under the hybrid solver: state (q, qd, t), integrators, the
-// effects a scene enables, and tip directions the user holds or accelerates.
+// Time stepping of a robot under the hybrid solver: state (q, qd, t), integrators, the
+// effects a scene enables, directions the user holds or accelerates on any links, and a
+// joint PD controller toward a target pose.
 //
-// Directions are the base axes at the tip: x, y, z (linear) and rx, ry, rz (angular).
-//   Hold, linear e:  keeps e . p_tip at its value when the direction was set.
-//   Hold, angular e: keeps the integral of e . w_tip since it was set at zero.
-//   Accelerate:      the classical tip acceleration along e equals the setpoint.
-// A held direction becomes a column of alpha with a Baumgarte-stabilised beta, including
-// the velocity-product term that separates spatial from classical acceleration.
+// Directions are the base axes at a point of a link (its origin unless set otherwise):
+// x, y, z (linear) and rx, ry, rz (angular). Each link has its own set.
+//   Hold, linear e:  keeps e . p_point at its value when the direction was set.
+//   Hold, angular e: keeps the integral of e . w_link since it was set at zero.
+//   Accelerate:      the classical acceleration of the point along e equals the setpoint.
+// The directions of a link become one constraint block (Case::constraints) whose columns
+// are the active directions, with a Baumgarte-stabilised beta including the
+// velocity-product term that separates spatial from classical acceleration.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -24,6 +27,7 @@
 namespace achd {
 
 class DirectionEventLog;
+struct TipState;
 
 // ExplicitEuler, SemiImplicitEuler, RK4: one fixed step of dt per step(dt).
 // DormandPrince: the adaptive Dormand-Prince 5(4) pair (dormand_prince.cpp); step(dt)
@@ -50,18 +54,35 @@ const char* integrator_name(Integrator integrator);
 constexpr std::int64_t kMaxSteps = std::int64_t(1) << 53;
 std::int64_t steps_for_duration(double duration, double dt);
 
-// The held set: one mode per direction, with what each mode needs.
+// The held set of one link: one mode per direction, with what each mode needs (the held
+// angles, integrated with the state, are the simulator's: Simulator::held_angles()).
 struct HeldDirections {
   std::array<DirectionMode, kNumDirections> mode{};
   std::array<double, kNumDirections> setpoint{};  // Accelerate: classical acceleration
-  std::array<double, kNumDirections> target{};    // Hold, linear: e . p_tip when set
-  std::array<double, kNumDirections> angle{};     // Hold, angular: integral of e . w_tip
+  std::array<double, kNumDirections> target{};    // Hold, linear: e . p_point when set
   // Driver priorities of each direction's column (Case::w_fext, w_ff): 1 = the direction
   // resists f_ext / ff_torques fully; below 1 that share of the driver passes through.
   std::array<double, kNumDirections> w_fext{1, 1, 1, 1, 1, 1}, w_ff{1, 1, 1, 1, 1, 1};
 
   bool active(int k) const { return mode[k] != DirectionMode::Free; }
   int count() const;
+};
+
+// The directions of one link: where they act and their held set.
+struct LinkDirections {
+  int link = 0;                     // Model::links index
+  Vector3 point = Vector3::Zero();  // where the directions act, in the link's frame
+  HeldDirections held;
+  std::array<double, kNumDirections> max_residual{};  // since each direction was set
+};
+
+// Joint PD control toward a target pose (Simulator::set_joint_control): every solve adds
+//   tau_i = kp_i (q_target,i - q_i) - kd_i qd_i
+// to ff_torques for each joint (its position index for q). A floating base's free joint
+// takes none (its gains are 0: nothing between the world and the root is actuated).
+struct JointControl {
+  Eigen::VectorXd target;  // Model::num_positions() numbers, a pose as q
+  Eigen::VectorXd kp, kd;  // per joint, >= 0 (N m/rad or N/m; N m s/rad or N s/m)
 };
 
 // The physics of a scene does not depend on the step: friction's smoothing velocity
@@ -96,7 +117,7 @@ enum class DirectionEventKind { Limited, Released, Resumed };
 struct DirectionEvent {
   double t;            // time of the state whose solve showed the change (s)
   std::int64_t step;   // steps completed at that state (t = t0 + step dt)
-  int link;            // index in Model::links of the link whose direction it is (the tip)
+  int link;            // index in Model::links of the link whose direction it is
   int direction;       // 0..5: x y z rx ry rz
   DirectionEventKind kind;
   double sigma_min;    // the coupling matrix's smallest singular value in that solve
@@ -127,6 +148,9 @@ struct SimulatorOptions {
   }
 };
 
+// Held angles of the direction sets, kNumDirections per set (Simulator::step integrates them).
+using HeldAngles = Eigen::VectorXd;
+
 class Simulator {
  public:
   Simulator(const Model& model, const SimulatorOptions& options = {});
@@ -147,13 +171,44 @@ class Simulator {
   std::vector<Vector6> f_ext;   // wrench per link after the root (base orientation)
 
   void reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0);
+  // Direction `index` (0..5: x y z rx ry rz) of link `link` (Model::links index; the
+  // root link of a floating base is not one: a link fixed to it is) held, accelerated at
+  // `setpoint` (m/s^2 or rad/s^2) or freed. A held linear direction keeps the point where
+  // it is now. Up to kMaxConstraintColumns active directions on all links together; an
+  // achd::Error names the link and direction otherwise.
+  void set_direction(int link, int index, DirectionMode mode, double setpoint = 0);
+  // Where link `link`'s directions act, in its frame (default its origin). Its held
+  // directions are re-anchored at the new point (linear targets where it is now, angles 0).
+  void set_direction_point(int link, const Vector3& point);
+  DirectionMode direction_mode(int link, int index) const;
+  double setpoint(int link, int index) const;
+  // The driver priorities of a direction (each in [0, 1], default 1; kept when its mode
+  // changes). A held direction with a weight below 1 yields to that driver: after every
+  // step its target is re-anchored where the point is (linear: e . p_point; angular: held
+  // angle 0), so that the yielding shows and the stabilisation does not pull it back.
+  void set_direction_weights(int link, int index, double w_fext, double w_ff);
+  // The links that have directions (set, freed again, or weighted), in the order their
+  // constraint blocks take in nu (a link with no active direction has no block).
+  const std::vector<LinkDirections>& direction_sets() const { return sets_; }
+  // Held-direction residuals of link `link` in m or rad (0 for directions not held), and
+  // the largest |residual| of each since it was set (or since reset()).
+  std::array<double, kNumDirections> residuals(int link) const;
+  std::array<double, kNumDirections> max_residuals(int link) const;
+  // Pose of link `link` at its directions' point in the base frame, and its velocity [v; w].
+  Transform link_pose(int link) const;
+  Vector6 link_velocity(int link) const;
+  // The same on a chain's tip (a model loaded with a tip; an achd::Error on a tree).
   void set_direction(int index, DirectionMode mode, double setpoint = 0);
   DirectionMode direction_mode(int index) const;
-  // The driver priorities of direction `index` (each in [0, 1], default 1; kept when its
-  // mode changes). A held direction with a weight below 1 yields to that driver: after
-  // every step its target is re-anchored where the tip is (linear: e . p_tip; angular:
-  // held angle 0), so that the yielding shows and the stabilisation does not pull it back.
+  double setpoint(int index) const;
   void set_direction_weights(int index, double w_fext, double w_ff);
+  // The joint PD controller (JointControl): target of num_positions() finite numbers,
+  // gains per joint, finite and >= 0, 0 on a floating base's free joint; an achd::Error
+  // names the field, joint and value otherwise. Kept by reset().
+  void set_joint_control(const JointControl& control);
+  void clear_joint_control();
+  bool joint_control_on() const { return control_on_; }
+  const JointControl& joint_control() const { return control_; }
   // Prescribed joint motion (joint_motion.hpp): from now on joint `joint` follows
   // `motion` in the simulated time t. It is put on the trajectory at once (q, qd at t),
   // every solve gives it the trajectory's acceleration at the solve's time
@@ -189,13 +244,9 @@ class Simulator {
   // of the calling thread and write nothing in the simulator: two threads may call them
   // at once on one simulator (while neither steps it nor sets its state). A thread's
   // first query (and its first of a longer chain) allocates that storage.
-  // Held-direction residuals in m or rad (0 for directions that are not held).
+  // The tip's residuals, max_residuals (as the link's above), pose and velocity [v; w].
   std::array<double, kNumDirections> residuals() const;
-  // The largest |residual| of each direction since it was set (or since reset()).
   std::array<double, kNumDirections> max_residuals() const;
-  double setpoint(int index) const;
-  const HeldDirections& directions() const { return held_; }
-  // Pose of the tip link in the base frame and its velocity [v; w] (base orientation).
   Transform tip_pose() const;
   Vector6 tip_velocity() const;
   double kinetic_energy() const;
@@ -218,9 +269,17 @@ class Simulator {
  private:
   // Joint accelerations (into `out`) and held-angle rates at one state, at time t_at
   // (the prescribed joints' accelerations are their trajectories' then).
-  void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                const std::array<double, kNumDirections>& angle, double t_at, double w_n, Data& out,
-                std::array<double, kNumDirections>& angle_rate);
+  void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const HeldAngles& angles, double t_at,
+                double w_n, Data& out, HeldAngles& angle_rates);
+  // The tip's link index; an achd::Error naming `what` on a tree.
+  int tip_link(const std::string& what) const;
+  // The set of link `link`, created (in the order of nu) when `create`; nullptr if none.
+  LinkDirections* find_set(int link, bool create);
+  const LinkDirections* find_set(int link) const;
+  // case_.constraints from the sets: one block per link with active directions.
+  void update_blocks();
+  // The PD torques at (q, qd) added to ff_torques, into case_.ff_torques.
+  void apply_joint_control(const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
   void check_joint(int joint, const char* what) const;
   // Puts the prescribed joints on their trajectories at time t_at (q and qd).
   void follow_trajectories(double t_at);
@@ -238,7 +297,9 @@ class Simulator {
   void update_limit_stops(double w_n);
   void stop_at_limits();
   void solve_impact(const char* what);
-  void resume_from_tip(unsigned directions);  // bit k: direction k
+  // Re-anchors the held directions with bit k set in bits[s] of set s where the point is
+  // (linear: target = e . p_point; angular: held angle 0).
+  void anchor_directions(const std::vector<unsigned>& bits);
   // The error of a failed step, `cause` put in context (step, t, directions).
   Error step_failure(double dt, const std::string& cause) const;
 
@@ -255,8 +316,15 @@ class Simulator {
   std::int64_t t_steps_ = 0, steps_taken_ = 0;
   int stage_ = 0;  // the integrator stage being evaluated (RK4: 0..3), for messages
   Case case_;
-  HeldDirections held_, stage_held_;
-  std::array<double, kNumDirections> max_residual_{};
+  // The directions of every link that has some, and their held angles (kNumDirections
+  // per set, set s at s * kNumDirections; sized for every link once: no step allocates).
+  std::vector<LinkDirections> sets_;
+  std::vector<int> block_set_;     // case_.constraints[b] is the block of sets_[block_set_[b]]
+  HeldAngles angles_;
+  std::vector<unsigned> anchored_;  // per set, the directions a step re-anchors
+  std::vector<TipState> impact_points_;  // joint_limits.cpp: each set's point before an impact
+  JointControl control_;
+  bool control_on_ = false;
   std::vector<int> limit_hits_;
   std::unique_ptr<DirectionEventLog> events_;  // direction_events.hpp
   std::vector<double> mass_;   // per body, from the spatial inertia
@@ -269,8 +337,7 @@ class Simulator {
   static constexpr int kMaxStages = 7;
   Eigen::VectorXd q0_, qd0_, q_stage_, qd_stage_, k_q_[kMaxStages], k_qd_[kMaxStages];
   Eigen::VectorXd q_next_, qd_next_;  // Dormand-Prince: the 5th-order solution of a substep
-  std::array<double, kNumDirections> angle_next_{};
-  std::array<double, kNumDirections> angle0_{}, angle_stage_{}, k_angle_[kMaxStages]{};
+  HeldAngles angle_next_, angle0_, angle_stage_, k_angle_[kMaxStages];
   // Dormand-Prince: the substep size proposed for the next substep (0: none yet).
   double substep_ = 0;
   std::int64_t substeps_ = 0, rejected_substeps_ = 0;
@@ -286,7 +353,7 @@ class Simulator {
   std::vector<char> moving_;
   Case impact_case_;
   Data limit_data_;
-  std::array<double, kNumDirections> limit_angle_rate_{};
+  HeldAngles limit_angle_rate_;
 };
 
 }  // namespace achd
