@@ -455,6 +455,37 @@ TEST(Simulator, StepDoesNotAllocate) {
   }
 }
 
+// Directions on several links of a floating tree and the joint PD controller: the
+// quadruped on its four feet held in 3D, a point off one foot's origin, under every
+// integrator.
+TEST(Simulator, StepWithLinkDirectionsAndJointControlDoesNotAllocate) {
+  UrdfOptions u;
+  u.floating = true;
+  const Model m = load_urdf_file((kRoot / "robots/quadruped.urdf").string(), "trunk", "", u);
+  Eigen::VectorXd q0 = Case::zeros(m).q;
+  q0[2] = 0.3;
+  for (int leg = 0; leg < 4; ++leg) q0.segment<3>(7 + 3 * leg) << 0.1, leg < 2 ? 0.8 : -0.8, leg < 2 ? -1.6 : 1.6;
+  JointControl pd{q0, Eigen::VectorXd::Constant(m.num_joints(), 20.0), Eigen::VectorXd::Constant(m.num_joints(), 0.3)};
+  pd.kp.head(6).setZero();
+  pd.kd.head(6).setZero();
+  for (Integrator integrator : kIntegrators) {
+    SimulatorOptions o;
+    o.integrator = integrator;
+    o.limits = LimitPolicy::Clamp;
+    Simulator sim(m, o);
+    sim.reset(q0, {});
+    sim.set_joint_control(pd);
+    sim.set_direction_point(m.link_index("rh_foot"), Vector3(0.01, 0, 0));
+    for (const char* foot : {"lf_foot", "rf_foot", "lh_foot", "rh_foot"})
+      for (int k = 0; k < 3; ++k) sim.set_direction(m.link_index(foot), k, DirectionMode::Hold);
+    sim.set_direction(m.link_index("lf_foot"), 5, DirectionMode::Accelerate, 0.2);
+    sim.step(1e-3);
+    const long before = g_allocations;
+    sim.run(50, 1e-3);
+    EXPECT_EQ(g_allocations - before, 0) << integrator_name(integrator);
+  }
+}
+
 // LimitPolicy::Clamp allocates only in construction: the UR5's elbow, its lower limit
 // narrowed to 0.6, falls onto it at 0.32 s while z and rx are held (an impact, then rest
 // with the release check before every step).
