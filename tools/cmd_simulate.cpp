@@ -1,5 +1,7 @@
 // achd simulate SCENE.json [--out traj.csv]: runs a scene, writes the trajectory as CSV
-// (t, q..., qd..., tip x y z qx qy qz qw) and prints a JSON summary on stdout. With
+// (t, q..., qd..., and on a chain the tip's x y z qx qy qz qw; a floating base's q as
+// ROOT_x ROOT_y ROOT_z ROOT_qx ROOT_qy ROOT_qz ROOT_qw, its qd as ROOT_vx ... ROOT_wz)
+// and prints a JSON summary on stdout. With
 // --out -, the CSV goes to stdout instead of the summary.
 // Runs longer than a second show progress on stderr; Ctrl-C stops the run (exit 130).
 // A failed or interrupted run says on stderr how far it got (t, steps) and leaves no
@@ -24,9 +26,14 @@ namespace {
 
 std::string csv_header(const Model& model) {
   std::string out = "t";
-  for (const Body& b : model.bodies) out += ",q_" + b.joint_name;
-  for (const Body& b : model.bodies) out += ",qd_" + b.joint_name;
-  return out + ",x,y,z,qx,qy,qz,qw\n";
+  const int first = model.floating ? 6 : 0;  // the free joint's bodies: named below
+  if (model.floating)
+    for (const char* c : {"x", "y", "z", "qx", "qy", "qz", "qw"}) out += ",q_" + model.root_name + "_" + c;
+  for (int i = first; i < model.num_joints(); ++i) out += ",q_" + model.bodies[i].joint_name;
+  if (model.floating)
+    for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz"}) out += ",qd_" + model.root_name + "_" + c;
+  for (int i = first; i < model.num_joints(); ++i) out += ",qd_" + model.bodies[i].joint_name;
+  return out + (model.has_tip() ? ",x,y,z,qx,qy,qz,qw\n" : "\n");
 }
 
 // 17 significant digits: the doubles round-trip exactly.
@@ -41,6 +48,10 @@ void csv_row(std::string& row, const Simulator& sim) {
   row.clear();
   append(row, sim.t, ',');
   for (Eigen::Index i = 0; i < sim.q.size(); ++i) append(row, sim.q[i], ',');
+  if (!sim.model().has_tip()) {
+    for (Eigen::Index i = 0; i < sim.qd.size(); ++i) append(row, sim.qd[i], i + 1 < sim.qd.size() ? ',' : '\n');
+    return;
+  }
   for (Eigen::Index i = 0; i < sim.qd.size(); ++i) append(row, sim.qd[i], ',');
   const Transform tip = sim.tip_pose();
   const Eigen::Quaterniond r(tip.R);
@@ -132,11 +143,19 @@ int cmd_simulate(int argc, char** argv) {
   if (conserves && max_kinetic > 0) out["energy_drift"] = max_energy_error / max_kinetic;
   else out["energy_drift"] = nullptr;
   out["energy"] = {{"initial", E0}, {"final", sim.energy()}, {"max_kinetic", max_kinetic}};
-  nlohmann::ordered_json drift = nlohmann::ordered_json::object();
-  const auto r = sim.max_residuals();
-  for (int k = 0; k < kNumDirections; ++k)
-    if (sim.direction_mode(k) == DirectionMode::Hold) drift[direction_name(k)] = r[k];
+  // held_drift: the tip's held directions; link_held_drift: every link's, by link name
+  nlohmann::ordered_json drift = nlohmann::ordered_json::object(), link_drift = nlohmann::ordered_json::object();
+  for (const LinkDirections& set : sim.direction_sets()) {
+    nlohmann::ordered_json d = nlohmann::ordered_json::object();
+    const auto r = sim.max_residuals(set.link);
+    for (int k = 0; k < kNumDirections; ++k)
+      if (set.held.mode[k] == DirectionMode::Hold) d[direction_name(k)] = r[k];
+    if (d.empty()) continue;
+    if (scene.model.has_tip() && set.link == scene.model.num_links() - 1) drift = d;
+    link_drift[scene.model.links[set.link].name] = d;
+  }
   out["held_drift"] = drift;
+  out["link_held_drift"] = link_drift;
   nlohmann::ordered_json limit = nlohmann::ordered_json::object();
   for (int i = 0; i < scene.model.num_joints(); ++i)
     if (hits[i]) limit[scene.model.bodies[i].joint_name] = hits[i];

@@ -81,18 +81,20 @@ const json& required_in(const json& j, const char* field, const std::string& whe
   return j[field];
 }
 
-void directions(const json& j, Scene& s) {
-  if (!j.is_object()) throw Error("directions must be an object (x y z rx ry rz)");
+// "directions": {"z": "hold", "y": 0.5, ...} (`prefix` names the object in messages).
+void directions(const json& j, const std::string& prefix, std::array<DirectionMode, kNumDirections>& modes,
+                std::array<double, kNumDirections>& setpoints) {
+  if (!j.is_object()) throw Error(prefix + "directions must be an object (x y z rx ry rz)");
   for (const auto& item : j.items()) {
     const int k = index_of_direction(item.key());
-    const std::string field = "directions." + item.key();
+    const std::string field = prefix + "directions." + item.key();
     if (k < 0) throw Error("unknown field '" + field + "' (directions are x y z rx ry rz)");
     const json& v = item.value();
     if (v.is_number()) {
-      s.modes[k] = DirectionMode::Accelerate;
-      s.setpoints[k] = number(v, field);
+      modes[k] = DirectionMode::Accelerate;
+      setpoints[k] = number(v, field);
     } else if (v.is_string() && (v == "hold" || v == "free")) {
-      s.modes[k] = v == "hold" ? DirectionMode::Hold : DirectionMode::Free;
+      modes[k] = v == "hold" ? DirectionMode::Hold : DirectionMode::Free;
     } else {
       throw Error(field + " must be \"hold\", \"free\" or a number (classical acceleration)");
     }
@@ -101,20 +103,65 @@ void directions(const json& j, Scene& s) {
 
 // "direction_weights": {"z": {"w_fext": 0, "w_ff": 1}, ...}, each weight in [0, 1]
 // (default 1; Simulator::set_direction_weights).
-void direction_weights(const json& j, Scene& s) {
-  if (!j.is_object()) throw Error("direction_weights must be an object (x y z rx ry rz)");
+void direction_weights(const json& j, const std::string& prefix, std::array<double, kNumDirections>& w_fext,
+                       std::array<double, kNumDirections>& w_ff) {
+  if (!j.is_object()) throw Error(prefix + "direction_weights must be an object (x y z rx ry rz)");
   for (const auto& item : j.items()) {
     const int k = index_of_direction(item.key());
-    const std::string field = "direction_weights." + item.key();
+    const std::string field = prefix + "direction_weights." + item.key();
     if (k < 0) throw Error("unknown field '" + field + "' (directions are x y z rx ry rz)");
     if (!item.value().is_object()) throw Error(field + " must be an object {\"w_fext\": w, \"w_ff\": w}");
     for (const auto& w : item.value().items()) {
       if (w.key() != "w_fext" && w.key() != "w_ff") throw Error("unknown field '" + field + "." + w.key() + "'");
       const double value = number(w.value(), field + "." + w.key());
       if (!(value >= 0 && value <= 1)) throw Error(field + "." + w.key() + " must be in [0, 1]");
-      (w.key() == "w_fext" ? s.w_fext : s.w_ff)[k] = value;
+      (w.key() == "w_fext" ? w_fext : w_ff)[k] = value;
     }
   }
+}
+
+// "link_directions": [{"link": NAME, "directions": {...}, "point": [x, y, z],
+// "direction_weights": {...}}], one entry per link.
+void link_directions(const json& j, Scene& s) {
+  if (!j.is_array()) throw Error("link_directions must be an array of {link, directions, point, direction_weights}");
+  for (size_t e = 0; e < j.size(); ++e) {
+    const std::string where = "link_directions[" + std::to_string(e) + "]";
+    const json& item = j[e];
+    if (!item.is_object()) throw Error(where + " must be an object {link, directions, point, direction_weights}");
+    only_known(item, where + ".", {"link", "directions", "point", "direction_weights"});
+    const std::string name = text(required_in(item, "link", where), where + ".link");
+    Scene::LinkSet set;
+    set.link = s.model.link_index(name);
+    if (set.link < 0)
+      throw Error(where + ".link: no link '" + name + "' after the root link '" + s.model.root_name + "'");
+    for (const Scene::LinkSet& other : s.link_directions)
+      if (other.link == set.link) throw Error(where + ".link: link '" + name + "' is listed twice");
+    if (item.contains("point")) set.point = vector(item["point"], where + ".point", 3);
+    if (item.contains("directions")) directions(item["directions"], where + ".", set.modes, set.setpoints);
+    if (item.contains("direction_weights"))
+      direction_weights(item["direction_weights"], where + ".", set.w_fext, set.w_ff);
+    s.link_directions.push_back(set);
+  }
+}
+
+// Gains: one number for every joint (a floating base's free joint: 0), or one per joint.
+Eigen::VectorXd gains(const json& j, const std::string& field, const Model& model) {
+  const int n = model.num_joints();
+  Eigen::VectorXd g = j.is_number() ? Eigen::VectorXd::Constant(n, number(j, field)) : vector(j, field, n);
+  if (j.is_number() && model.floating) g.head(6).setZero();
+  return g;
+}
+
+// "joint_control": {"target": a pose as q0 (default q0), "kp": gains, "kd": gains}; the
+// simulator checks the values (Simulator::set_joint_control).
+void joint_control(const json& j, Scene& s) {
+  if (!j.is_object()) throw Error("joint_control must be an object {target, kp, kd}");
+  only_known(j, "joint_control.", {"target", "kp", "kd"});
+  s.joint_control = true;
+  s.control.target = j.contains("target") ? vector(j["target"], "joint_control.target", s.model.num_positions()) : s.q0;
+  s.control.kp = gains(required_in(j, "kp", "joint_control"), "joint_control.kp", s.model);
+  s.control.kd = j.contains("kd") ? gains(j["kd"], "joint_control.kd", s.model)
+                                  : Eigen::VectorXd::Zero(s.model.num_joints());
 }
 
 // "prescribed": [{"joint": NAME, "motion": KIND, "position", "velocity", "amplitude",
@@ -186,9 +233,14 @@ bool Scene::conserves_energy() const {
   if (e & kExternalWrenches)
     for (const Vector6& f : f_ext)
       if (f.cwiseAbs().maxCoeff() != 0) return false;
-  if (e & kConstraints)
+  if (joint_control && (control.kp.cwiseAbs().maxCoeff() != 0 || control.kd.cwiseAbs().maxCoeff() != 0)) return false;
+  if (e & kConstraints) {
     for (DirectionMode m : modes)
       if (m == DirectionMode::Accelerate) return false;
+    for (const LinkSet& set : link_directions)
+      for (DirectionMode m : set.modes)
+        if (m == DirectionMode::Accelerate) return false;
+  }
   return true;
 }
 
@@ -218,16 +270,21 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
                        "rotor_inertia", "mimic", "rtol", "atol", "policy",
-                       "singular_region", "max_damping", "prescribed"});
+                       "singular_region", "max_damping", "prescribed", "floating", "link_directions",
+                       "joint_control"});
     if (j.contains("description")) text(j["description"], "description");
     s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
     s.root = text(required(j, "root"), "root");
-    s.tip = text(required(j, "tip"), "tip");
+    if (j.contains("tip")) s.tip = text(j["tip"], "tip");  // without one: the whole tree
     UrdfOptions urdf_options;
     if (j.contains("mimic")) urdf_options.mimic = mimic_joints_from_name(text(j["mimic"], "mimic"), "mimic");
+    if (j.contains("floating")) {
+      if (!j["floating"].is_boolean()) throw Error("floating must be true or false");
+      urdf_options.floating = j["floating"].get<bool>();
+    }
     s.model = load_urdf_file(s.urdf, s.root, s.tip, urdf_options);
     const int n = s.model.num_joints();
-    s.q0 = vector(required(j, "q0"), "q0", n);
+    s.q0 = vector(required(j, "q0"), "q0", s.model.num_positions());
     s.qd0 = j.contains("qd0") ? vector(j["qd0"], "qd0", n) : Eigen::VectorXd::Zero(n);
     s.ff_torques = j.contains("ff_torques") ? vector(j["ff_torques"], "ff_torques", n)
                                             : Eigen::VectorXd::Zero(n);
@@ -240,8 +297,15 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     }
     if (j.contains("f_ext")) f_ext(j["f_ext"], s);
     if (j.contains("effects")) s.options.effects = effects(j["effects"]);
-    if (j.contains("directions")) directions(j["directions"], s);
-    if (j.contains("direction_weights")) direction_weights(j["direction_weights"], s);
+    if (j.contains("directions") || j.contains("direction_weights")) {
+      if (!s.model.has_tip())
+        throw Error(std::string(j.contains("directions") ? "directions" : "direction_weights") +
+                    ": the tip's directions need a tip (the scene loads a whole tree): use link_directions");
+      if (j.contains("directions")) directions(j["directions"], "", s.modes, s.setpoints);
+      if (j.contains("direction_weights")) direction_weights(j["direction_weights"], "", s.w_fext, s.w_ff);
+    }
+    if (j.contains("link_directions")) link_directions(j["link_directions"], s);
+    if (j.contains("joint_control")) joint_control(j["joint_control"], s);
     if (j.contains("prescribed")) prescribed(j["prescribed"], s);
     if (j.contains("integrator")) s.options.integrator = integrator(j["integrator"]);
     if (j.contains("limits")) s.options.limits = limits(j["limits"]);
@@ -275,9 +339,29 @@ void start_scene(const Scene& scene, Simulator& sim) {
   sim.ff_torques = scene.ff_torques;
   sim.f_ext = scene.f_ext;
   for (const auto& [joint, motion] : scene.prescribed) sim.prescribe(joint, motion);
-  for (int k = 0; k < kNumDirections; ++k) {
-    sim.set_direction_weights(k, scene.w_fext[k], scene.w_ff[k]);
-    if (scene.modes[k] != DirectionMode::Free) sim.set_direction(k, scene.modes[k], scene.setpoints[k]);
+  if (scene.model.has_tip())
+    for (int k = 0; k < kNumDirections; ++k) {
+      sim.set_direction_weights(k, scene.w_fext[k], scene.w_ff[k]);
+      if (scene.modes[k] != DirectionMode::Free) sim.set_direction(k, scene.modes[k], scene.setpoints[k]);
+    }
+  for (size_t e = 0; e < scene.link_directions.size(); ++e) {
+    const Scene::LinkSet& set = scene.link_directions[e];
+    try {
+      sim.set_direction_point(set.link, set.point);
+      for (int k = 0; k < kNumDirections; ++k) {
+        sim.set_direction_weights(set.link, k, set.w_fext[k], set.w_ff[k]);
+        if (set.modes[k] != DirectionMode::Free) sim.set_direction(set.link, k, set.modes[k], set.setpoints[k]);
+      }
+    } catch (const Error& err) {
+      throw Error(scene.source + ": link_directions[" + std::to_string(e) + "]: " + err.what());
+    }
+  }
+  if (scene.joint_control) {
+    try {
+      sim.set_joint_control(scene.control);
+    } catch (const Error& err) {
+      throw Error(scene.source + ": " + err.what());
+    }
   }
 }
 

@@ -1,6 +1,8 @@
 #pragma once
-// Scene files (robots/scenes/*.json): a robot, its initial state, the effects to
-// simulate, held or accelerated tip directions, the integrator, time step and duration.
+// Scene files (robots/scenes/*.json): a robot (a chain to its tip, or a whole tree, fixed
+// or floating), its initial state, the effects to simulate, held or accelerated
+// directions (the tip's, and any links'), a joint PD controller, the integrator, time
+// step and duration.
 // Schema in the README; every error names the scene file and the field.
 #include <array>
 #include <cstdint>
@@ -30,6 +32,19 @@ struct Scene {
   // "prescribed": [{"joint": NAME, "motion": "constant" | "ramp" | "sine", ...}]: joints
   // on a trajectory (Simulator::prescribe), by joint index
   std::vector<std::pair<int, JointMotion>> prescribed;
+  // "link_directions": [{"link": NAME, "directions": {...}, "point": [x, y, z],
+  // "direction_weights": {...}}]: each link's own set (Simulator::set_direction(link, ...))
+  struct LinkSet {
+    int link = 0;
+    Vector3 point = Vector3::Zero();
+    std::array<DirectionMode, kNumDirections> modes{};
+    std::array<double, kNumDirections> setpoints{};
+    std::array<double, kNumDirections> w_fext{1, 1, 1, 1, 1, 1}, w_ff{1, 1, 1, 1, 1, 1};
+  };
+  std::vector<LinkSet> link_directions;
+  // "joint_control": {"target": pose (default q0), "kp": gains, "kd": gains}
+  bool joint_control = false;
+  JointControl control;
   double dt = 0, duration = 0;
 
   // duration / dt, a whole number checked when the scene is parsed (steps_for_duration).

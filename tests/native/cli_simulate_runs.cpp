@@ -282,6 +282,43 @@ TEST_F(CliSimulateRuns, BoundaryRunReportsDirectionEventsInTheSummary) {
                {"bad2.json: singular_region must be > 0"});
 }
 
+// A whole tree on a floating base: robots/scenes/quadruped_stand.json (feet held through
+// link_directions, joint_control) stands 10 s; the CSV names the free joint's columns, and
+// the summary each foot's drift. Errors name the field.
+TEST_F(CliSimulateRuns, FloatingQuadrupedSceneStandsOnItsFeet) {
+  const std::string scene = ACHD_SOURCE_DIR "/robots/scenes/quadruped_stand.json";
+  const CliRun r = run({"simulate", scene, "--out", path("traj.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["t"], 10.0);
+  EXPECT_TRUE(summary["held_drift"].empty());  // no tip: a tree
+  ASSERT_EQ(summary["link_held_drift"].size(), 4u);
+  for (const auto& foot : summary["link_held_drift"].items())
+    for (const auto& d : foot.value().items()) EXPECT_LE(d.value().get<double>(), 1e-9) << foot.key() << " " << d.key();
+  std::istringstream csv(read_text(path("traj.csv")));
+  std::string header, row, last;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("t,q_trunk_x,q_trunk_y,q_trunk_z,q_trunk_qx,q_trunk_qy,q_trunk_qz,q_trunk_qw,q_lf_haa,", 0), 0u)
+      << header;
+  EXPECT_NE(header.find(",qd_trunk_vx,"), std::string::npos);
+  double worst = 0;
+  while (std::getline(csv, row)) {
+    const double z = std::stod(row.substr(row.find(',', row.find(',', row.find(',') + 1) + 1) + 1));
+    worst = std::max(worst, std::abs(z - 0.3));
+  }
+  EXPECT_LE(worst, 0.01);  // the trunk's height within 1 cm
+  const std::string fields = R"({"urdf": ")" ACHD_SOURCE_DIR R"(/robots/quadruped.urdf", "root": "trunk",
+    "floating": true, "q0": [0, 0, 0.3, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0], "dt": 0.001, "duration": 0.01)";
+  expect_error(run({"simulate", write("a.json", fields + R"(, "directions": {"z": "hold"}})")}),
+               {"a.json: directions: the tip's directions need a tip", "use link_directions"});
+  expect_error(run({"simulate", write("b.json", fields + R"(, "link_directions": [{"link": "paw"}]})")}),
+               {"b.json: link_directions[0].link: no link 'paw' after the root link 'trunk'"});
+  expect_error(run({"simulate", write("c.json", fields + R"(, "joint_control": {"kp": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]}})")}),
+               {"c.json: joint control: kp[0] of joint 'trunk' (the floating base's free joint, not actuated) must be 0"});
+  expect_error(run({"simulate", write("d.json", fields + R"(, "link_directions": [{"link": "lf_foot", "directions": {"w": "hold"}}]})")}),
+               {"d.json: unknown field 'link_directions[0].directions.w'"});
+}
+
 // Before: --repeats 4294967297 ran 1 repeat (a long cast to int), exit 0.
 TEST_F(CliSimulateRuns, IntegerOptionsOutOfRangeAreErrors) {
   write("case.json", R"({"q": [0.1, 0.2], "gravity": [0, 0, -9.81]})");
