@@ -276,7 +276,22 @@ export interface SimulatorOptions {
   singularRegion?: number;
   /** variable_damping: the damping at sigma = 0, relative the same way; finite and > 0, default 2e-2. */
   maxDamping?: number;
+  /** the joint PD controller from the start (Simulator.setJointControl; target required here). */
+  jointControl?: JointControl;
 }
+
+/** The joint PD controller: every solve adds kp (target - q) - kd qd to ff_torques. */
+export interface JointControl {
+  /** a pose as q (numPositions numbers); default the simulator's q when it is set. */
+  target?: Vec;
+  /** one number for every joint (0 on a floating base's free joint) or numJoints numbers, >= 0. */
+  kp: number | Vec;
+  /** the same; default 0. */
+  kd?: number | Vec;
+}
+
+/** A link (name or index into linkNames, the links after the root); omitted: a chain's tip. */
+export type LinkRef = string | number;
 
 /** A change of a direction's state under variable_damping (the CLI summary's "events"). */
 export interface DirectionEvent {
@@ -284,7 +299,7 @@ export interface DirectionEvent {
   t: number;
   /** steps completed at that state. */
   step: number;
-  /** the link whose direction it is (the tip). */
+  /** the link whose direction it is. */
   link: string;
   direction: Direction;
   /** limited: damped; released: damping dominates, not followed; resumed: out of the singular
@@ -341,12 +356,25 @@ export interface Simulator {
   step(n?: number, dt?: number, options?: StepOptions): number;
   /** new state; t = 0, every direction free. qd defaults to zero. */
   reset(q: Vec, qd?: Vec): void;
-  /** 'hold' keeps the tip where it is along the base axis; a number prescribes the classical tip acceleration; 'free' releases. */
-  setDirection(name: Direction, mode: 'hold' | 'free' | number): void;
+  /** On `link` (omitted: a chain's tip; each link has its own set): 'hold' keeps the link's
+   *  point where it is along the base axis; a number prescribes its classical acceleration;
+   *  'free' releases. At most 36 active directions on all links together. */
+  setDirection(name: Direction, mode: 'hold' | 'free' | number, link?: LinkRef): void;
+  directionMode(name: Direction, link?: LinkRef): 'free' | 'hold' | 'accelerate';
   /** Driver priorities of a direction, each in [0, 1] (default 1): below 1 the direction
    *  yields to external wrenches (wFext) or feed-forward torques (wFf) and is re-anchored
-   *  where the tip is after every step. */
-  setDirectionWeights(name: Direction, weights: { wFext?: number; wFf?: number }): void;
+   *  where its point is after every step. */
+  setDirectionWeights(name: Direction, weights: { wFext?: number; wFf?: number }, link?: LinkRef): void;
+  /** where the link's directions act, [x, y, z] in its frame (default its origin). */
+  setDirectionPoint(link: LinkRef, point: Vec): void;
+  /** links with directions, in the order of their blocks in nu, and their active directions. */
+  directionLinks(): { link: string; directions: number }[];
+  /** each link's constraint wrench alpha nu at its point (base axes; what the link exerts on
+   *  its constraint) in the solve at the start of the last step (copies). */
+  constraintWrenches(): Record<string, number[]>;
+  setJointControl(control: JointControl): void;
+  clearJointControl(): void;
+  readonly jointControlOn: boolean;
   /** the joint (name or index) follows `motion` from now on: put on it at once, its
    *  acceleration prescribed in every solve, its q and qd set on the trajectory after every
    *  step; never stopped at a limit (limits 'clamp'). reset() releases every joint. */
@@ -357,8 +385,8 @@ export interface Simulator {
   prescribedJoints(): string[];
   /** per joint: a prescribed joint's torque in the solve at the start of the last step, 0 for the others (a copy). */
   prescribed_torques(): number[];
-  /** held-direction residuals in m or rad; null for directions not held (free or accelerated). */
-  residuals(): Record<Direction, number | null>;
+  /** held-direction residuals of a link (omitted: the tip) in m or rad; null for directions not held. */
+  residuals(link?: LinkRef): Record<Direction, number | null>;
   energy(): { kinetic: number; potential: number; total: number };
   /** names of the joints at or past a limit after the last step (a copy; [] under limits 'ignore'). */
   limitHits(): string[];

@@ -14,7 +14,8 @@ const camelCase = (name) => name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase(
 // Scene fields -> createSimulator options (the rest are handled in startScene).
 const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping', 'rtol', 'atol'];
 const HANDLED = ['description', 'urdf', 'root', 'tip', 'q0', 'qd0', 'effects', 'directions', 'direction_weights', 'integrator',
-  'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', 'prescribed', ...OPTIONS];
+  'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', 'prescribed', 'floating', 'link_directions', 'joint_control',
+  ...OPTIONS];
 
 let achd, kuka, kukaEntry;
 before(async () => {
@@ -45,6 +46,13 @@ function startScene(scene, robot) {
   for (const [name, w] of Object.entries(scene.direction_weights ?? {}))
     sim.setDirectionWeights(name, { wFext: w.w_fext, wFf: w.w_ff });
   for (const [name, mode] of Object.entries(scene.directions ?? {})) sim.setDirection(name, mode);
+  for (const set of scene.link_directions ?? []) {
+    if (set.point) sim.setDirectionPoint(set.link, set.point);
+    for (const [name, w] of Object.entries(set.direction_weights ?? {}))
+      sim.setDirectionWeights(name, { wFext: w.w_fext, wFf: w.w_ff }, set.link);
+    for (const [name, mode] of Object.entries(set.directions ?? {})) sim.setDirection(name, mode, set.link);
+  }
+  if (scene.joint_control) sim.setJointControl(scene.joint_control);
   return sim;
 }
 
@@ -58,14 +66,14 @@ const HORIZON = { 'chain50_fall.json': 1.0, 'kuka_lwr4_undamped_hold_z_rx.json':
 
 // The row of `achd simulate --out` at step `steps` (t, q, qd, tip pose; 17 significant
 // digits, so the doubles round-trip exactly).
-async function nativeState(file, nj, steps) {
+async function nativeState(file, nq, nj, steps) {
   const tmp = scratchDir();
   try {
     const csv = join(tmp.dir, 'traj.csv');
     await runCli(nativeCli(), ['simulate', join(SCENES, file), '--out', csv]);
     const rows = readFileSync(csv, 'utf8').trim().split('\n');
     const last = rows[1 + steps].split(',').map(Number);
-    return { t: last[0], q: last.slice(1, 1 + nj), qd: last.slice(1 + nj, 1 + 2 * nj) };
+    return { t: last[0], q: last.slice(1, 1 + nq), qd: last.slice(1 + nq, 1 + nq + nj) };
   } finally {
     tmp.remove();
   }
@@ -74,12 +82,13 @@ async function nativeState(file, nj, steps) {
 for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.json')).sort()) {
   test(`scene ${file}: wasm ends where native achd simulate ends (relative error <= 1e-9)`, async (t) => {
     const scene = readScene(file);
-    const robot = achd.loadURDF(readFileSync(join(repo, scene.urdf), 'utf8'), { root: scene.root, tip: scene.tip });
+    const robot = achd.loadURDF(readFileSync(join(repo, scene.urdf), 'utf8'),
+      { root: scene.root, tip: scene.tip, floating: scene.floating });
     const sim = startScene(scene, robot);
     try {
       const steps = Math.round(Math.min(scene.duration, HORIZON[file] ?? Infinity) / scene.dt);
       sim.step(steps, scene.dt);
-      const native = await nativeState(file, robot.numJoints, steps);
+      const native = await nativeState(file, sim.numPositions, robot.numJoints, steps);
       assert.equal(sim.t, native.t);
       const eq = relativeError(Array.from(sim.q), native.q), eqd = relativeError(Array.from(sim.qd), native.qd);
       t.diagnostic(`relative error q ${eq.toExponential(2)}, qd ${eqd.toExponential(2)}`);

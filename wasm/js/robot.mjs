@@ -180,7 +180,7 @@ export class Robot extends AchdHandle {
     if (options === undefined || options === null) options = {};
     achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
       'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping', 'rtol', 'atol', 'policy',
-      'singularRegion', 'maxDamping']);
+      'singularRegion', 'maxDamping', 'jointControl']);
     // Defaults are achd::SimulatorOptions' (core/include/achd/simulator.hpp).
     const k = achdConstants(), d = k.simulator_options;
     let integratorName = options.integrator;
@@ -206,6 +206,19 @@ export class Robot extends AchdHandle {
       return create(8 * p);
     });
     if (!sim) throw achdLastError();
-    return new Simulator(this, sim);
+    const simulator = new Simulator(this, sim);
+    // jointControl: {target, kp, kd} as Simulator.setJointControl, target required
+    if (options.jointControl !== undefined) {
+      try {
+        achdCheckObject(options.jointControl, 'options.jointControl', ['target', 'kp', 'kd']);
+        // (the simulator starts at the zero pose: a target by default would be that)
+        if (options.jointControl.target === undefined) throw new Error('options.jointControl.target is required (a pose as q)');
+        simulator.setJointControl(options.jointControl);
+      } catch (e) {
+        simulator.delete();
+        throw e;
+      }
+    }
+    return simulator;
   }
 }

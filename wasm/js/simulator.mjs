@@ -75,28 +75,91 @@ export class Simulator extends AchdHandle {
     });
     this._buffer = null;  // reset() may have given q and qd new buffers
   }
+  // The directions act on a link: `link` a link name or index (linkNames), or omitted
+  // for a chain's tip (an error on a tree). Each link has its own set; its constraint
+  // block comes in nu in the order the links were first given directions (directionLinks()).
+  _linkIndex(link, what) {
+    if (link === undefined || link === null) return -1;
+    const index = typeof link === 'string' ? this._linkNames.indexOf(link) : link;
+    if (!Number.isInteger(index) || index < 0 || index >= this.numLinks)
+      throw new Error(`${what}: unknown link ${JSON.stringify(link)} (index 0..${this.numLinks - 1} or a link name)`);
+    return index;
+  }
+  _directionIndex(name, what) {
+    const directions = achdConstants().directions, index = directions.indexOf(name);
+    if (index < 0) throw new Error(`${what}: unknown direction '${name}' (${directions.join(', ')})`);
+    return index;
+  }
   // name: x y z rx ry rz; mode: 'hold', 'free' or a number (classical acceleration setpoint).
-  setDirection(name, mode) {
-    const ptr = this._live();
-    const directions = achdConstants().directions, modes = achdConstants().direction_modes;
-    const index = directions.indexOf(name);
-    if (index < 0) throw new Error(`setDirection: unknown direction '${name}' (${directions.join(', ')})`);
+  setDirection(name, mode, link) {
+    const ptr = this._live(), modes = achdConstants().direction_modes;
+    const index = this._directionIndex(name, 'setDirection'), l = this._linkIndex(link, 'setDirection');
     let code, setpoint = 0;
     if (mode === 'free' || mode === 'hold') code = modes.indexOf(mode);
     else if (typeof mode === 'number' && Number.isFinite(mode)) { code = modes.indexOf('accelerate'); setpoint = mode; }
     else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${mode}`);
-    if (achdWasm.module._achd_sim_set_direction(ptr, index, code, setpoint)) throw achdLastError();
+    if (achdWasm.module._achd_sim_set_direction(ptr, l, index, code, setpoint)) throw achdLastError();
+  }
+  // The mode of a direction: 'free', 'hold' or 'accelerate'.
+  directionMode(name, link) {
+    const ptr = this._live(), index = this._directionIndex(name, 'directionMode'), l = this._linkIndex(link, 'directionMode');
+    const mode = achdWasm.module._achd_sim_direction_mode(ptr, l, index);
+    if (mode < 0) throw achdLastError();
+    return achdConstants().direction_modes[mode];
   }
   // Driver priorities of a direction, each in [0, 1] (default 1): how far it resists the
   // external wrenches (wFext) and the feed-forward torques (wFf). A held direction with a
-  // weight below 1 yields to that driver and is re-anchored where the tip is every step.
-  setDirectionWeights(name, { wFext = 1, wFf = 1 } = {}) {
-    const ptr = this._live();
-    const directions = achdConstants().directions;
-    const index = directions.indexOf(name);
-    if (index < 0) throw new Error(`setDirectionWeights: unknown direction '${name}' (${directions.join(', ')})`);
-    if (achdWasm.module._achd_sim_set_direction_weights(ptr, index, Number(wFext), Number(wFf))) throw achdLastError();
+  // weight below 1 yields to that driver and is re-anchored where its point is every step.
+  setDirectionWeights(name, { wFext = 1, wFf = 1 } = {}, link = undefined) {
+    const ptr = this._live(), index = this._directionIndex(name, 'setDirectionWeights');
+    const l = this._linkIndex(link, 'setDirectionWeights');
+    if (achdWasm.module._achd_sim_set_direction_weights(ptr, l, index, Number(wFext), Number(wFf))) throw achdLastError();
   }
+  // Where a link's directions act: [x, y, z] in the link's frame (default its origin); its
+  // held directions are re-anchored there.
+  setDirectionPoint(link, point) {
+    const ptr = this._live(), l = this._linkIndex(link, 'setDirectionPoint');
+    if (l < 0) throw new Error('setDirectionPoint: name the link');
+    achdCheckVector(point, 'point', 3);
+    achdWithScratch(3, (p) => {
+      achdWriteVector(point, 'point', 3, p);
+      if (achdWasm.module._achd_sim_set_direction_point(ptr, l, 8 * p)) throw achdLastError();
+    });
+  }
+  // The links that have directions, in the order of their blocks in nu, with the number
+  // of active directions of each: [{link, directions}] (a link with 0 has no block).
+  directionLinks() {
+    const ptr = this._live(), n = achdWasm.module._achd_sim_direction_sets(ptr, 0);
+    return achdWithScratch(n, (p) => {
+      achdWasm.module._achd_sim_direction_sets(ptr, 8 * p);
+      const h = achdWasm.module.HEAP32;
+      return Array.from({ length: n }, (_, i) => ({ link: this._linkNames[h[2 * p + 2 * i]], directions: h[2 * p + 2 * i + 1] }));
+    });
+  }
+  // The joint PD controller: every solve adds kp (target - q) - kd qd to ff_torques.
+  // target: a pose as q (numPositions numbers, default the current q); kp, kd: one number
+  // for every joint (0 on a floating base's free joint) or numJoints numbers.
+  setJointControl({ target, kp, kd = 0 } = {}) {
+    const ptr = this._live(), n = this.numJoints, nq = this.numPositions;
+    const gains = (g, name) => {
+      if (typeof g === 'number') {
+        const out = new Float64Array(n).fill(g);
+        if (this._robot.floating) out.fill(0, 0, 6);
+        return out;
+      }
+      achdCheckVector(g, `setJointControl: ${name}`, n);
+      return g;
+    };
+    const kpv = gains(kp, 'kp'), kdv = gains(kd, 'kd');
+    achdWithScratch(nq + 2 * n, (p) => {
+      achdWriteVector(target === undefined ? this.q : target, 'setJointControl: target', nq, p);
+      achdWriteVector(kpv, 'setJointControl: kp', n, p + nq);
+      achdWriteVector(kdv, 'setJointControl: kd', n, p + nq + n);
+      if (achdWasm.module._achd_sim_set_joint_control(ptr, 8 * p, 8 * (p + nq), 8 * (p + nq + n))) throw achdLastError();
+    });
+  }
+  clearJointControl() { achdWasm.module._achd_sim_clear_joint_control(this._live()); }
+  get jointControlOn() { return achdWasm.module._achd_sim_joint_control_on(this._live()) !== 0; }
   // Prescribed joint motion: joint (a name or an index) follows {motion: 'constant' |
   // 'ramp' | 'sine', position, velocity, amplitude, frequency, phase} (parameters its
   // kind does not read: absent) in the simulated time, put on it at once; release(joint)
@@ -133,17 +196,30 @@ export class Simulator extends AchdHandle {
       throw new Error(`${what}: unknown joint ${JSON.stringify(joint)} (index 0..${this.numJoints - 1} or a joint name)`);
     return index;
   }
-  // Held-direction residuals (m or rad); null for directions that are not held (free
-  // or accelerated: neither has a position or angle to keep).
-  residuals() {
-    const ptr = this._live();
-    const directions = achdConstants().directions, modes = achdConstants().direction_modes;
+  // Held-direction residuals (m or rad) of a link (omitted: the tip); null for directions
+  // that are not held (free or accelerated: neither has a position or angle to keep).
+  residuals(link) {
+    const ptr = this._live(), l = this._linkIndex(link, 'residuals');
+    const directions = achdConstants().directions, hold = achdConstants().direction_modes.indexOf('hold');
     return achdWithScratch(directions.length, (p) => {
-      achdWasm.module._achd_sim_residuals(ptr, 8 * p);
+      if (achdWasm.module._achd_sim_residuals(ptr, l, 8 * p)) throw achdLastError();
       const out = {};
       directions.forEach((name, k) => {
-        out[name] = achdWasm.module._achd_sim_direction_mode(ptr, k) === modes.indexOf('hold') ? achdWasm.module.HEAPF64[p + k] : null;
+        out[name] = achdWasm.module._achd_sim_direction_mode(ptr, l, k) === hold ? achdWasm.module.HEAPF64[p + k] : null;
       });
+      return out;
+    });
+  }
+  // The constraint wrench of each link with active directions in the last solve (copies):
+  // {link name: [fx, fy, fz, tx, ty, tz]}, alpha nu at the link's point, base axes: what
+  // the link exerts on its constraint.
+  constraintWrenches() {
+    const ptr = this._live(), n = achdWasm.module._achd_sim_constraint_wrenches(ptr, 0);
+    const links = this.directionLinks().filter((s) => s.directions > 0);
+    return achdWithScratch(6 * n, (p) => {
+      achdWasm.module._achd_sim_constraint_wrenches(ptr, 8 * p);
+      const out = {};
+      for (let b = 0; b < n; ++b) out[links[b].link] = Array.from(achdWasm.module.HEAPF64.subarray(p + 6 * b, p + 6 * b + 6));
       return out;
     });
   }

@@ -79,17 +79,59 @@ ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const doub
   });
 }
 
+// In the direction calls, link is a Model::links index, or -1 for a chain's tip (an error
+// on a tree).
 // mode: an achd::DirectionMode value (index into direction_modes of achd_constants());
-// Accelerate: classical tip acceleration = setpoint.
-ACHD_EXPORT int achd_sim_set_direction(achd::Simulator* sim, int index, int mode, double setpoint) {
-  return achd::wasm::guarded(
-      [&] { sim->set_direction(index, static_cast<achd::DirectionMode>(mode), setpoint); });
+// Accelerate: classical acceleration of the link's point = setpoint.
+ACHD_EXPORT int achd_sim_set_direction(achd::Simulator* sim, int link, int index, int mode, double setpoint) {
+  return achd::wasm::guarded([&] {
+    const auto m = static_cast<achd::DirectionMode>(mode);
+    if (link < 0) sim->set_direction(index, m, setpoint);
+    else sim->set_direction(link, index, m, setpoint);
+  });
 }
 
 // Driver priorities of a direction (Simulator::set_direction_weights).
-ACHD_EXPORT int achd_sim_set_direction_weights(achd::Simulator* sim, int index, double w_fext, double w_ff) {
-  return achd::wasm::guarded([&] { sim->set_direction_weights(index, w_fext, w_ff); });
+ACHD_EXPORT int achd_sim_set_direction_weights(achd::Simulator* sim, int link, int index, double w_fext,
+                                               double w_ff) {
+  return achd::wasm::guarded([&] {
+    if (link < 0) sim->set_direction_weights(index, w_fext, w_ff);
+    else sim->set_direction_weights(link, index, w_fext, w_ff);
+  });
 }
+
+// Where a link's directions act, 3 doubles in its frame (Simulator::set_direction_point).
+ACHD_EXPORT int achd_sim_set_direction_point(achd::Simulator* sim, int link, const double* point) {
+  return achd::wasm::guarded([&] { sim->set_direction_point(link, achd::Vector3(point)); });
+}
+
+// The links with directions (Simulator::direction_sets), in the order of nu: their count,
+// and with out != nullptr per set its link index and its number of active directions.
+ACHD_EXPORT int achd_sim_direction_sets(const achd::Simulator* sim, int* out) {
+  const std::vector<achd::LinkDirections>& sets = sim->direction_sets();
+  if (out)
+    for (const achd::LinkDirections& s : sets) {
+      *out++ = s.link;
+      *out++ = s.held.count();
+    }
+  return static_cast<int>(sets.size());
+}
+
+// The joint PD controller (Simulator::set_joint_control): target num_positions()
+// doubles, kp and kd num_joints() each.
+ACHD_EXPORT int achd_sim_set_joint_control(achd::Simulator* sim, const double* target, const double* kp,
+                                           const double* kd) {
+  return achd::wasm::guarded([&] {
+    const int nq = static_cast<int>(sim->q.size()), n = static_cast<int>(sim->qd.size());
+    achd::JointControl c;
+    c.target = Eigen::Map<const Eigen::VectorXd>(target, nq);
+    c.kp = Eigen::Map<const Eigen::VectorXd>(kp, n);
+    c.kd = Eigen::Map<const Eigen::VectorXd>(kd, n);
+    sim->set_joint_control(c);
+  });
+}
+ACHD_EXPORT void achd_sim_clear_joint_control(achd::Simulator* sim) { sim->clear_joint_control(); }
+ACHD_EXPORT int achd_sim_joint_control_on(const achd::Simulator* sim) { return sim->joint_control_on() ? 1 : 0; }
 
 // Prescribed joint motion (Simulator::prescribe): kind an index into motion_kinds of
 // achd_constants(), the parameters of achd::JointMotion.
@@ -113,14 +155,32 @@ ACHD_EXPORT int achd_sim_release(achd::Simulator* sim, int joint) {
 
 ACHD_EXPORT int achd_sim_prescribed(const achd::Simulator* sim, int joint) { return sim->prescribed(joint) ? 1 : 0; }
 
-ACHD_EXPORT int achd_sim_direction_mode(const achd::Simulator* sim, int index) {
-  return static_cast<int>(sim->direction_mode(index));
+// -1 on an error (achd_last_error: a tree's tip, an index out of range).
+ACHD_EXPORT int achd_sim_direction_mode(const achd::Simulator* sim, int link, int index) {
+  int mode = -1;
+  achd::wasm::guarded([&] {
+    mode = static_cast<int>(link < 0 ? sim->direction_mode(index) : sim->direction_mode(link, index));
+  });
+  return mode;
 }
 
-// out: the 6 held-direction residuals (m or rad).
-ACHD_EXPORT void achd_sim_residuals(const achd::Simulator* sim, double* out) {
-  const std::array<double, achd::kNumDirections> r = sim->residuals();
-  for (int k = 0; k < achd::kNumDirections; ++k) out[k] = r[k];
+// out: the 6 held-direction residuals (m or rad) of a link (-1: the tip).
+ACHD_EXPORT int achd_sim_residuals(const achd::Simulator* sim, int link, double* out) {
+  return achd::wasm::guarded([&] {
+    const std::array<double, achd::kNumDirections> r = link < 0 ? sim->residuals() : sim->residuals(link);
+    for (int k = 0; k < achd::kNumDirections; ++k) out[k] = r[k];
+  });
+}
+
+// out: 6 doubles per constraint block of the last solve (the links of
+// achd_sim_direction_sets with active directions, in order): alpha nu at the link's
+// point, what the link exerts on its constraint (Data::constraint_wrenches).
+ACHD_EXPORT int achd_sim_constraint_wrenches(const achd::Simulator* sim, double* out) {
+  const std::vector<achd::Vector6>& w = sim->data().constraint_wrenches;
+  if (out)
+    for (const achd::Vector6& f : w)
+      for (int k = 0; k < 6; ++k) *out++ = f[k];
+  return static_cast<int>(w.size());
 }
 
 ACHD_EXPORT double achd_sim_kinetic_energy(const achd::Simulator* sim) { return sim->kinetic_energy(); }

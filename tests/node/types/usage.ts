@@ -83,6 +83,20 @@ export async function usage(): Promise<void> {
   sim.setDirection('z', 'stick');
   const steps: number = sim.step(100, 1e-3, { onProgress: (done, total) => done < total, progressInterval: 10 });
   const held: number | null = sim.residuals().z;
+  sim.setDirection('x', 'hold', 'foot');
+  sim.setDirection('z', 0.2, 3);
+  sim.setDirectionPoint('foot', [0, 0, -0.02]);
+  sim.setDirectionWeights('z', { wFext: 0 }, 'foot');
+  const footHeld: number | null = sim.residuals('foot').x;
+  const mode: 'free' | 'hold' | 'accelerate' = sim.directionMode('x', 'foot');
+  const sets: { link: string; directions: number }[] = sim.directionLinks();
+  const wrenches: Record<string, number[]> = sim.constraintWrenches();
+  sim.setJointControl({ target: q, kp: 30, kd: [0.5, 0.5] });
+  robot.createSimulator({ jointControl: { target: q, kp: 30 } });
+  // @ts-expect-error kp is required
+  sim.setJointControl({ target: q });
+  const pd: boolean = sim.jointControlOn;
+  sim.clearJointControl();
   sim.prescribe('shoulder', { motion: 'sine', position: 0, amplitude: 0.3, frequency: 0.5 });
   sim.prescribe(0, { motion: 'ramp', velocity: 0.1 });
   sim.release('shoulder');
