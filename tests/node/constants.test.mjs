@@ -90,7 +90,7 @@ test('every enum name reaches C++ as the enum of that name', () => {
   c.directions.forEach((direction, k) => {
     for (const [mode, name] of [['hold', 'hold'], [0.5, 'accelerate'], ['free', 'free']]) {
       sim.setDirection(direction, mode);
-      assert.equal(c.direction_modes[achd._achd_sim_direction_mode(sim._ptr, k)], name, `${direction} ${mode}`);
+      assert.equal(c.direction_modes[achd._achd_sim_direction_mode(sim._ptr, -1, k)], name, `${direction} ${mode}`);
     }
   });
   sim.delete();

@@ -67,18 +67,24 @@ test('README.md\'s drivers example (JavaScript) runs as written', async () => {
   assert.ok(Number(m[1]) < 1e-6, `z residual ${m[1]}`);
 });
 
-// The quadruped's four feet held in 3D: full rank, the legs still, the feet pressing.
+// The quadruped's four feet held in 3D: full rank, the legs still, the feet pressing; then
+// floating, standing on its held feet under the PD controller.
 test('README.md\'s quadruped example (JavaScript) runs as written', async () => {
   const [block] = codeBlocks('README.md', 'js');
   assert.match(block, /quadruped/);
   const { code, stdout, stderr } = await runModule(block, repo);
   assert.equal(stderr, '');
   assert.equal(code, 0);
-  const m = stdout.match(/^rank (\d+), max \|qdd\| (\S+), foot z forces (\S+) (\S+) (\S+) (\S+) N\n$/);
+  const m = stdout.match(/^rank (\d+), max \|qdd\| (\S+), foot z forces (\S+) (\S+) (\S+) (\S+) N\n/);
   assert.ok(m, `unexpected output: ${stdout}`);
   assert.equal(Number(m[1]), 12);
   assert.ok(Number(m[2]) < 1e-9, `max |qdd| ${m[2]}`);
   for (const f of m.slice(3)) assert.ok(Number.isFinite(Number(f)) && Number(f) !== 0, `foot force ${f}`);
+  // then floating, standing on its held feet: the trunk within 1 cm of 0.3 m, the foot held
+  const stand = stdout.slice(m[0].length).match(/^trunk at (\S+) m, lf_foot held within (\S+) m\n$/);
+  assert.ok(stand, `unexpected output: ${stdout}`);
+  assert.ok(Math.abs(Number(stand[1]) - 0.3) < 0.01, `trunk at ${stand[1]} m`);
+  assert.ok(Number(stand[2]) < 1e-9, `foot residual ${stand[2]}`);
   console.log(`# ${stdout.trim()}`);
 });
 
