@@ -91,12 +91,13 @@ export class ChainView {
   }
 
   // Builds the robot. links: FK output at the initial pose (root first); movable[i]:
-  // whether link i hangs on a movable joint; look: null, or {visuals, joints} of
+  // whether link i hangs on a movable joint; parents[i]: the index of the link link i
+  // hangs from (-1 for the root; a chain's are i - 1); look: null, or {visuals, joints} of
   // urdfVisuals(), locked (joint name -> value of the chain's locked side joints) and
   // files (where meshes are read from, web/mesh_files.js). Frames the camera on the robot.
   // Returns a promise of the meshes' outcomes ([{filename, link, status, message}]; null
   // when another robot was set before they were all read).
-  setChain(links, movable, look = null) {
+  setChain(links, movable, parents, look = null) {
     if (!this.enabled) return Promise.resolve([]);
     const generation = ++this.generation;
     this.userMoved = false;
@@ -108,8 +109,14 @@ export class ChainView {
       this.robotGroup.remove(child);
     }
     const origins = links.map((l) => new THREE.Vector3(...l.position));
+    // The longest path of segments from the root (a chain's: all of it) sizes the sticks.
+    const path = origins.map(() => 0);
     let reach = 0;
-    for (let i = 1; i < origins.length; i++) reach += origins[i].distanceTo(origins[i - 1]);
+    for (let i = 1; i < origins.length; i++) {
+      if (parents[i] < 0) continue;
+      path[i] = path[parents[i]] + origins[i].distanceTo(origins[parents[i]]);
+      reach = Math.max(reach, path[i]);
+    }
     reach = Math.max(reach, 0.2);
     const radius = Math.min(0.06, Math.max(0.004, reach * 0.022));
     this.radius = radius;
@@ -123,13 +130,17 @@ export class ChainView {
     const cylinder = new THREE.CylinderGeometry(radius, radius, 1, 20);
     const sphere = new THREE.SphereGeometry(radius * 1.45, 20, 14);
 
-    // Segment i runs from link i's origin to link i+1's: it is link i's body, so a push
-    // on it acts on link i. The root's segment is the fixed base. With visuals, a
-    // segment shows only for a link whose mesh is missing.
+    // A segment runs from a link's origin to each child's: it is the parent link's body,
+    // so a push on it acts on that link. The root's segments are the base (fixed, or the
+    // floating trunk). With visuals, a segment shows only for a link whose mesh is missing.
+    this.parents = parents;
     this.segments = [];
-    for (let i = 0; i + 1 < links.length; i++) {
-      const mesh = new THREE.Mesh(cylinder, i === 0 ? jointMaterial : linkMaterials[i % 2]);
-      mesh.userData.link = i;
+    for (let c = 1; c < links.length; c++) {
+      const p = parents[c];
+      if (p < 0) continue;
+      const mesh = new THREE.Mesh(cylinder, p === 0 ? jointMaterial : linkMaterials[p % 2]);
+      mesh.userData.link = p;
+      mesh.userData.child = c;
       mesh.userData.shown = !hasVisuals;
       this.segments.push(mesh);
       this.robotGroup.add(mesh);
@@ -144,11 +155,18 @@ export class ChainView {
       this.joints.push(mesh);
       this.robotGroup.add(mesh);
     });
-    // The tip link has no segment after it: a small block stands for it.
-    this.tipBlock = new THREE.Mesh(new THREE.BoxGeometry(radius * 2.6, radius * 2.6, radius * 1.6), linkMaterials[1]);
-    this.tipBlock.userData.link = links.length - 1;
-    this.tipBlock.visible = !hasVisuals;
-    this.robotGroup.add(this.tipBlock);
+    // A link with no child (a chain's tip, a tree's feet and hands) has no segment after
+    // it: a small block stands for it.
+    const block = new THREE.BoxGeometry(radius * 2.6, radius * 2.6, radius * 1.6);
+    this.leafBlocks = [];
+    links.forEach((_, i) => {
+      if (i === 0 || parents.includes(i)) return;
+      const mesh = new THREE.Mesh(block, linkMaterials[1]);
+      mesh.userData.link = i;
+      mesh.visible = !hasVisuals;
+      this.leafBlocks.push(mesh);
+      this.robotGroup.add(mesh);
+    });
     this.tipAxes = new THREE.AxesHelper(radius * 7);
     this.tipAxes.matrixAutoUpdate = false;
     this.robotGroup.add(this.tipAxes);
@@ -185,8 +203,11 @@ export class ChainView {
     if (generation !== this.generation) return null;
     for (const o of outcomes) {
       if (o.status === 'loaded') continue;
-      if (this.segments[o.fk]) this.segments[o.fk].userData.shown = true;
-      else this.tipBlock.visible = true;
+      for (const mesh of [...this.segments, ...this.leafBlocks]) {
+        if (mesh.userData.link !== o.fk) continue;
+        if (mesh.userData.child !== undefined) mesh.userData.shown = true;
+        else mesh.visible = true;
+      }
     }
     this.robotGroup.updateMatrixWorld(true);
     if (!this.userMoved) this.frameCamera();
@@ -221,7 +242,7 @@ export class ChainView {
     this.grid.scale.setScalar(Math.max(reach, 0.25) / 2);
   }
 
-  // One glyph group per direction, in a unit frame at the tip, scaled with the robot.
+  // One glyph group per direction, in a unit frame at the selected link, scaled with the robot.
   makeGlyphs() {
     const group = new THREE.Group();
     const byName = {};
@@ -250,15 +271,16 @@ export class ChainView {
     return { group, byName };
   }
 
-  // Moves the chain to the poses in `links`; directions: name -> mode; push: the drag
-  // line {from, to} in world coordinates, or null.
-  update(links, directions, push) {
+  // Moves the robot to the poses in `links`; directions: name -> mode of the selected
+  // link (links index `selected`, default the last: a chain's tip), drawn there; push: the
+  // drag line {from, to} in world coordinates, or null.
+  update(links, directions, push, selected = links.length - 1) {
     if (!this.enabled || !this.segments) return;
     const a = new THREE.Vector3();
     const b = new THREE.Vector3();
-    this.segments.forEach((mesh, i) => {
-      a.fromArray(links[i].position);
-      b.fromArray(links[i + 1].position);
+    this.segments.forEach((mesh) => {
+      a.fromArray(links[mesh.userData.link].position);
+      b.fromArray(links[mesh.userData.child].position);
       const length = a.distanceTo(b);
       mesh.visible = mesh.userData.shown && length > 1e-6;
       if (!mesh.visible) return;
@@ -269,12 +291,13 @@ export class ChainView {
     for (const mesh of this.joints) mesh.position.fromArray(links[mesh.userData.jointOf].position);
     for (const { frame, fk, offset } of this.linkFrames) poseMatrix(links[fk], frame.matrix).multiply(offset);
 
-    const tip = links[links.length - 1];
-    const tipPose = poseMatrix(tip);
-    this.tipAxes.matrix.copy(tipPose);
-    this.tipBlock.position.fromArray(tip.position);
-    this.tipBlock.quaternion.setFromRotationMatrix(tipPose);
-
+    for (const mesh of this.leafBlocks) {
+      const pose = links[mesh.userData.link];
+      mesh.position.fromArray(pose.position);
+      mesh.quaternion.setFromRotationMatrix(poseMatrix(pose));
+    }
+    const tip = links[selected];
+    this.tipAxes.matrix.copy(poseMatrix(tip));
     this.glyphs.group.position.fromArray(tip.position);
     for (const name of DIRECTIONS) {
       const glyph = this.glyphs.byName[name];

@@ -1,15 +1,16 @@
-// The constraint wrench at the tip, alpha nu of the simulator's last solve, drawn as two
-// arrows from the tip link's origin: the force f (linear part, N) and the moment m (angular
-// part, N m, a double-headed arrow along its axis, the usual notation for a moment). It is
-// the wrench the tip exerts on the constraint; the robot receives -alpha nu.
+// The constraint wrench of each constrained link, alpha nu of the simulator's last solve
+// (sim.constraintWrenches()), drawn as two arrows from the link's origin: the force f
+// (linear part, N) and the moment m (angular part, N m, a double-headed arrow along its
+// axis, the usual notation for a moment). It is the wrench the link exerts on the
+// constraint; the robot receives -alpha nu.
 //
 // Scale, fixed per robot so that a length reads as a value: an arrow of length
 // `reach / 2` stands for the robot's weight W = m g (the force) or W * reach (the moment),
 // so length = |f| * reach / (2 W) and |m| / (2 W). Arrows are drawn over the robot
 // (no depth test), unlit, in colours no direction glyph uses. Updating them each frame
-// sets transforms only: nothing is allocated.
+// sets transforms only: arrows are made only when more links are constrained than ever
+// before on this robot.
 import * as THREE from 'three';
-import { DIRECTIONS } from './settings.js';
 
 export const FORCE_COLOR = '#c2185b';
 export const MOMENT_COLOR = '#5e35b1';
@@ -67,60 +68,85 @@ export class ForceArrows {
   constructor(view) {
     this.view = view;
     this.enabled = view.enabled;
-    this.wrench = new Float64Array(6);
-    this.tip = new THREE.Vector3();
     this.scratch = new THREE.Vector3();
+    this.origin = new THREE.Vector3();
     this.metersPerNewton = 0;
     this.metersPerNewtonMeter = 0;
-    this.force = null;
-    this.moment = null;
-    this.tipName = '';
+    // One pair per constrained link drawn: {name, wrench, force, moment}; grown, not shrunk.
+    this.pairs = [];
+    this.shown = 0;
+    this.selected = null;
+    this.group = null;
   }
 
-  // A new robot: reach (m, the length of its chain), weight (N) and the tip link's name.
-  setRobot(reach, weight, tipName) {
+  // A new robot: reach (m, its size) and weight (N).
+  setRobot(reach, weight) {
     this.metersPerNewton = reach / (2 * weight);
     this.metersPerNewtonMeter = 1 / (2 * weight);
-    this.tipName = tipName;
-    this.wrench.fill(0);
+    for (const pair of this.pairs) {
+      pair.force?.dispose();
+      pair.moment?.dispose();
+    }
+    this.pairs = [];
+    this.shown = 0;
     if (!this.enabled) return;
-    this.force?.dispose();
-    this.moment?.dispose();
     if (this.group) this.view.scene.remove(this.group);
-    const radius = this.view.radius * 0.55;
-    this.force = new Arrow(FORCE_COLOR, 1, radius);
-    this.moment = new Arrow(MOMENT_COLOR, 2, radius * 0.8);
     this.group = new THREE.Group();
-    this.group.add(this.force.group, this.moment.group);
     this.view.scene.add(this.group);
   }
 
-  // tip: [x, y, z] of the tip link's origin; constrained: the directions that were not
-  // free in the last solve (names, DIRECTIONS order); nu: its multipliers, one per such
-  // direction. alpha's columns are the unit base axes of those directions, so alpha nu
-  // has nu[k] in the row of the k-th constrained direction and 0 elsewhere.
-  update(tip, constrained, nu) {
-    this.wrench.fill(0);
-    for (let k = 0; k < constrained.length && k < nu.length; k++) this.wrench[DIRECTIONS.indexOf(constrained[k])] = nu[k];
-    if (!this.enabled || !this.force) return;
-    const w = this.wrench;
-    this.tip.fromArray(tip);
-    this.scratch.set(w[0], w[1], w[2]);
-    this.force.set(this.tip, this.scratch, this.scratch.length() * this.metersPerNewton);
-    this.scratch.set(w[3], w[4], w[5]);
-    this.moment.set(this.tip, this.scratch, this.scratch.length() * this.metersPerNewtonMeter);
+  pair(k) {
+    while (this.pairs.length <= k) {
+      const pair = { name: '', wrench: new Float64Array(6), force: null, moment: null };
+      if (this.enabled && this.group) {
+        const radius = this.view.radius * 0.55;
+        pair.force = new Arrow(FORCE_COLOR, 1, radius);
+        pair.moment = new Arrow(MOMENT_COLOR, 2, radius * 0.8);
+        this.group.add(pair.force.group, pair.moment.group);
+      }
+      this.pairs.push(pair);
+    }
+    return this.pairs[k];
   }
 
-  hide() {
-    this.wrench.fill(0);
-    if (this.force) {
-      this.force.group.visible = false;
-      this.moment.group.visible = false;
+  // links: [{name, position: [x, y, z] (the link's origin), wrench: [6] (alpha nu, base
+  // axes)}] of the last solve, one per constrained link; selected: the link whose arrows
+  // drawn() reports first.
+  update(links, selected) {
+    this.selected = selected;
+    links.forEach((link, k) => {
+      const pair = this.pair(k);
+      pair.name = link.name;
+      pair.wrench.set(link.wrench);
+      if (!pair.force) return;
+      const w = pair.wrench;
+      this.origin.fromArray(link.position);
+      this.scratch.set(w[0], w[1], w[2]);
+      pair.force.set(this.origin, this.scratch, this.scratch.length() * this.metersPerNewton);
+      this.scratch.set(w[3], w[4], w[5]);
+      pair.moment.set(this.origin, this.scratch, this.scratch.length() * this.metersPerNewtonMeter);
+    });
+    for (let k = links.length; k < this.pairs.length; k++) this.clear(this.pairs[k]);
+    this.shown = links.length;
+  }
+
+  clear(pair) {
+    pair.wrench.fill(0);
+    pair.name = '';
+    if (pair.force) {
+      pair.force.group.visible = false;
+      pair.moment.group.visible = false;
     }
   }
 
-  // What is drawn, for tests and the hover: the wrench, and per arrow its ends in the
-  // base frame (from the meshes' world matrices) and whether it shows.
+  hide() {
+    for (const pair of this.pairs) this.clear(pair);
+    this.shown = 0;
+  }
+
+  // What is drawn, for tests and the hover: the selected link's wrench and its arrows'
+  // ends in the base frame (from the meshes' world matrices) and whether they show, and
+  // the same for every constrained link drawn (`links`, by name).
   drawn() {
     const ends = (arrow) => {
       if (!arrow) return { shown: false, from: null, to: null, length: 0 };
@@ -129,30 +155,39 @@ export class ForceArrows {
       const to = new THREE.Vector3(0, arrow.length, 0).applyMatrix4(arrow.group.matrixWorld);
       return { shown: arrow.group.visible, from: from.toArray(), to: to.toArray(), length: from.distanceTo(to) };
     };
+    const of = (pair) => ({ wrench: Array.from(pair?.wrench ?? new Float64Array(6)), force: ends(pair?.force),
+      moment: ends(pair?.moment) });
+    const drawn = this.pairs.slice(0, this.shown);
     return {
-      wrench: Array.from(this.wrench),
+      ...of(drawn.find((p) => p.name === this.selected)),
       metersPerNewton: this.metersPerNewton,
       metersPerNewtonMeter: this.metersPerNewtonMeter,
-      force: ends(this.force),
-      moment: ends(this.moment),
+      links: Object.fromEntries(drawn.map((p) => [p.name, of(p)])),
     };
   }
 
   // The text for the pointer at (clientX, clientY) when it is over a shown arrow, else null.
   describe(clientX, clientY) {
-    if (!this.enabled || !this.force) return null;
+    if (!this.enabled || !this.group) return null;
     this.view.ray(clientX, clientY);
     const hit = this.view.raycaster.intersectObject(this.group, true).find((h) => visible(h.object));
     if (!hit) return null;
-    const w = this.wrench;
+    const pair = this.pairs.find((p) => [p.force?.group, p.moment?.group].some((g) => isAncestor(g, hit.object)));
+    if (!pair) return null;
+    const w = pair.wrench;
     const f = Math.hypot(w[0], w[1], w[2]);
     const m = Math.hypot(w[3], w[4], w[5]);
     const v = (a, b, c) => `(${fmt(a)}, ${fmt(b)}, ${fmt(c)})`;
-    return `constraint wrench α ν at ${this.tipName} (on the constraint; the robot receives −α ν)\n` +
+    return `constraint wrench α ν at ${pair.name} (on the constraint; the robot receives −α ν)\n` +
       `force ${v(w[0], w[1], w[2])} N, |f| = ${fmt(f)} N\n` +
       `moment ${v(w[3], w[4], w[5])} N m, |m| = ${fmt(m)} N m\n` +
       `scale: 1 N = ${fmt(1000 * this.metersPerNewton)} mm, 1 N m = ${fmt(1000 * this.metersPerNewtonMeter)} mm`;
   }
+}
+
+function isAncestor(group, object) {
+  for (let o = object; o; o = o.parent) if (o === group) return true;
+  return false;
 }
 
 const fmt = (v) => Number(v).toPrecision(3);

@@ -22,9 +22,13 @@ export class JointSliders {
     });
   }
 
-  // robot: an achd robot (jointNames, jointTypes, limits); q: its configuration now.
+  // robot: an achd robot (jointNames, jointTypes, limits); q: its configuration now. A
+  // floating base's free joint has no slider (its 7 numbers come first in q).
   setRobot(robot, q) {
-    this.sliders = robot.jointNames.map((name, j) => {
+    const first = robot.floating ? 1 : 0;
+    this.sliders = robot.jointNames.slice(first).map((name, i) => {
+      const j = i + first;
+      const at = robot.floating ? j + 6 : j;  // the joint's index in q
       const { low, high } = sliderRange(robot.limits[j], robot.jointTypes[j]);
       const input = document.createElement('input');
       input.type = 'range';
@@ -37,7 +41,7 @@ export class JointSliders {
       const unit = robot.jointTypes[j] === 'prismatic' ? 'm' : 'rad';
       input.addEventListener('input', () => {
         const next = [...this.q];
-        next[j] = Number(input.value);
+        next[at] = Number(input.value);
         this.onPose(next);
       });
       const label = document.createElement('label');
@@ -46,7 +50,7 @@ export class JointSliders {
       title.textContent = name;
       title.title = `${robot.jointTypes[j]}, ${low.toFixed(3)} to ${high.toFixed(3)} ${unit}`;
       label.append(title, input, value);
-      return { input, value, unit, wrap: !Number.isFinite(robot.limits[j].lower) && robot.jointTypes[j] !== 'prismatic' };
+      return { input, value, unit, at, wrap: !Number.isFinite(robot.limits[j].lower) && robot.jointTypes[j] !== 'prismatic' };
     });
     this.list.replaceChildren(...this.sliders.map((s) => s.input.parentElement));
     this.show(q);
@@ -55,10 +59,10 @@ export class JointSliders {
   // Shows configuration q on the sliders.
   show(q) {
     this.q = Array.from(q);
-    this.sliders.forEach((s, j) => {
-      const v = s.wrap ? wrapAngle(this.q[j]) : this.q[j];
+    this.sliders.forEach((s) => {
+      const v = s.wrap ? wrapAngle(this.q[s.at]) : this.q[s.at];
       if (document.activeElement !== s.input) s.input.value = String(v);
-      s.value.textContent = `${this.q[j].toFixed(2)} ${s.unit}`;
+      s.value.textContent = `${this.q[s.at].toFixed(2)} ${s.unit}`;
     });
   }
 }

@@ -13,6 +13,7 @@ import { EventsNotice } from './events_notice.js';
 import { ForceArrows } from './force_arrows.js';
 import { JointSliders } from './joint_sliders.js';
 import { LinkHover } from './link_hover.js';
+import { LinkSelect } from './link_select.js';
 import { ServedFiles } from './mesh_files.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
@@ -116,10 +117,23 @@ window.achdDemo = {
       rect: { left: rect.left, top: rect.top, width: rect.width, height: rect.height },
     };
   },
+  // A direction of the selected link (selectLink chooses it; a chain starts with its tip).
   setDirection(name, mode) {
     checkDirection(name, mode);
     if (!page.sim) throw new Error('achdDemo.setDirection: no robot loaded yet (await achdDemo.ready)');
     setDirection(name, mode);
+  },
+  // The link whose directions the controls show and setDirection sets, as a click on it does.
+  selectLink(name) {
+    if (!page.sim) throw new Error('achdDemo.selectLink: no robot loaded yet (await achdDemo.ready)');
+    selectLink(name);
+  },
+  // A link's origin in the base frame (world for a floating base), m.
+  linkPosition(name) {
+    if (!page.sim) throw new Error('achdDemo.linkPosition: no robot loaded yet (await achdDemo.ready)');
+    const link = page.sim.links().find((l) => l.name === name);
+    if (!link) throw new Error(`achdDemo.linkPosition: no link "${name}"`);
+    return link.position;
   },
   // A joint on a motion ({motion: 'constant' | 'ramp' | 'sine', position, velocity,
   // amplitude, frequency}, started now), or null: driven by its torques again.
@@ -133,9 +147,10 @@ window.achdDemo = {
     if (!page.sim) throw new Error('achdDemo.setYield: no robot loaded yet (await achdDemo.ready)');
     setYield(name, Boolean(on));
   },
-  // The constraint wrench the view draws at the tip and its two arrows' ends (base frame):
-  // {wrench, metersPerNewton, metersPerNewtonMeter, force: {shown, from, to, length},
-  // moment: {...}}, and the torque bars: [{joint, torque, effort, fraction, over}].
+  // The constraint wrench the view draws at the selected link and its two arrows' ends
+  // (base frame): {wrench, metersPerNewton, metersPerNewtonMeter, force: {shown, from, to,
+  // length}, moment: {...}, links: {name: {wrench, force, moment}} for every constrained
+  // link}, and the torque bars: [{joint, torque, effort, fraction, over}].
   forces() {
     if (!page.sim) throw new Error('achdDemo.forces: no robot loaded yet (await achdDemo.ready)');
     return { ...arrows.drawn(), torques: torqueBars.state() };
@@ -228,6 +243,15 @@ const controls = new Controls({
 });
 new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name,
   (x, y) => arrows.describe(x, y));
+new LinkSelect(view, (link) => {
+  const name = page.links?.[link]?.name;
+  if (!page.sim || link === 0 || !name) return;  // the root takes no directions
+  try {
+    selectLink(name);
+  } catch (err) {
+    showError(err.message);
+  }
+});
 const viewNote = document.getElementById('view-note');
 const sliders = new JointSliders(document.getElementById('joint-sliders'), document.getElementById('btn-start-pose'), {
   onPose: (q) => {
@@ -267,6 +291,21 @@ function setDirection(name, mode) {
   controls.showLost(notice.lost);
   controls.show(page.settings, page.playing);
   writeHash();
+}
+
+// The controls show (and set) the directions of `name`; the other links keep theirs.
+function selectLink(name) {
+  page.sim.select(name);
+  page.settings.link = name === page.sim.robot.tip ? null : name;
+  notice.clear();
+  controls.showLost(notice.lost);
+  controls.show(page.settings, page.playing);
+  showSelected();
+  writeHash();
+}
+
+function showSelected() {
+  document.getElementById('directions-link').textContent = page.sim.selected;
 }
 
 // The robot at rest at q, paused (the sliders, "Start pose"); time, events and plots go on.
@@ -365,16 +404,34 @@ function loadRobot(source, { keepDirections = false } = {}) {
   page.sim?.delete();
   page.sim = sim;
   page.settings.robot = source.name;
-  if (!keepDirections) {
-    for (const name of DIRECTIONS) {
-      page.settings.directions[name] = 'free';
-      page.settings.yielding[name] = false;
-      sim.applyYield(name);
-      sim.applyDirection(name);
+  // A link of the hash (link=) is selected with the hash's directions; the default links
+  // of a tree are held, the others free.
+  if (keepDirections && page.settings.link && sim.robot.linkNames.includes(page.settings.link)) {
+    const directions = { ...page.settings.directions }, yielding = { ...page.settings.yielding };
+    sim.selected = page.settings.link;
+    sim.defaultDirections();
+    Object.assign(page.settings.directions, directions);
+    Object.assign(page.settings.yielding, yielding);
+  } else if (keepDirections) {
+    const directions = { ...page.settings.directions }, yielding = { ...page.settings.yielding };
+    sim.defaultDirections();
+    if (sim.robot.tip) {
+      Object.assign(page.settings.directions, directions);
+      Object.assign(page.settings.yielding, yielding);
     }
+  } else {
+    sim.defaultDirections();
   }
+  page.settings.link = sim.selected === sim.robot.tip ? null : sim.selected;
+  sim.applyDrivers();
+  showSelected();
   page.scriptedPush = null;
-  controls.setJoints(sim.robot.jointNames, (joint) => (page.sim ? page.sim.sim.q[page.sim.robot.jointNames.indexOf(joint)] : null));
+  const movableJoints = sim.robot.floating ? sim.robot.jointNames.slice(1) : sim.robot.jointNames;
+  controls.setJoints(movableJoints, (joint) => {
+    if (!page.sim) return null;
+    const j = page.sim.robot.jointNames.indexOf(joint);
+    return page.sim.sim.q[page.sim.robot.floating ? j + 6 : j];
+  });
   clearRun();
   setPlaying(true);
   page.links = sim.links();
@@ -384,7 +441,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   page.lastSolveTiming = -Infinity;
   page.rate = { wall: 0, sim: 0, shown: null };
   showLook(sim, source);
-  arrows.setRobot(reachOf(page.links), Math.hypot(...GRAVITY) * Math.max(sim.mass, MIN_MASS), sim.robot.tip);
+  arrows.setRobot(reachOf(page.links), Math.hypot(...GRAVITY) * Math.max(sim.mass, MIN_MASS));
   torqueBars.setRobot(sim.robot);
   sliders.setRobot(sim.robot, sim.q);
   if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
@@ -441,7 +498,8 @@ function showShareNote(source) {
 // The robot's size for the arrows' scale: the farthest link origin from the root at the
 // start pose, at least MIN_REACH.
 function reachOf(links) {
-  return links.reduce((r, l) => Math.max(r, Math.hypot(...l.position)), MIN_REACH);
+  const root = links[0].position;
+  return links.reduce((r, l) => Math.max(r, Math.hypot(...l.position.map((x, k) => x - root[k]))), MIN_REACH);
 }
 
 // Builds the robot in the view from its URDF's visuals (meshes from source.files) and
@@ -459,7 +517,7 @@ function showLook(sim, source) {
   }
   page.look = { meshes: null, problems };
   showLookNote();
-  view.setChain(page.links, sim.movable, look).then((meshes) => {
+  view.setChain(page.links, sim.movable, sim.parents, look).then((meshes) => {
     if (!meshes || page.sim !== sim) return;  // another robot came first
     page.look.meshes = meshes;
     showLookNote();
@@ -589,11 +647,12 @@ function frame() {
     readouts.sample(sim);
     const last = readouts.last;
     if (last) {
-      arrows.update(page.links[page.links.length - 1].position, last.constrained, last.nu);
+      arrows.update(sim.wrenches(page.links), sim.selected);
       torqueBars.show(last.torques, now);
     }
     const p = push.current();
-    view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to });
+    view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to },
+      1 + sim.robot.linkNames.indexOf(sim.selected));
     view.render();
     readouts.drawCharts();
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
@@ -656,7 +715,6 @@ async function loadModule() {
 // The index and the first robot's URDF load while the wasm module compiles.
 async function readIndexAndRobot() {
   const index = JSON.parse(await fetchText('robots/index.json'));
-  index.robots = index.robots.filter((r) => r.tip);  // the page shows chains; a tree entry has no tip
   const problems = [];
   let robot = hashRobot(location.hash, index.default);
   if (robot === CUSTOM) {
@@ -680,7 +738,8 @@ async function readIndexAndRobot() {
 
 // The source of an index robot, its meshes read from this server.
 function indexSource(entry, text) {
-  return { name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry) };
+  return { name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry),
+    floating: entry.floating, constraints: entry.constraints, jointControl: entry.joint_control };
 }
 
 async function start() {

@@ -1,5 +1,6 @@
-// Live numbers and plots under the view: residual per held direction, nu, joint
-// torques, energy, and the time one step and one solve take in this browser.
+// Live numbers and plots under the view: residual per held direction and nu of the
+// selected link, joint torques, energy, and the time one step and one solve take in this
+// browser.
 import { DIRECTION_COLORS } from './chain_view.js';
 import { DIRECTIONS } from './settings.js';
 import { StripChart } from './strip_chart.js';
@@ -52,7 +53,7 @@ export class Readouts {
   configure(sim) {
     const constrained = DIRECTIONS.filter((d) => sim.settings.directions[d] !== 'free');
     const held = constrained.filter((d) => sim.settings.directions[d] === 'hold');
-    const signature = `${sim.robot.jointNames.join()}|${constrained.join()}|${held.join()}`;
+    const signature = `${sim.robot.jointNames.join()}|${sim.selected}|${constrained.join()}|${held.join()}`;
     if (signature === this.signature) return;
     this.signature = signature;
     this.constrained = constrained;
@@ -71,14 +72,14 @@ export class Readouts {
     this.configure(sim);
     if (this.last?.sim === sim && this.sampledAt === sim.t) return;
     this.sampledAt = sim.t;
-    const residuals = sim.sim.residuals();
-    const nu = sim.sim.nu();
+    const residuals = sim.sim.residuals(sim.selected);
+    const nu = sim.nuByLink()[sim.selected] ?? [];
     const torques = sim.sim.joint_torques();
     const energy = sim.sim.energy();
-    // constrained: the directions of this solve's constraints, in nu's order.
+    // constrained: the selected link's constrained directions, in the order of its nu.
     this.last = { sim, residuals, nu, torques, energy, constrained: this.constrained };
     this.charts.residuals.push(this.held.map((d) => residuals[d]));
-    // nu lists the constraints in direction order, as the simulator builds alpha.
+    // a link's nu lists its constraints in direction order, as the simulator builds alpha.
     this.charts.nu.push(this.constrained.map((_, k) => nu[k]));
     this.charts.torques.push(torques.slice(0, PLOTTED_JOINTS));
     this.charts.energy.push([energy.total]);

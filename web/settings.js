@@ -3,7 +3,9 @@
 // integrator's relative tolerance), its defaults, and its round trip through the URL hash
 // so that a view can be shared, e.g.
 // #robot=ur5&integrator=rk4&dt=0.001&effects=gravity,velocity_products,damping&dirs=z:hold,rx:0.5&yield=z
-// (prescribed joints belong to the robot's run and are not in the hash). An own URDF is
+// (prescribed joints belong to the robot's run and are not in the hash). `dirs` and
+// `yield` are the selected link's: a chain's tip, or the link `link=` names (a tree's
+// other default links are held as the robot list holds them). An own URDF is
 // robot=custom&urdf=<deflate:… or local:…, web/urdf_share.js>&root=<link>&tip=<link>.
 // Values are the scene files' words (achd.constants); the simulator's option keys are
 // the same words in camelCase. Which integrators and policies exist, and the defaults,
@@ -44,6 +46,9 @@ export function defaultSettings(robot, offer) {
     policy: offer.defaults.policy,
     rtol: offer.defaults.rtol,
     effects: Object.fromEntries(EFFECTS.map((e) => [e.key, true])),
+    // the link the directions below are of: null for a chain's tip (a tree: its first
+    // default link), else a link name
+    link: null,
     directions: Object.fromEntries(DIRECTIONS.map((d) => [d, 'free'])),
     // true: the direction yields to pushes (its w_fext is 0, sim.setDirectionWeights)
     yielding: Object.fromEntries(DIRECTIONS.map((d) => [d, false])),
@@ -122,6 +127,7 @@ export function formatHash(s) {
   params.set('dt', String(s.dt));
   params.set('policy', s.policy);
   params.set('effects', EFFECTS.filter((e) => s.effects[e.key]).map((e) => e.hash).join(','));
+  if (s.link) params.set('link', s.link);
   const dirs = DIRECTIONS.filter((d) => s.directions[d] !== 'free').map((d) => `${d}:${s.directions[d]}`);
   if (dirs.length) params.set('dirs', dirs.join(','));
   const yielding = DIRECTIONS.filter((d) => s.yielding[d]);
@@ -180,6 +186,7 @@ export function parseHash(hash, defaults, offer) {
     for (const e of EFFECTS) s.effects[e.key] = on.delete(e.hash);
     for (const name of on) problems.push(`unknown effect "${name}"`);
   }
+  if (params.has('link')) s.link = params.get('link');
   if (params.has('dirs')) {
     for (const item of params.get('dirs').split(',').filter(Boolean)) {
       const [name, raw] = item.split(':');

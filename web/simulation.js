@@ -3,9 +3,18 @@
 // direction events, and plain snapshots of the state. Effects, the integrator and the
 // policy are fixed when a simulator is created, so changing them builds a new one from
 // the current state.
+//
+// Directions act on links: every link may have its own set (free / hold / accelerate per
+// direction, and whether a held one yields to pushes). The page's controls show one link's
+// set, the selected link's (settings.directions and settings.yielding are that set); the
+// others are kept here (`sets`). A chain starts with its tip selected; a tree from the
+// robot list starts with its default links (robots/index.json "constraints") held in x, y,
+// z, the first one selected. A floating base (index "floating") stands with those links
+// on the ground (z = 0) under the joint PD controller of its "joint_control", toward the
+// start pose (and toward any pose the sliders set).
 import { DIRECTIONS, GRAVITY, motionInSimulatorTime, simulatorOptions } from './settings.js';
 import { startPose } from './start_pose.js';
-import { chainLinks, isMovable, urdfTree } from './urdf_tree.js';
+import { isMovable, urdfTree } from './urdf_tree.js';
 
 // The time per step shown is the mean over at least this much wall time: one frame's
 // worth of steps is below the browser's timer resolution on a fast robot.
@@ -22,24 +31,56 @@ function unitRow(name) {
   return row;
 }
 
+const freeSet = () => ({ directions: Object.fromEntries(DIRECTIONS.map((d) => [d, 'free'])),
+  yielding: Object.fromEntries(DIRECTIONS.map((d) => [d, false])) });
+
+// The rotation matrix (row-major) of a unit quaternion [qx, qy, qz, qw].
+function quaternionRows([x, y, z, w]) {
+  return [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
+    2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+    2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)];
+}
+
 export class Simulation {
-  // source: {name, text, root, tip, q0 (optional: robots/index.json's pose; without it, a
-  // pose inside the limits away from a singularity, web/start_pose.js)}. Throws an Error
+  // source: {name, text, root, tip (none: the whole tree), floating, q0 (optional:
+  // robots/index.json's pose of the joints; without it, a pose inside the limits away
+  // from a singularity, web/start_pose.js), constraints (a tree's default held links),
+  // jointControl ({kp, kd}: the PD controller toward the start pose)}. Throws an Error
   // naming the problem and owns nothing in that case.
   constructor(achd, source, settings) {
     this.name = source.name;
     this.source = source;
-    this.robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip });
+    this.robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip, floating: Boolean(source.floating) });
     try {
       const tree = urdfTree(source.text);
-      const chain = chainLinks(tree, this.robot.root, this.robot.tip) ?? [];
-      this.movable = [false, ...this.robot.linkNames.map((l) => isMovable(tree, l))];
-      this.mass = chain.reduce((sum, l) => sum + (tree.mass.get(l) ?? 0), 0);
-      this.q0 = source.q0 ?? startPose(this.robot).q;
-      if (this.q0.length !== this.robot.numJoints) {
-        throw new Error(`q0 has ${this.q0.length} values, the chain ${this.robot.numJoints} joints`);
+      const names = [this.robot.root, ...this.robot.linkNames];
+      this.movable = [Boolean(this.robot.floating), ...this.robot.linkNames.map((l) => isMovable(tree, l))];
+      // parents[i]: the links() index of the link link i hangs from (-1 for the root).
+      const index = new Map(names.map((l, i) => [l, i]));
+      this.parents = names.map((l) => {
+        for (let up = tree.parentOf.get(l); up; up = tree.parentOf.get(up.parent)) {
+          if (index.has(up.parent)) return index.get(up.parent);
+        }
+        return -1;
+      });
+      // The mass that moves: every link below the root, and the root itself when it floats.
+      const below = (link) => {
+        for (let x = link; x; x = tree.parentOf.get(x)?.parent) if (x === this.robot.root) return true;
+        return false;
+      };
+      this.mass = tree.links.filter((l) => below(l) && (l !== this.robot.root || this.robot.floating))
+        .reduce((sum, l) => sum + (tree.mass.get(l) ?? 0), 0);
+      this.defaultLinks = (source.constraints ?? []).filter((l) => this.robot.linkNames.includes(l));
+      const joints = source.q0 ?? startPose(this.robot).q;
+      const movableJoints = this.robot.numJoints - (this.robot.floating ? 6 : 0);
+      if (joints.length !== movableJoints) {
+        throw new Error(`q0 has ${joints.length} values, the robot ${movableJoints} joints`);
       }
+      this.q0 = this.robot.floating ? this.floatingPose(joints) : [...joints];
+      this.control = source.jointControl ?? null;
       this.settings = settings;
+      this.sets = new Map();  // link name -> {directions, yielding}, the selected one's in settings
+      this.selected = this.robot.tip ?? this.defaultLinks[0] ?? this.robot.linkNames.at(-1);
       this.tOffset = 0;
       this.sim = null;
       this.solver = null;
@@ -51,6 +92,64 @@ export class Simulation {
     this.stepWindow = { ms: 0, steps: 0 };
     this.stepMicros = null;
     this.solveMicros = null;
+  }
+
+  // A floating base's full q for the joints' q: the root upright, raised so that the
+  // lowest default link stands at z = 0 (the root at z = 0 without default links).
+  floatingPose(joints) {
+    const q = [0, 0, 0, 0, 0, 0, 1, ...joints];
+    const fk = this.robot.forwardKinematics(q);
+    const feet = fk.filter((l) => this.defaultLinks.includes(l.name)).map((l) => l.position[2]);
+    if (feet.length) q[2] = -Math.min(...feet);
+    return q;
+  }
+
+  // The links with directions: the selected one's set is settings' (read live).
+  linkSet(link) {
+    if (link === this.selected) return { directions: this.settings.directions, yielding: this.settings.yielding };
+    return this.sets.get(link) ?? freeSet();
+  }
+
+  // The links that have a set (the selected one's included), in the robot's link order.
+  setLinks() {
+    return this.robot.linkNames.filter((l) => l === this.selected || this.sets.has(l));
+  }
+
+  // Every link that has a direction that is not free, in the robot's link order.
+  constrainedLinks() {
+    return this.setLinks().filter((l) => DIRECTIONS.some((d) => this.linkSet(l).directions[d] !== 'free'));
+  }
+
+  // Shows (in settings) the set of `link` in the controls; the previous link's is kept.
+  select(link) {
+    if (!this.robot.linkNames.includes(link)) throw new Error(`no link "${link}" to hold (the root cannot be)`);
+    if (link === this.selected) return;
+    this.sets.set(this.selected, structuredClone(this.linkSet(this.selected)));
+    const next = this.sets.get(link) ?? freeSet();
+    this.sets.delete(link);
+    this.selected = link;
+    Object.assign(this.settings.directions, next.directions);
+    Object.assign(this.settings.yielding, next.yielding);
+  }
+
+  // A new robot's directions: every link free, the default links held in x, y, z (a tree
+  // of the list); the selected link's set is settings'.
+  defaultDirections() {
+    this.sets.clear();
+    for (const link of this.defaultLinks) {
+      const set = freeSet();
+      for (const d of ['x', 'y', 'z']) set.directions[d] = 'hold';
+      if (link === this.selected) {
+        Object.assign(this.settings.directions, set.directions);
+        Object.assign(this.settings.yielding, set.yielding);
+      } else {
+        this.sets.set(link, set);
+      }
+    }
+    if (!this.defaultLinks.includes(this.selected)) {
+      Object.assign(this.settings.directions, freeSet().directions);
+      Object.assign(this.settings.yielding, freeSet().yielding);
+    }
   }
 
   // (Re)creates the simulator for the current settings, starting from q, qd.
@@ -71,13 +170,17 @@ export class Simulation {
     this.applyDrivers();
   }
 
-  // The prescribed joints first (a held direction then holds where the tip is on their
-  // trajectories), each direction's priority, then the directions.
+  // The prescribed joints first (a held direction then holds where its link is on their
+  // trajectories), the PD controller, each direction's priority, then the directions, link
+  // by link.
   applyDrivers() {
     for (const joint of Object.keys(this.settings.prescribed)) this.applyPrescribed(joint);
-    for (const name of DIRECTIONS) {
-      this.applyYield(name);
-      this.applyDirection(name);
+    if (this.control) this.sim.setJointControl({ target: this.controlTarget ?? this.q0, ...this.control });
+    for (const link of this.setLinks()) {
+      for (const name of DIRECTIONS) {
+        this.applyYield(name, link);
+        this.applyDirection(name, link);
+      }
     }
   }
 
@@ -89,9 +192,9 @@ export class Simulation {
     else this.sim.release(joint);
   }
 
-  // A direction that yields to pushes has w_fext = 0: a push moves the tip along it.
-  applyYield(name) {
-    this.sim.setDirectionWeights(name, { wFext: this.settings.yielding[name] ? 0 : 1 });
+  // A direction that yields to pushes has w_fext = 0: a push moves its link along it.
+  applyYield(name, link = this.selected) {
+    this.sim.setDirectionWeights(name, { wFext: this.linkSet(link).yielding[name] ? 0 : 1 }, link);
   }
 
   get t() {
@@ -102,18 +205,21 @@ export class Simulation {
     this.build(Array.from(this.sim.q), Array.from(this.sim.qd));
   }
 
-  // Applies settings.directions[name]; a held direction holds where the tip is now.
-  applyDirection(name) {
-    this.sim.setDirection(name, this.settings.directions[name]);
+  // Applies a link's direction (default: the selected link's, settings.directions[name]);
+  // a held direction holds where its link is now.
+  applyDirection(name, link = this.selected) {
+    this.sim.setDirection(name, this.linkSet(link).directions[name], link);
   }
 
-  // Puts the robot at rest at q, the page's clock kept; held directions hold at q.
+  // Puts the robot at rest at q, the page's clock kept; held directions hold at q, and the
+  // PD controller (a floating base's) holds q.
   setPose(q) {
     const t = this.t;
     this.sim.reset(q);
     this.tOffset = t;
     this.eventsSeen = 0;
-    for (const name of DIRECTIONS) this.applyDirection(name);
+    if (this.control) this.controlTarget = [...q];
+    this.applyDrivers();
   }
 
   get q() {
@@ -122,6 +228,7 @@ export class Simulation {
 
   reset() {
     this.tOffset = 0;
+    this.controlTarget = null;
     this.sim.reset(this.q0);
     this.eventsSeen = this.events().length;
     // reset() releases every direction and prescribed joint; the page keeps the user's choices.
@@ -169,13 +276,13 @@ export class Simulation {
     s.q.set(this.sim.q);
     s.qd.set(this.sim.qd);
     s.gravity.set(GRAVITY);
-    const constrained = DIRECTIONS.filter((d) => this.settings.directions[d] !== 'free');
-    s.numConstraints = constrained.length;
-    constrained.forEach((d, k) => {
-      s.alpha.set(unitRow(d), 6 * k);
-      s.beta[k] = 0;
-      s.w_fext[k] = this.settings.yielding[d] ? 0 : 1;
-    });
+    // One block per constrained link, as the simulator builds them.
+    s.setConstraints(this.constrainedLinks().map((link) => {
+      const set = this.linkSet(link);
+      const constrained = DIRECTIONS.filter((d) => set.directions[d] !== 'free');
+      return { link, alpha: constrained.map(unitRow), beta: constrained.map(() => 0),
+        w_fext: constrained.map((d) => (set.yielding[d] ? 0 : 1)) };
+    }));
     s.setPrescribed(Object.keys(this.settings.prescribed));
     s.qdd_given.fill(0);
     s.f_ext.set(this.sim.f_ext);
@@ -197,10 +304,35 @@ export class Simulation {
     this.sim.setExternalWrench(fkIndex - 1, wrench ?? [0, 0, 0, 0, 0, 0]);
   }
 
-  // Every link's pose, root first (forward kinematics lists the links after the root).
+  // Every link's pose, root first (forward kinematics lists the links after the root; a
+  // floating root is where q puts it).
   links() {
-    const root = { name: this.robot.root, position: [0, 0, 0], rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1] };
-    return [root, ...this.robot.forwardKinematics(this.sim.q)];
+    const q = this.sim.q;
+    const root = this.robot.floating
+      ? { name: this.robot.root, position: [q[0], q[1], q[2]], rotation: quaternionRows([q[3], q[4], q[5], q[6]]) }
+      : { name: this.robot.root, position: [0, 0, 0], rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1] };
+    return [root, ...this.robot.forwardKinematics(q)];
+  }
+
+  // nu of the last solve split by link: {link: its columns' multipliers, in direction
+  // order}; the blocks come in the simulator's order (sim.directionLinks()).
+  nuByLink() {
+    const nu = this.sim.nu();
+    const out = {};
+    let k = 0;
+    for (const { link, directions } of this.sim.directionLinks()) {
+      if (directions) out[link] = nu.slice(k, k + directions);
+      k += directions;
+    }
+    return out;
+  }
+
+  // The constraint wrench of each constrained link at its origin, for the arrows:
+  // [{name, position, wrench}] (links: this state's poses, links()).
+  wrenches(links) {
+    const wrenches = this.sim.constraintWrenches();
+    return Object.entries(wrenches).map(([name, wrench]) => ({
+      name, wrench, position: links[1 + this.robot.linkNames.indexOf(name)].position }));
   }
 
   snapshot() {
@@ -209,13 +341,17 @@ export class Simulation {
       t: this.t,
       q: Array.from(this.sim.q),
       qd: Array.from(this.sim.qd),
+      link: this.selected,
       directions: { ...this.settings.directions },
       yielding: { ...this.settings.yielding },
+      // every link with a direction that is not free: {link: {directions, yielding, residuals}}
+      links: Object.fromEntries(this.constrainedLinks().map((l) => [l, { ...structuredClone(this.linkSet(l)),
+        residuals: this.sim.residuals(l) }])),
       prescribed: structuredClone(this.settings.prescribed),
-      residuals: this.sim.residuals(),
-      // of the solve at the start of the last step: nu in direction order (the constrained
-      // ones), joint_torques per joint
-      nu: this.sim.nu(),
+      residuals: this.sim.residuals(this.selected),
+      // of the solve at the start of the last step: nu of the selected link in direction
+      // order (its constrained directions), joint_torques per joint
+      nu: this.nuByLink()[this.selected] ?? [],
       joint_torques: this.sim.joint_torques(),
       stepMicros: this.currentStepMicros(),
     };

@@ -17,9 +17,13 @@ export class TorqueBars {
     this.lastNumbers = -Infinity;
   }
 
-  // robot: an achd robot (jointNames, jointTypes, limits).
+  // robot: an achd robot (jointNames, jointTypes, limits). A floating base's free joint
+  // has no bar (nothing actuates it); its six rates come first in joint_torques.
   setRobot(robot) {
-    this.rows = robot.jointNames.map((name, j) => {
+    this.first = robot.floating ? 1 : 0;
+    this.offset = robot.floating ? 5 : 0;  // jointNames index j -> joint_torques index j + offset
+    this.rows = robot.jointNames.slice(this.first).map((name, i) => {
+      const j = i + this.first;
       const effort = robot.limits[j].effort;
       const unit = robot.jointTypes[j] === 'prismatic' ? 'N' : 'N m';
       const row = document.createElement('div');
@@ -50,7 +54,7 @@ export class TorqueBars {
     if (numbers) this.lastNumbers = now;
     for (let j = 0; j < this.rows.length; j++) {
       const r = this.rows[j];
-      const tau = torques[j];
+      const tau = torques[j + this.first + this.offset];
       r.torque = tau;
       if (r.effort > 0) {
         r.fraction = tau / r.effort;

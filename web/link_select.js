@@ -1,0 +1,22 @@
+// Choosing the link whose directions the controls show: a click on a link (a press and
+// release without moving the pointer, so that orbiting and pushing stay drags) selects it.
+const CLICK_PIXELS = 4;
+
+export class LinkSelect {
+  // view: ChainView; onSelect(link): called with the FK index (root = 0) of the link clicked.
+  constructor(view, onSelect) {
+    this.press = null;
+    if (!view.enabled) return;
+    // Capture phase on the container: PushDrag stops a press on a link from reaching the
+    // canvas, not from reaching this listener.
+    view.container.addEventListener('pointerdown', (e) => {
+      this.press = e.button === 0 ? { x: e.clientX, y: e.clientY, hit: view.pick(e.clientX, e.clientY) } : null;
+    }, { capture: true });
+    view.container.addEventListener('pointerup', (e) => {
+      const p = this.press;
+      this.press = null;
+      if (!p?.hit || Math.hypot(e.clientX - p.x, e.clientY - p.y) > CLICK_PIXELS) return;
+      onSelect(p.hit.link);
+    }, { capture: true });
+  }
+}
