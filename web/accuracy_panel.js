@@ -6,7 +6,8 @@
 // directions and the simulator's default effects and policy; error = max|q(T) - q_ref(T)|
 // (rad) against RK4 at 0.125 ms (whose own error, the change when its step is halved, is
 // shown), cost = median of 3 timed runs per step. Beside it: the native figures of the
-// README (docs/accuracy/arm7). Nothing runs until the button is pressed.
+// README (docs/accuracy/arm7). The live runs are plotted and listed in a table. Nothing
+// runs until the button is pressed.
 import { isAdaptive } from './settings.js';
 
 const DURATION = 0.5;
@@ -55,7 +56,7 @@ function mount(root) {
     status.textContent = 'running…';
     try {
       const study = await runStudy((text) => (status.textContent = text));
-      root.querySelector('.accuracy-live').replaceChildren(plot(study.integrators, study.runs));
+      root.querySelector('.accuracy-live').replaceChildren(plot(study.integrators, study.runs), runsTable(study.runs));
       status.textContent =
         `${study.robot}: reference self-check (halving its step) ${study.selfError.toExponential(1)} rad; ` +
         `unstable: ${study.runs.filter((r) => !r.stable).map((r) => `${r.label} ${r.at}`).join(', ') || 'none'}; ` +
@@ -129,14 +130,24 @@ function msPerStep(robot, setup, options, dt) {
 }
 
 const maxAbsDifference = (a, b) => Math.max(...a.map((v, i) => Math.abs(v - b[i])));
-const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
+// Lets the page draw the status and handle input between runs. A message on a channel,
+// not requestAnimationFrame or setTimeout: a page that is not visible gets no animation
+// frames and throttled timers, and the study would stall there.
+const nextTask = () => new Promise((resolve) => {
+  const { port1, port2 } = new MessageChannel();
+  port1.onmessage = () => {
+    port1.close();
+    resolve();
+  };
+  port2.postMessage(null);
+});
 
 async function runStudy(report) {
   const wall0 = performance.now();
   const setup = await loadRobot();
   try {
     report('reference…');
-    await nextFrame();
+    await nextTask();
     const ref = endState(setup.robot, setup, { integrator: 'rk4' }, REFERENCE_MS / 1000).q;
     const half = endState(setup.robot, setup, { integrator: 'rk4' }, REFERENCE_MS / 2000).q;
     if (!ref || !half) throw new Error('the RK4 reference did not stay finite');
@@ -144,13 +155,13 @@ async function runStudy(report) {
     for (const { integrator, ms, point, options } of plannedRuns(setup.integrators)) {
       const at = isAdaptive(integrator.name) ? `rtol ${point}` : `${ms} ms`;
       report(`${integrator.label} at ${at}…`);
-      await nextFrame();
+      await nextTask();
       const dt = ms / 1000;
       const { q } = endState(setup.robot, setup, options, dt);
       const error = q && q.every(Number.isFinite) ? maxAbsDifference(q, ref) : Infinity;
       const perStep = msPerStep(setup.robot, setup, options, dt);
       runs.push({ integrator: integrator.name, label: integrator.label, color: integrator.color, ms, point, at, error,
-        stable: error <= UNSTABLE_ERROR, cost: perStep / 1000 / dt });
+        stable: error <= UNSTABLE_ERROR, msPerStep: perStep, cost: perStep / 1000 / dt });
     }
     markPareto(runs.filter((r) => r.stable));
     return { robot: setup.name, integrators: setup.integrators, runs, selfError: maxAbsDifference(ref, half),
@@ -211,6 +222,17 @@ function plot(integrators, runs) {
   svg.append(text(W - R + 12, below + 26, 'labels: dt in ms,', { fill: '#555' }));
   svg.append(text(W - R + 12, below + 40, 'adaptive: rtol', { fill: '#555' }));
   return svg;
+}
+
+// Every run of the live study as a table, as the native one beside it.
+function runsTable(runs) {
+  const table = document.createElement('table');
+  table.className = 'accuracy-live-table';
+  table.innerHTML = '<tr><th>integrator</th><th>step</th><th>error (rad)</th><th>µs/step</th><th>cost (s/s)</th></tr>' +
+    runs.map((r) => `<tr><td>${r.label}</td><td>${r.at}</td>` +
+      `<td>${r.stable ? r.error.toExponential(1) : 'unstable'}</td>` +
+      `<td>${(r.msPerStep * 1000).toFixed(1)}</td><td>${r.cost.toExponential(1)}</td></tr>`).join('');
+  return table;
 }
 
 function el(name, attributes) {
