@@ -17,6 +17,10 @@ const RTOLS = [1e-3, 1e-5, 1e-7, 1e-9];
 const REFERENCE_MS = 0.125;
 const TIMING_RUNS = 3;
 const TIMING_STEPS = 200;
+// A timed run steps on, TIMING_STEPS at a time, until it has taken this long: far above
+// the browser's timer resolution (performance.now() is coarsened to 0.1 ms without
+// cross-origin isolation), so that even a tiny robot's time per step is not 0.
+const TIMING_MIN_MS = 5;
 const UNSTABLE_ERROR = 1; // rad: larger errors (or NaN) are reported as unstable
 // Names and colours the panel knows; any other integrator the module offers is plotted
 // under its own name in grey.
@@ -106,7 +110,9 @@ function endState(robot, setup, options, dt) {
   }
 }
 
-// Median over TIMING_RUNS runs of TIMING_STEPS steps of ms per step.
+// Median over TIMING_RUNS runs of ms per step, each run TIMING_STEPS steps at a time until
+// it took TIMING_MIN_MS (or diverged: then the time per step taken, 0 when below the
+// timer's resolution).
 function msPerStep(robot, setup, options, dt) {
   const sim = robot.createSimulator(options);
   const samples = [];
@@ -116,7 +122,9 @@ function msPerStep(robot, setup, options, dt) {
       for (const [direction, mode] of setup.held) sim.setDirection(direction, mode);
       const t0 = performance.now();
       try {
-        sim.step(TIMING_STEPS, dt);
+        do {
+          sim.step(TIMING_STEPS, dt);
+        } while (performance.now() - t0 < TIMING_MIN_MS);
       } catch {
         // a diverging run stops early; its time per step taken still counts
       }
@@ -181,7 +189,9 @@ function markPareto(points) {
 // Log-log error (rad) against cost (s per simulated s), as the native SVG.
 function plot(integrators, runs) {
   const W = 580, H = 320, L = 64, R = 190, T = 12, B = 44;
-  const shown = runs.filter((r) => r.stable && r.error > 0);
+  // Only positive finite values have a place on log axes (a range of decades from -Infinity
+  // would never end).
+  const shown = runs.filter((r) => r.stable && r.error > 0 && r.cost > 0 && Number.isFinite(r.cost));
   const decades = (values) => {
     const lo = Math.floor(Math.log10(Math.min(...values)));
     return [lo, Math.max(lo + 1, Math.ceil(Math.log10(Math.max(...values))))];

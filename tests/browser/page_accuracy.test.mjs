@@ -1,6 +1,8 @@
 // The accuracy panel studies an own URDF (issue 17), in Chromium: a three-joint arm
 // written here, picked with the file input, is studied by the panel: every run has a
-// finite cost, every stable run a finite error, RK4's error falls as its step shrinks,
+// finite cost (positive for a stable run: its timing is not lost below the timer's
+// resolution, where a cost of 0 once sent the plot's log axis looping from -Infinity),
+// every stable run a finite error, RK4's error falls as its step shrinks,
 // the reference's self-check is finite and below RK4's smallest-step error; no console
 // errors. The study runs while the page gets no animation frames (as a hidden page
 // does), and the page steps on once they are back.
@@ -81,7 +83,9 @@ test('the accuracy panel studies an own URDF', async (t) => {
       // 5 steps per fixed-step integrator, 4 tolerances for the adaptive one.
       assert.equal(runs.length, integrators.filter((n) => n !== 'dormand_prince').length * 5 + 4);
       for (const r of runs) {
-        assert.ok(Number.isFinite(r.cost) && r.cost > 0, `${r.integrator} at ${r.step}: cost ${r.cost}`);
+        // A diverged run's time per step taken may be below the timer's resolution.
+        const least = Number.isFinite(r.error) ? Number.MIN_VALUE : 0;
+        assert.ok(Number.isFinite(r.cost) && r.cost >= least, `${r.integrator} at ${r.step}: cost ${r.cost}`);
         assert.ok(Number.isFinite(r.usPerStep) && r.usPerStep >= 0, `${r.integrator} at ${r.step}: ${r.usPerStep} µs/step`);
         assert.ok(r.error === Infinity || (Number.isFinite(r.error) && r.error >= 0), `${r.integrator} at ${r.step}: error ${r.error}`);
       }
@@ -92,6 +96,7 @@ test('the accuracy panel studies an own URDF', async (t) => {
       }
       assert.ok(selfError < rk4.at(-1).error, `self-check ${selfError} against RK4 at 0.5 ms ${rk4.at(-1).error}`);
       assert.ok(circles >= runs.filter((r) => Number.isFinite(r.error)).length, `${circles} points plotted`);
+      t.diagnostic(status);
       t.diagnostic(`RK4 errors ${rk4.map((r) => `${r.step}: ${r.error}`).join(', ')}; self-check ${selfError}`);
     });
 
