@@ -6,7 +6,8 @@
 // directions and the simulator's default effects and policy; error = max|q(T) - q_ref(T)|
 // (rad) against RK4 at 0.125 ms (whose own error, the change when its step is halved, is
 // shown), cost = median of 3 timed runs per step. Beside it: the native figures of the
-// README (docs/accuracy/arm7). Nothing runs until the button is pressed.
+// README (docs/accuracy/arm7). The live runs are plotted and listed in a table. Nothing
+// runs until the button is pressed.
 import { isAdaptive } from './settings.js';
 
 const DURATION = 0.5;
@@ -16,6 +17,10 @@ const RTOLS = [1e-3, 1e-5, 1e-7, 1e-9];
 const REFERENCE_MS = 0.125;
 const TIMING_RUNS = 3;
 const TIMING_STEPS = 200;
+// A timed run steps on, TIMING_STEPS at a time, until it has taken this long: far above
+// the browser's timer resolution (performance.now() is coarsened to 0.1 ms without
+// cross-origin isolation), so that even a tiny robot's time per step is not 0.
+const TIMING_MIN_MS = 5;
 const UNSTABLE_ERROR = 1; // rad: larger errors (or NaN) are reported as unstable
 // Names and colours the panel knows; any other integrator the module offers is plotted
 // under its own name in grey.
@@ -55,7 +60,7 @@ function mount(root) {
     status.textContent = 'running…';
     try {
       const study = await runStudy((text) => (status.textContent = text));
-      root.querySelector('.accuracy-live').replaceChildren(plot(study.integrators, study.runs));
+      root.querySelector('.accuracy-live').replaceChildren(plot(study.integrators, study.runs), runsTable(study.runs));
       status.textContent =
         `${study.robot}: reference self-check (halving its step) ${study.selfError.toExponential(1)} rad; ` +
         `unstable: ${study.runs.filter((r) => !r.stable).map((r) => `${r.label} ${r.at}`).join(', ') || 'none'}; ` +
@@ -105,7 +110,9 @@ function endState(robot, setup, options, dt) {
   }
 }
 
-// Median over TIMING_RUNS runs of TIMING_STEPS steps of ms per step.
+// Median over TIMING_RUNS runs of ms per step, each run TIMING_STEPS steps at a time until
+// it took TIMING_MIN_MS (or diverged: then the time per step taken, 0 when below the
+// timer's resolution).
 function msPerStep(robot, setup, options, dt) {
   const sim = robot.createSimulator(options);
   const samples = [];
@@ -115,7 +122,9 @@ function msPerStep(robot, setup, options, dt) {
       for (const [direction, mode] of setup.held) sim.setDirection(direction, mode);
       const t0 = performance.now();
       try {
-        sim.step(TIMING_STEPS, dt);
+        do {
+          sim.step(TIMING_STEPS, dt);
+        } while (performance.now() - t0 < TIMING_MIN_MS);
       } catch {
         // a diverging run stops early; its time per step taken still counts
       }
@@ -129,14 +138,24 @@ function msPerStep(robot, setup, options, dt) {
 }
 
 const maxAbsDifference = (a, b) => Math.max(...a.map((v, i) => Math.abs(v - b[i])));
-const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
+// Lets the page draw the status and handle input between runs. A message on a channel,
+// not requestAnimationFrame or setTimeout: a page that is not visible gets no animation
+// frames and throttled timers, and the study would stall there.
+const nextTask = () => new Promise((resolve) => {
+  const { port1, port2 } = new MessageChannel();
+  port1.onmessage = () => {
+    port1.close();
+    resolve();
+  };
+  port2.postMessage(null);
+});
 
 async function runStudy(report) {
   const wall0 = performance.now();
   const setup = await loadRobot();
   try {
     report('reference…');
-    await nextFrame();
+    await nextTask();
     const ref = endState(setup.robot, setup, { integrator: 'rk4' }, REFERENCE_MS / 1000).q;
     const half = endState(setup.robot, setup, { integrator: 'rk4' }, REFERENCE_MS / 2000).q;
     if (!ref || !half) throw new Error('the RK4 reference did not stay finite');
@@ -144,13 +163,13 @@ async function runStudy(report) {
     for (const { integrator, ms, point, options } of plannedRuns(setup.integrators)) {
       const at = isAdaptive(integrator.name) ? `rtol ${point}` : `${ms} ms`;
       report(`${integrator.label} at ${at}…`);
-      await nextFrame();
+      await nextTask();
       const dt = ms / 1000;
       const { q } = endState(setup.robot, setup, options, dt);
       const error = q && q.every(Number.isFinite) ? maxAbsDifference(q, ref) : Infinity;
       const perStep = msPerStep(setup.robot, setup, options, dt);
       runs.push({ integrator: integrator.name, label: integrator.label, color: integrator.color, ms, point, at, error,
-        stable: error <= UNSTABLE_ERROR, cost: perStep / 1000 / dt });
+        stable: error <= UNSTABLE_ERROR, msPerStep: perStep, cost: perStep / 1000 / dt });
     }
     markPareto(runs.filter((r) => r.stable));
     return { robot: setup.name, integrators: setup.integrators, runs, selfError: maxAbsDifference(ref, half),
@@ -170,7 +189,9 @@ function markPareto(points) {
 // Log-log error (rad) against cost (s per simulated s), as the native SVG.
 function plot(integrators, runs) {
   const W = 580, H = 320, L = 64, R = 190, T = 12, B = 44;
-  const shown = runs.filter((r) => r.stable && r.error > 0);
+  // Only positive finite values have a place on log axes (a range of decades from -Infinity
+  // would never end).
+  const shown = runs.filter((r) => r.stable && r.error > 0 && r.cost > 0 && Number.isFinite(r.cost));
   const decades = (values) => {
     const lo = Math.floor(Math.log10(Math.min(...values)));
     return [lo, Math.max(lo + 1, Math.ceil(Math.log10(Math.max(...values))))];
@@ -211,6 +232,17 @@ function plot(integrators, runs) {
   svg.append(text(W - R + 12, below + 26, 'labels: dt in ms,', { fill: '#555' }));
   svg.append(text(W - R + 12, below + 40, 'adaptive: rtol', { fill: '#555' }));
   return svg;
+}
+
+// Every run of the live study as a table, as the native one beside it.
+function runsTable(runs) {
+  const table = document.createElement('table');
+  table.className = 'accuracy-live-table';
+  table.innerHTML = '<tr><th>integrator</th><th>step</th><th>error (rad)</th><th>µs/step</th><th>cost (s/s)</th></tr>' +
+    runs.map((r) => `<tr><td>${r.label}</td><td>${r.at}</td>` +
+      `<td>${r.stable ? r.error.toExponential(1) : 'unstable'}</td>` +
+      `<td>${(r.msPerStep * 1000).toFixed(1)}</td><td>${r.cost.toExponential(1)}</td></tr>`).join('');
+  return table;
 }
 
 function el(name, attributes) {

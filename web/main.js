@@ -14,7 +14,8 @@ import { ForceArrows } from './force_arrows.js';
 import { JointSliders } from './joint_sliders.js';
 import { LinkHover } from './link_hover.js';
 import { LinkSelect } from './link_select.js';
-import { ServedFiles } from './mesh_files.js';
+import { PickedFiles, ServedFiles } from './mesh_files.js';
+import { keepMeshes, openKeptMeshes } from './mesh_share.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
@@ -22,7 +23,7 @@ import { DIRECTIONS, GRAVITY, checkDirection, defaultSettings, formatHash, hashO
 import { Simulation } from './simulation.js';
 import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
-import { LINK_CHARACTERS, openSharedUrdf, shareUrdf } from './urdf_share.js';
+import { LINK_CHARACTERS, openSharedUrdf, shareUrdf, urdfKey } from './urdf_share.js';
 import { urdfVisuals } from './urdf_visuals.js';
 import './accuracy_panel.js';
 
@@ -65,8 +66,10 @@ const page = {
   // The last own URDF loaded ({name: CUSTOM, text, root, tip, fileName, files}): the robot
   // list's "own URDF" entry reopens it.
   ownSource: null,
-  // How the link holds the own URDF shown: {form: 'link' | 'local', ref, characters}, or
-  // {error}; null while it is worked out, and for a robot of the list.
+  // How the link holds the own URDF shown: {form: 'link' | 'local', ref, characters, key,
+  // meshes: {named, files, bytes, error}} (web/urdf_share.js, web/mesh_share.js), or
+  // {error}; null while it is worked out (its meshes are read first), and for a robot of
+  // the list.
   share: null,
 }
 
@@ -440,7 +443,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   page.lastFrame = performance.now() - 1000 * page.settings.dt;
   page.lastSolveTiming = -Infinity;
   page.rate = { wall: 0, sim: 0, shown: null };
-  showLook(sim, source);
+  const looked = showLook(sim, source);
   arrows.setRobot(reachOf(page.links), Math.hypot(...GRAVITY) * Math.max(sim.mass, MIN_MASS));
   torqueBars.setRobot(sim.robot);
   sliders.setRobot(sim.robot, sim.q);
@@ -451,7 +454,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   errorBox.hidden = true;
   if (source.name === CUSTOM) {
     page.ownSource = source;
-    shareOwn(sim, source);
+    shareOwn(sim, source, looked);
   } else {
     page.settings.own = null;
     page.share = null;
@@ -461,12 +464,17 @@ function loadRobot(source, { keepDirections = false } = {}) {
 }
 
 // Puts the own URDF in the page's link (in it, or kept in this browser's storage and named
-// by it: web/urdf_share.js) and says on the page which.
-function shareOwn(sim, source) {
+// by it: web/urdf_share.js) once its meshes are read (looked: the promise of their
+// outcomes), keeps the mesh files read in this browser's storage under the URDF's key
+// (web/mesh_share.js), and says on the page which.
+function shareOwn(sim, source, looked) {
   page.settings.own = null;
   page.share = null;
   showShareNote(source);
-  shareUrdf(source.text).then((share) => {
+  shareUrdf(source.text).then(async (share) => {
+    const meshes = await looked;
+    if (page.sim !== sim || !meshes) return;
+    share.meshes = await keepOwnMeshes(share.key, source, meshes);
     if (page.sim !== sim) return;
     page.settings.own = { ref: share.ref, root: sim.robot.root, tip: sim.robot.tip };
     page.share = share;
@@ -479,6 +487,29 @@ function shareOwn(sim, source) {
   });
 }
 
+// -> {named: mesh visuals, files: mesh and texture files kept, bytes, error}. A URDF with
+// meshes keeps the files they were read from; with none of them read, the key forgets
+// its files (the link then shows what this page shows); without meshes nothing changes.
+async function keepOwnMeshes(key, source, meshes) {
+  const kept = { named: meshes.length, files: 0, bytes: 0, error: source.meshesUnread ?? null };
+  if (!meshes.length || kept.error || !(source.files instanceof PickedFiles)) return kept;
+  try {
+    return { ...kept, ...(await keepMeshes(key, source.files)) };
+  } catch (err) {
+    return { ...kept, error: err.message };
+  }
+}
+
+// What the link keeps of an own URDF's meshes, in words (empty without meshes).
+function meshesNote({ named, files, bytes, error }, key) {
+  if (!named) return '';
+  if (error) return ` Its mesh files are not kept for the link (${error}): it reopens without them.`;
+  if (!files) return ' None of its mesh files was read here, so the link reopens it without them.';
+  return ` Its ${files} mesh file${files > 1 ? 's' : ''} (${(bytes / 1024).toFixed(1)} kB) ${files > 1 ? 'are' : 'is'} ` +
+    `kept in this browser's storage (IndexedDB, key ${key}): the link shows ${files > 1 ? 'them' : 'it'} in this browser only, ` +
+    'another draws a stick figure instead.';
+}
+
 function showShareNote(source) {
   const note = document.getElementById('share-note');
   note.hidden = source.name !== CUSTOM;
@@ -488,11 +519,11 @@ function showShareNote(source) {
   note.classList.toggle('share-failed', Boolean(s?.error));
   note.textContent = !s ? `${name}: preparing its link…`
     : s.error ? `${name}: ${s.error}.`
-      : s.form === 'link' ? `${name} travels in this page's link (${s.characters} characters, compressed): ` +
-        'the address opens it in any browser. Mesh files are not in the link.'
+      : (s.form === 'link' ? `${name} travels in this page's link (${s.characters} characters, compressed): ` +
+        'the address opens it in any browser.'
         : `${name} is kept in this browser's storage and this page's link names it (${s.ref}): the address ` +
           `reopens it in this browser only (compressed it takes ${s.characters} characters, more than the ` +
-          `${LINK_CHARACTERS} a link carries). Mesh files are not kept.`;
+          `${LINK_CHARACTERS} a link carries).`) + meshesNote(s.meshes, s.key);
 }
 
 // The robot's size for the arrows' scale: the farthest link origin from the root at the
@@ -504,6 +535,7 @@ function reachOf(links) {
 
 // Builds the robot in the view from its URDF's visuals (meshes from source.files) and
 // says on the page which meshes were not found or not read, and which visuals not parsed.
+// Returns the promise of the meshes' outcomes (null when another robot came first).
 function showLook(sim, source) {
   let look = null;
   let problems = [];
@@ -517,10 +549,11 @@ function showLook(sim, source) {
   }
   page.look = { meshes: null, problems };
   showLookNote();
-  view.setChain(page.links, sim.movable, sim.parents, look).then((meshes) => {
-    if (!meshes || page.sim !== sim) return;  // another robot came first
+  return view.setChain(page.links, sim.movable, sim.parents, look).then((meshes) => {
+    if (!meshes || page.sim !== sim) return null;  // another robot came first
     page.look.meshes = meshes;
     showLookNote();
+    return meshes;
   });
 }
 
@@ -690,11 +723,24 @@ window.addEventListener('hashchange', () => {
   else writeHash();
 });
 
-// An own URDF named by an edited link (urdf=, root=, tip=), with the link's directions.
+// The source of the own URDF a link names (urdf=, root=, tip=), with the mesh files this
+// browser keeps for it (web/mesh_share.js; none in another browser). Throws when the URDF
+// cannot be had; storage that cannot be read leaves the meshes out (meshesUnread says why).
+async function linkedSource(own) {
+  const text = await openSharedUrdf(own.ref);
+  const source = { name: CUSTOM, text, root: own.root, tip: own.tip, fileName: LINKED_NAME, files: null };
+  try {
+    source.files = await openKeptMeshes(await urdfKey(text));
+  } catch (err) {
+    source.meshesUnread = `this browser's storage could not be read: ${err.message}`;
+  }
+  return source;
+}
+
+// An own URDF named by an edited link, with the link's directions.
 async function openLinkedUrdf(own) {
   try {
-    const text = await openSharedUrdf(own.ref);
-    loadRobot({ name: CUSTOM, text, root: own.root, tip: own.tip, fileName: LINKED_NAME }, { keepDirections: true });
+    loadRobot(await linkedSource(own), { keepDirections: true });
   } catch (err) {
     showError(`the own URDF of the link: ${err.message}`);
     writeHash();
@@ -721,8 +767,8 @@ async function readIndexAndRobot() {
     const own = hashOwn(location.hash);
     try {
       if (!own) throw new Error(`robot=${CUSTOM} needs urdf=, root= and tip=`);
-      const text = await openSharedUrdf(own.ref);
-      return { index, problems, entry: { name: CUSTOM, root: own.root, tip: own.tip, fileName: LINKED_NAME }, text };
+      const { text, ...entry } = await linkedSource(own);
+      return { index, problems, entry, text };
     } catch (err) {
       problems.push(`the own URDF of the link: ${err.message}`);
       robot = index.default;

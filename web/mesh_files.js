@@ -6,15 +6,25 @@
 // Among the user's files, the one whose path shares the longest tail of folder names
 // with the filename wins (its file name at least must match): a folder picked at any
 // level, or loose files, then still resolve. A mesh's textures are looked up the same
-// way, relative to the mesh's folder.
+// way, relative to the mesh's folder. The files a robot's looks were read from are what a
+// share link keeps of them (web/mesh_share.js).
 
 // files: [{path: 'robot/meshes/a.stl' (folder-relative, '/'-separated), file: File}];
 // urdfPath: the URDF's own path among them.
 export class PickedFiles {
   constructor(files, urdfPath) {
     this.files = files.map(({ path, file }) => ({ parts: splitPath(path), file }));
+    this.urdfPath = urdfPath;
     this.urdfFolder = splitPath(urdfPath).slice(0, -1);
     this.objectUrls = new Map();
+    // The files read so far, meshes and textures.
+    this.used = new Set();
+  }
+
+  // [{path, file}] of the files read so far, in the order given: among them alone, every
+  // filename read resolves to the same file again.
+  usedFiles() {
+    return this.files.filter((f) => this.used.has(f)).map((f) => ({ path: f.parts.join('/'), file: f.file }));
   }
 
   // The picked file {parts, file} at the path parts `wanted`, or the one sharing the
@@ -38,7 +48,9 @@ export class PickedFiles {
   // The mesh's bytes, or null when no picked file matches.
   async read(filename) {
     const hit = this.match(meshParts(filename, this.urdfFolder));
-    return hit ? hit.file.arrayBuffer() : null;
+    if (!hit) return null;
+    this.used.add(hit);
+    return hit.file.arrayBuffer();
   }
 
   // A URL the browser can load a mesh's texture from (a blob: URL of the picked file),
@@ -48,6 +60,7 @@ export class PickedFiles {
     const folder = mesh ? mesh.parts.slice(0, -1) : this.urdfFolder;
     const hit = this.match(normalize([...folder, ...splitPath(ref.replace(/^file:\/\//i, ''))]));
     if (!hit) return null;
+    this.used.add(hit);
     if (!this.objectUrls.has(hit.file)) this.objectUrls.set(hit.file, URL.createObjectURL(hit.file));
     return this.objectUrls.get(hit.file);
   }

@@ -2,7 +2,8 @@
 // the link itself: urdf=deflate:<base64url of its deflate-raw bytes> (CompressionStream),
 // which opens it in any browser. A longer one is kept in this browser's localStorage under
 // its hash, and the link names it: urdf=local:<first 16 hex digits of its SHA-256>, which
-// reopens it in this browser only. Mesh files are never in the link.
+// reopens it in this browser only. Its mesh files are never in the link: they are kept in
+// this browser's IndexedDB under the same key (web/mesh_share.js).
 
 // Longest compressed URDF, in base64url characters, that a link carries: links of a few
 // kilobytes pass through mail and chat programs intact.
@@ -11,21 +12,26 @@ const STORAGE_PREFIX = 'achd:urdf:';
 const CARRIED = 'deflate:';
 const KEPT = 'local:';
 
+// The key a URDF is kept under: the first 16 hex digits of the SHA-256 of its text.
+export async function urdfKey(text) {
+  const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', new TextEncoder().encode(text)));
+  return Array.from(digest.subarray(0, 8), (b) => b.toString(16).padStart(2, '0')).join('');
+}
+
 // {ref: the hash's urdf= value, form: 'link' | 'local', characters: length of the
-// compressed text in base64url}. Throws when the URDF is too long for a link and the
-// browser's storage refuses it.
+// compressed text in base64url, key: urdfKey(text)}. Throws when the URDF is too long for
+// a link and the browser's storage refuses it.
 export async function shareUrdf(text) {
   const packed = toBase64url(await transform(new TextEncoder().encode(text), new CompressionStream('deflate-raw')));
-  if (packed.length <= LINK_CHARACTERS) return { ref: CARRIED + packed, form: 'link', characters: packed.length };
-  const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', new TextEncoder().encode(text)));
-  const key = Array.from(digest.subarray(0, 8), (b) => b.toString(16).padStart(2, '0')).join('');
+  const key = await urdfKey(text);
+  if (packed.length <= LINK_CHARACTERS) return { ref: CARRIED + packed, form: 'link', characters: packed.length, key };
   try {
     localStorage.setItem(STORAGE_PREFIX + key, text);
   } catch (err) {
     throw new Error(`it is too long for a link (${packed.length} characters compressed, at most ${LINK_CHARACTERS}) ` +
       `and this browser's storage refused it (${err.name}): it cannot be shared by link`);
   }
-  return { ref: KEPT + key, form: 'local', characters: packed.length };
+  return { ref: KEPT + key, form: 'local', characters: packed.length, key };
 }
 
 // The URDF text a urdf= value names; throws an Error saying why it cannot be had.
