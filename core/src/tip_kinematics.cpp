@@ -40,7 +40,7 @@ TipState link_state(const Model& model, const std::vector<Transform>& X0, const 
                     int link, const Vector3& point) {
   const Link& l = model.links[link];
   Transform at = l.offset;
-  at.p += l.offset.R * point;
+  if (point.x() != 0 || point.y() != 0 || point.z() != 0) at.p += l.offset.R * point;  // (the origin: as is)
   TipState s;
   if (l.body < 0) {
     s.pose = at;

@@ -13,6 +13,9 @@
 //                                 sideways at its elbow: the constraint force and moment arrows
 //                                 at the tip (the pointer on the force showing its numbers) and
 //                                 the joint torque bars against the URDF's effort limits
+//   docs/screenshots/quadruped.png the floating quadruped standing on its four held feet under its
+//                                 PD controller, pushed sideways at a hip: each foot's
+//                                 constraint force arrow, the torque bars
 // Usage: node tests/browser/screenshots.mjs [name...]   (after the wasm build; names: the
 // files' without .png, all of them when none is given)
 import { mkdir } from 'node:fs/promises';
@@ -21,7 +24,7 @@ import { openPage } from './launch.mjs';
 const out = new URL('../../docs/screenshots/', import.meta.url);
 await mkdir(out, { recursive: true });
 const wanted = process.argv.slice(2);
-const SHOTS = ['default', 'boundary', 'robot', 'sliders', 'forces'];
+const SHOTS = ['default', 'boundary', 'robot', 'sliders', 'forces', 'quadruped'];
 for (const name of wanted) {
   if (!SHOTS.includes(name) && name !== 'held') throw new Error(`no screenshot "${name}" (${[...SHOTS, 'held'].join(', ')})`);
 }
@@ -137,5 +140,19 @@ if (want('forces')) {
     if (held.consoleErrors.length) throw new Error(`console errors: ${held.consoleErrors.join('\n')}`);
   } finally {
     await held.close();
+  }
+}
+
+if (want('quadruped')) {
+  const standing = await openPage({ viewport: { width: 1400, height: 1000 }, hash: '#robot=quadruped&integrator=rk4&dt=0.001' });
+  try {
+    const { page } = standing;
+    await page.evaluate(() => window.achdDemo.push('lf_hip', [0, 8, 0, 0, 0, 0]));
+    await page.waitForTimeout(1500);
+    await page.evaluate(() => window.achdDemo.pause());
+    await page.screenshot({ path: new URL('quadruped.png', out).pathname });
+    if (standing.consoleErrors.length) throw new Error(`console errors: ${standing.consoleErrors.join('\n')}`);
+  } finally {
+    await standing.close();
   }
 }
