@@ -272,9 +272,10 @@ export class ChainView {
   }
 
   // Moves the robot to the poses in `links`; directions: name -> mode of the selected
-  // link (links index `selected`, default the last: a chain's tip), drawn there; push: the
-  // drag line {from, to} in world coordinates, or null.
-  update(links, directions, push, selected = links.length - 1) {
+  // link (links index `selected`, default the last: a chain's tip), drawn at `at` (world,
+  // where they act; default the link's origin); push: the drag line {from, to} in world
+  // coordinates, or null.
+  update(links, directions, push, selected = links.length - 1, at = links[selected].position) {
     if (!this.enabled || !this.segments) return;
     const a = new THREE.Vector3();
     const b = new THREE.Vector3();
@@ -298,7 +299,7 @@ export class ChainView {
     }
     const tip = links[selected];
     this.tipAxes.matrix.copy(poseMatrix(tip));
-    this.glyphs.group.position.fromArray(tip.position);
+    this.glyphs.group.position.fromArray(at);
     for (const name of DIRECTIONS) {
       const glyph = this.glyphs.byName[name];
       const mode = directions[name];

@@ -1,9 +1,11 @@
 // Choosing the link whose directions the controls show: a click on a link (a press and
-// release without moving the pointer, so that orbiting and pushing stay drags) selects it.
+// release without moving the pointer, so that orbiting and pushing stay drags) selects it;
+// with Shift held, the directions also act at the point clicked instead of the origin.
 const CLICK_PIXELS = 4;
 
 export class LinkSelect {
-  // view: ChainView; onSelect(link): called with the FK index (root = 0) of the link clicked.
+  // view: ChainView; onSelect(link, point): called with the FK index (root = 0) of the link
+  // clicked and, with Shift, the world point clicked (a THREE.Vector3), else null.
   constructor(view, onSelect) {
     this.press = null;
     if (!view.enabled) return;
@@ -16,7 +18,7 @@ export class LinkSelect {
       const p = this.press;
       this.press = null;
       if (!p?.hit || Math.hypot(e.clientX - p.x, e.clientY - p.y) > CLICK_PIXELS) return;
-      onSelect(p.hit.link);
+      onSelect(p.hit.link, e.shiftKey ? p.hit.point : null);
     }, { capture: true });
   }
 }

@@ -126,10 +126,18 @@ window.achdDemo = {
     if (!page.sim) throw new Error('achdDemo.setDirection: no robot loaded yet (await achdDemo.ready)');
     setDirection(name, mode);
   },
-  // The link whose directions the controls show and setDirection sets, as a click on it does.
-  selectLink(name) {
+  // The link whose directions the controls show and setDirection sets, as a click on it
+  // does; with `point` ([x, y, z] in the link's frame, as a Shift-click picks one) its
+  // directions act there.
+  selectLink(name, point) {
     if (!page.sim) throw new Error('achdDemo.selectLink: no robot loaded yet (await achdDemo.ready)');
-    selectLink(name);
+    selectLink(name, point);
+  },
+  // Where a link's directions act, in the base frame (world for a floating base), m.
+  pointPosition(name) {
+    if (!page.sim) throw new Error('achdDemo.pointPosition: no robot loaded yet (await achdDemo.ready)');
+    if (!page.sim.robot.linkNames.includes(name)) throw new Error(`achdDemo.pointPosition: no link "${name}"`);
+    return page.sim.pointOf(name, page.sim.links());
   },
   // A link's origin in the base frame (world for a floating base), m.
   linkPosition(name) {
@@ -246,11 +254,18 @@ const controls = new Controls({
 });
 new LinkHover(view, document.getElementById('link-label'), (link) => page.links?.[link]?.name,
   (x, y) => arrows.describe(x, y));
-new LinkSelect(view, (link) => {
+new LinkSelect(view, (link, at) => {
   const name = page.links?.[link]?.name;
   if (!page.sim || link === 0 || !name) return;  // the root takes no directions
   try {
-    selectLink(name);
+    // A Shift-click's world point, in the link's frame: p_link = R^T (p - o).
+    let point;
+    if (at) {
+      const { position: o, rotation: R } = page.links[link];
+      const d = [at.x - o[0], at.y - o[1], at.z - o[2]];
+      point = [0, 1, 2].map((j) => R[j] * d[0] + R[3 + j] * d[1] + R[6 + j] * d[2]);
+    }
+    selectLink(name, point);
   } catch (err) {
     showError(err.message);
   }
@@ -296,9 +311,11 @@ function setDirection(name, mode) {
   writeHash();
 }
 
-// The controls show (and set) the directions of `name`; the other links keep theirs.
-function selectLink(name) {
+// The controls show (and set) the directions of `name`; the other links keep theirs. With
+// a point (link frame), its directions act there.
+function selectLink(name, point) {
   page.sim.select(name);
+  if (point) page.sim.setPoint(name, point);
   page.settings.link = name === page.sim.robot.tip ? null : name;
   notice.clear();
   controls.showLost(notice.lost);
@@ -685,7 +702,7 @@ function frame() {
     }
     const p = push.current();
     view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to },
-      1 + sim.robot.linkNames.indexOf(sim.selected));
+      1 + sim.robot.linkNames.indexOf(sim.selected), sim.pointOf(sim.selected, page.links));
     view.render();
     readouts.drawCharts();
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {

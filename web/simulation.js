@@ -80,6 +80,7 @@ export class Simulation {
       this.control = source.jointControl ?? null;
       this.settings = settings;
       this.sets = new Map();  // link name -> {directions, yielding}, the selected one's in settings
+      this.points = new Map();  // link name -> [x, y, z] in its frame, where its directions act (default: origin)
       this.selected = this.robot.tip ?? this.defaultLinks[0] ?? this.robot.linkNames.at(-1);
       this.tOffset = 0;
       this.sim = null;
@@ -132,6 +133,21 @@ export class Simulation {
     Object.assign(this.settings.yielding, next.yielding);
   }
 
+  // Where link's directions act, [x, y, z] in its frame; its held directions hold there
+  // from now on.
+  setPoint(link, point) {
+    this.points.set(link, [...point]);
+    this.sim.setDirectionPoint(link, point);
+  }
+
+  // The world position of a link's directions' point (links: this state's poses, links()).
+  pointOf(link, links) {
+    const pose = links[1 + this.robot.linkNames.indexOf(link)];
+    const p = this.points.get(link) ?? [0, 0, 0];
+    const R = pose.rotation;
+    return [0, 1, 2].map((i) => pose.position[i] + R[3 * i] * p[0] + R[3 * i + 1] * p[1] + R[3 * i + 2] * p[2]);
+  }
+
   // A new robot's directions: every link free, the default links held in x, y, z (a tree
   // of the list); the selected link's set is settings'.
   defaultDirections() {
@@ -177,6 +193,7 @@ export class Simulation {
     for (const joint of Object.keys(this.settings.prescribed)) this.applyPrescribed(joint);
     if (this.control) this.sim.setJointControl({ target: this.controlTarget ?? this.q0, ...this.control });
     for (const link of this.setLinks()) {
+      if (this.points.has(link)) this.sim.setDirectionPoint(link, this.points.get(link));
       for (const name of DIRECTIONS) {
         this.applyYield(name, link);
         this.applyDirection(name, link);
@@ -327,12 +344,11 @@ export class Simulation {
     return out;
   }
 
-  // The constraint wrench of each constrained link at its origin, for the arrows:
-  // [{name, position, wrench}] (links: this state's poses, links()).
+  // The constraint wrench of each constrained link at its directions' point, for the
+  // arrows: [{name, position, wrench}] (links: this state's poses, links()).
   wrenches(links) {
     const wrenches = this.sim.constraintWrenches();
-    return Object.entries(wrenches).map(([name, wrench]) => ({
-      name, wrench, position: links[1 + this.robot.linkNames.indexOf(name)].position }));
+    return Object.entries(wrenches).map(([name, wrench]) => ({ name, wrench, position: this.pointOf(name, links) }));
   }
 
   snapshot() {
@@ -346,7 +362,7 @@ export class Simulation {
       yielding: { ...this.settings.yielding },
       // every link with a direction that is not free: {link: {directions, yielding, residuals}}
       links: Object.fromEntries(this.constrainedLinks().map((l) => [l, { ...structuredClone(this.linkSet(l)),
-        residuals: this.sim.residuals(l) }])),
+        point: this.points.get(l) ?? [0, 0, 0], residuals: this.sim.residuals(l) }])),
       prescribed: structuredClone(this.settings.prescribed),
       residuals: this.sim.residuals(this.selected),
       // of the solve at the start of the last step: nu of the selected link in direction

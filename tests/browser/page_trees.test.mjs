@@ -3,7 +3,8 @@
 // a foot in the 3D view selects it, the controls then show and set that foot's
 // directions; held alone while the other legs swing, the foot stays within 1e-6 m over
 // 2000 steps; its constraint-wrench arrow is drawn at the foot with a length that follows
-// nu; the sliders set a floating robot's joints (q behind the free joint's 7 numbers).
+// nu; a Shift-click holds a foot at the point clicked; the sliders set a floating robot's
+// joints (q behind the free joint's 7 numbers).
 // The quadruped on its four feet and the dual-arm torso holding both hands step at real
 // time (dt 1 ms, RK4, every effect, rendering on): the test records the real-time factor
 // the page shows and how many simulated seconds a wall second can step.
@@ -44,6 +45,32 @@ test('the floating quadruped on the page', async (t) => {
       for (const foot of FEET) {
         for (const d of ['x', 'y', 'z']) assert.ok(Math.abs(after.links[foot].residuals[d]) < 1e-6, `${foot} ${d}`);
       }
+    });
+
+    await t.test('a Shift-click holds a foot at the point clicked', async () => {
+      const at = await screenPoint(page, 'rf_foot');
+      await page.keyboard.down('Shift');
+      await page.mouse.click(at.x + 2, at.y + 2);
+      await page.keyboard.up('Shift');
+      let s = await state(page);
+      assert.equal(s.link, 'rf_foot');
+      for (const d of ['x', 'y', 'z']) await page.click(`#directions button[data-direction="${d}"][data-mode="hold"]`);
+      s = await state(page);
+      const point = s.links.rf_foot.point;
+      assert.ok(Math.hypot(...point) > 1e-4 && Math.hypot(...point) < 0.05, `the point clicked: ${point}`);
+      const held0 = await page.evaluate(() => window.achdDemo.pointPosition('rf_foot'));
+      const origin0 = await page.evaluate(() => window.achdDemo.linkPosition('rf_foot'));
+      await page.evaluate(() => window.achdDemo.step(1000));
+      s = await state(page);
+      const held = await page.evaluate(() => window.achdDemo.pointPosition('rf_foot'));
+      const drift = Math.hypot(...held.map((x, i) => x - held0[i]));
+      t.diagnostic(`the point clicked on rf_foot, ${point.map((x) => x.toFixed(4))} in its frame, drifted ${drift.toExponential(2)} m`);
+      assert.ok(drift < 1e-6, `the held point moved ${drift} m`);
+      for (const d of ['x', 'y', 'z']) assert.ok(Math.abs(s.residuals[d]) < 1e-6, d);
+      const f = await page.evaluate(() => window.achdDemo.forces());
+      assert.ok(Math.hypot(...f.links.rf_foot.force.from.map((x, i) => x - held[i])) < 1e-6, 'the arrow starts at the point');
+      const origin = await page.evaluate(() => window.achdDemo.linkPosition('rf_foot'));
+      t.diagnostic(`its origin moved ${Math.hypot(...origin.map((x, i) => x - origin0[i])).toExponential(2)} m`);
     });
 
     await t.test('a click selects a foot; held alone, it stays while the other legs move', async () => {
