@@ -61,6 +61,7 @@ std::string text(double x) {
 void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
   const int n = model_.num_joints();
   const double rtol = options_.rtol, atol = options_.atol;
+  const Eigen::Index na = held_angle_count();  // the held angles in use
   stage_ = 0;
   evaluate(q, qd, angles_, t, w_n, first, k_angle_[0]);
   // No substep size helps when the acceleration at the start is not finite.
@@ -96,15 +97,15 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
       HeldAngles& as = s == 6 ? angle_next_ : angle_stage_;
       qs = q;
       qds = qd;
-      as = angles_;
+      as.head(na) = angles_.head(na);
       for (int j = 0; j < s; ++j) {
         if (kA[s][j] == 0) continue;
         const double c = hs * kA[s][j];
         qs += c * k_q_[j];
         qds += c * k_qd_[j];
-        as += c * k_angle_[j];
+        as.head(na) += c * k_angle_[j].head(na);
       }
-      finite = qs.allFinite() && qds.allFinite() && as.allFinite();
+      finite = qs.allFinite() && qds.allFinite() && as.head(na).allFinite();
       if (!finite) break;  // rejected below: a smaller substep
       evaluate(qs, qds, as, t + done + kC[s] * hs, w_n, stage_data_, k_angle_[s]);
       configuration_rate(model_, qs, qds, k_q_[s]);
@@ -147,7 +148,7 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
       q = q_next_;  // copies: q and qd keep their buffers (the JS API views them)
       normalise_configuration(model_, q);
       qd = qd_next_;
-      angles_ = angle_next_;
+      angles_.head(na) = angle_next_.head(na);
       // FSAL: k_7 at x' is k_1 of the next substep.
       k_q_[0].swap(k_q_[6]);
       k_qd_[0].swap(k_qd_[6]);

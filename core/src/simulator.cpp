@@ -258,7 +258,7 @@ void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_
   if (!q_at.allFinite() || !qd_at.allFinite())
     throw Error("the stage's state is not finite (" + non_finite_joint(model_, q_at, qd_at) + ")");
   body_motion(model_, q_at, qd_at, X0_, r_, v_);
-  angle_rates.setZero();  // sets with no active direction have none
+  angle_rates.head(held_angle_count()).setZero();  // sets with no active direction have none
   for (size_t b = 0; b < case_.constraints.size(); ++b) {
     const int s = block_set_[b];
     const LinkDirections& set = sets_[s];
@@ -323,13 +323,13 @@ void Simulator::step(double dt) {
   // The state a failed step returns to.
   q0_ = q;
   qd0_ = qd;
-  angle0_ = angles_;
+  angle0_.head(held_angle_count()) = angles_.head(held_angle_count());
   const std::int64_t substeps0 = substeps_, rejected0 = rejected_substeps_;
   Data& first = data_[1 - current_];
   const auto undo = [&] {
     q = q0_;
     qd = qd0_;
-    angles_ = angle0_;
+    angles_.head(held_angle_count()) = angle0_.head(held_angle_count());
     substeps_ = substeps0;
     rejected_substeps_ = rejected0;
     implicit_solve_ = false;
@@ -350,7 +350,7 @@ void Simulator::step(double dt) {
     throw step_failure(dt, e.what());
   }
   bool finite = q.allFinite() && qd.allFinite();
-  finite = finite && angles_.allFinite();
+  finite = finite && angles_.head(held_angle_count()).allFinite();
   if (!finite) {
     std::string cause = non_finite_joint(model_, q, qd);
     for (int j = 0; j < static_cast<int>(sets_.size() * kNumDirections) && cause.empty(); ++j)
@@ -416,7 +416,8 @@ void Simulator::step_explicit_euler(double dt, double w_n, Data& first) {
   evaluate(q, qd, angles_, t, w_n, first, k_angle_[0]);
   integrate(model_, q, qd, dt, q);
   qd += dt * first.qdd;
-  angles_ += dt * k_angle_[0];
+  const Eigen::Index na = held_angle_count();
+  angles_.head(na) += dt * k_angle_[0].head(na);
 }
 
 // qd_{k+1} = qd_k + dt qdd(q_k, qd_k);  q_{k+1} = q_k + dt qd_{k+1}; the held angles
@@ -441,6 +442,7 @@ void Simulator::step_semi_implicit_euler(double dt, double w_n, Data& first) {
 // x = (q0_, qd0_, angle0_), set by step().
 void Simulator::step_rk4(double dt, double w_n, Data& first) {
   static constexpr double kStageStep[4] = {0, 0.5, 0.5, 1.0};
+  const Eigen::Index na = held_angle_count();  // the held angles in use
   for (int s = 0; s < 4; ++s) {
     stage_ = s;
     Data& out = s == 0 ? first : stage_data_;
@@ -450,7 +452,7 @@ void Simulator::step_rk4(double dt, double w_n, Data& first) {
       const double h = kStageStep[s] * dt;
       q_stage_ = q0_ + h * k_q_[s - 1];
       qd_stage_ = qd0_ + h * k_qd_[s - 1];
-      angle_stage_ = angle0_ + h * k_angle_[s - 1];
+      angle_stage_.head(na) = angle0_.head(na) + h * k_angle_[s - 1].head(na);
       evaluate(q_stage_, qd_stage_, angle_stage_, t + h, w_n, out, k_angle_[s]);
     }
     configuration_rate(model_, s == 0 ? q0_ : q_stage_, s == 0 ? qd0_ : qd_stage_, k_q_[s]);
@@ -460,7 +462,8 @@ void Simulator::step_rk4(double dt, double w_n, Data& first) {
   q = q0_ + w * (k_q_[0] + 2 * k_q_[1] + 2 * k_q_[2] + k_q_[3]);
   normalise_configuration(model_, q);  // a floating base's quaternion back to unit length
   qd = qd0_ + w * (k_qd_[0] + 2 * k_qd_[1] + 2 * k_qd_[2] + k_qd_[3]);
-  angles_ = angle0_ + w * (k_angle_[0] + 2 * k_angle_[1] + 2 * k_angle_[2] + k_angle_[3]);
+  angles_.head(na) =
+      angle0_.head(na) + w * (k_angle_[0].head(na) + 2 * k_angle_[1].head(na) + 2 * k_angle_[2].head(na) + k_angle_[3].head(na));
 }
 
 // Report and Clamp: list the joints at or past a limit (Clamp has put them on it, see

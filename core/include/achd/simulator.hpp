@@ -271,6 +271,9 @@ class Simulator {
   // (the prescribed joints' accelerations are their trajectories' then).
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const HeldAngles& angles, double t_at,
                 double w_n, Data& out, HeldAngles& angle_rates);
+  // The held angles in use: kNumDirections per set (angles_ and the stage vectors hold
+  // room for every link; the integrators work on this many).
+  Eigen::Index held_angle_count() const { return static_cast<Eigen::Index>(kNumDirections * sets_.size()); }
   // The tip's link index; an achd::Error naming `what` on a tree.
   int tip_link(const std::string& what) const;
   // The set of link `link`, created (in the order of nu) when `create`; nullptr if none.
