@@ -32,6 +32,18 @@ const shown = (page) => page.evaluate(() => ({
 }));
 const waitForShare = (page) => page.waitForFunction(() => window.achdDemo.state().share);
 
+// The page's link opened in a new page of the same browser, its console errors and page
+// errors going into `errors`, once it has loaded and worked out its share.
+async function reopen(page, errors) {
+  const other = await page.context().newPage();
+  other.on('console', (msg) => msg.type() === 'error' && errors.push(msg.text()));
+  other.on('pageerror', (err) => errors.push(`page error: ${err.message}`));
+  await other.goto(page.url());
+  await other.evaluate(() => window.achdDemo.ready);
+  await waitForShare(other);
+  return other;
+}
+
 test('a share link restores an own URDF', async (t) => {
   const session = await openPage();
   const { page, consoleErrors } = session;
@@ -98,12 +110,7 @@ test('a share link restores an own URDF', async (t) => {
       localHash = await page.evaluate(() => location.hash);
       assert.ok(localHash.startsWith(`#robot=custom&urdf=local:${key}&root=link0&tip=link200&`), localHash);
 
-      const second = await page.context().newPage();
-      second.on('console', (msg) => msg.type() === 'error' && consoleErrors.push(msg.text()));
-      second.on('pageerror', (err) => consoleErrors.push(`page error: ${err.message}`));
-      await second.goto(page.url());
-      await second.evaluate(() => window.achdDemo.ready);
-      await waitForShare(second);
+      const second = await reopen(page, consoleErrors);
       const there = await shown(second);
       assert.equal(there.error, null);
       assert.equal(there.state.robot, 'custom');
@@ -134,10 +141,6 @@ test('a share link restores an own URDF\'s meshes in the browser that loaded the
   const session = await openPage();
   const { page, consoleErrors } = session;
   const others = [];
-  const watch = (p) => {
-    p.on('console', (msg) => msg.type() === 'error' && consoleErrors.push(msg.text()));
-    p.on('pageerror', (err) => consoleErrors.push(`page error: ${err.message}`));
-  };
   // Every mesh of the fixture: its STL and its COLLADA file, both loaded.
   const allLoaded = (s) => JSON.stringify(s.look.meshes?.map((m) => [m.filename, m.status])) ===
     JSON.stringify(MESH_FILES.map((f) => [f, 'loaded']));
@@ -166,11 +169,7 @@ test('a share link restores an own URDF\'s meshes in the browser that loaded the
     });
 
     await t.test('its link reopens it with every mesh in a new page of that browser', async () => {
-      const second = await page.context().newPage();
-      watch(second);
-      await second.goto(page.url());
-      await second.evaluate(() => window.achdDemo.ready);
-      await waitForShare(second);
+      const second = await reopen(page, consoleErrors);
       const there = await shown(second);
       assert.equal(there.error, null);
       assert.equal(there.state.robot, 'custom');
@@ -205,11 +204,7 @@ test('a share link restores an own URDF\'s meshes in the browser that loaded the
       assert.deepEqual(here.state.share.meshes, { named: 2, files: 0, bytes: 0, error: null });
       assert.match(here.note, /None of its mesh files was read here, so the link reopens it without them/);
       assert.equal(await page.evaluate(() => location.hash), hash);
-      const third = await page.context().newPage();
-      watch(third);
-      await third.goto(page.url());
-      await third.evaluate(() => window.achdDemo.ready);
-      await waitForShare(third);
+      const third = await reopen(page, consoleErrors);
       assert.deepEqual((await shown(third)).state.look.meshes.map((m) => m.status), ['missing', 'missing']);
       await third.close();
     });

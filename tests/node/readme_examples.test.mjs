@@ -178,14 +178,29 @@ test(`every page link in README.md runs ${LINK_SECONDS} simulated seconds as the
   for (const link of links) {
     const { settings, problems } = parseHash(link, defaultSettings(index.default, offer), offer);
     assert.deepEqual(problems, [], `${link}: the page would ignore parts of it`);
-    const entry = robots().find((r) => r.name === settings.robot);
+    const entry = index.robots.find((r) => r.name === settings.robot);
     assert.ok(entry, `${link}: robot ${settings.robot} is not in robots/index.json`);
-    const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
+    const robot = achd.loadURDF(readFileSync(join(repo, entry.urdf), 'utf8'),
+      { root: entry.root, tip: entry.tip, floating: Boolean(entry.floating) });
     const sim = robot.createSimulator(simulatorOptions(settings));
     try {
-      // As web/simulation.js builds it: the start pose, then the directions.
-      sim.reset(entry.q0);
-      for (const [name, mode] of Object.entries(settings.directions)) sim.setDirection(name, mode);
+      // As web/simulation.js builds it: the start pose (a floating base raised so that its
+      // default links stand at z = 0), its PD controller, the default links held in x, y,
+      // z, then the directions of the selected link (link=, else the tip or the first
+      // default link).
+      let q0 = entry.q0;
+      if (robot.floating) {
+        q0 = [0, 0, 0, 0, 0, 0, 1, ...entry.q0];
+        const feet = robot.forwardKinematics(q0).filter((l) => entry.constraints.includes(l.name));
+        q0[2] = -Math.min(...feet.map((l) => l.position[2]));
+      }
+      sim.reset(q0);
+      if (entry.joint_control) sim.setJointControl({ target: q0, ...entry.joint_control });
+      const selected = settings.link ?? entry.tip ?? entry.constraints[0];
+      for (const held of entry.constraints ?? []) {
+        if (held !== selected) for (const d of ['x', 'y', 'z']) sim.setDirection(d, 'hold', held);
+      }
+      for (const [name, mode] of Object.entries(settings.directions)) sim.setDirection(name, mode, selected);
       const steps = Math.round(LINK_SECONDS / settings.dt);
       try {
         sim.step(steps, settings.dt);
