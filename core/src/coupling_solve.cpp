@@ -93,11 +93,11 @@ double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
 // K = L D L^T for an n x n K (n = N fixed, so that the loops unroll, or N = 0 and n =
 // K's size), L unit lower triangular, D diagonal, kept with the pivots' reciprocals. No
 // square roots: one division per column is the whole sequential part.
-// With N = 0 (more than 6 columns, several blocks) the factor skips K's envelope: row i's
-// entries left of first(i), its first nonzero, are exact zeros that stay zero in L, so
-// every sum starts at first(i) (blocks on different limbs of a fixed-base tree couple
-// nothing: K is block diagonal and costs the sum of its blocks). Skipping exact zeros
-// changes no result.
+// With N = 0 (more than 6 columns, several blocks; a dense K of 12 has N = 12, see
+// solve_by_ldlt) the factor skips K's envelope: row i's entries left of first(i), its
+// first nonzero, are exact zeros that stay zero in L, so every sum starts at first(i)
+// (blocks on different limbs of a fixed-base tree couple nothing: K is block diagonal
+// and costs the sum of its blocks). Skipping exact zeros changes no result.
 template <int N>
 struct Ldlt {
   static constexpr int C = N > 0 ? N : kMaxConstraintColumns;  // storage
@@ -282,9 +282,18 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
   return true;
 }
 
+// m = 12 (four points held in 3D, two poses in 6D) has its own unrolled factor when K is
+// dense (a floating base, or blocks sharing joints): every row's envelope starts at column
+// 0, so Ldlt<0> would do the same operations in the same order, with loop bounds read at
+// run time. A K of separate blocks (legs on a fixed base) keeps Ldlt<0>'s envelope.
 bool solve_by_ldlt(Data& data, const Options& options) {
-  return with_coupling_size(static_cast<int>(data.K.rows()),
-                            [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
+  const int m = static_cast<int>(data.K.rows());
+  if (m == 12) {
+    bool dense = true;
+    for (int i = 1; i < m; ++i) dense = dense && data.K(i, 0) != 0;
+    if (dense) return solve_by_ldlt_n<12>(data, options);
+  }
+  return with_coupling_size(m, [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
 }
 
 // The smallest eigenvalue of the n x n K: by Laguerre's iteration from the LDL^T bound
