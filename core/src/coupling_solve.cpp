@@ -116,6 +116,7 @@ struct Ldlt {
 
   // False if a pivot is not positive (K is not numerically positive definite).
   bool factor(const CouplingMatrix& K) {
+    if constexpr (N > 0) return factor_dense(K);
     if constexpr (N == 0) {
       n_ = static_cast<int>(K.rows());
       for (int i = 0; i < n_; ++i) {
@@ -139,6 +140,30 @@ struct Ldlt {
         }
         double w = K(i, j);
         for (int k = std::max(first(i), first(j)); k < j; ++k) w -= L[i][k] * W[j][k];
+        W[i][j] = w;
+        L[i][j] = w * Dinv[j];
+      }
+    }
+    return true;
+  }
+
+  // factor for N > 0 (every first(i) = 0): the same operations in the same order, its
+  // triangular loops unrolled, which clang does not do by itself for N = 12 (the factor,
+  // solve and bounds of the floating quadruped's K: 4.2k instructions rolled, 2.0k).
+  bool factor_dense(const CouplingMatrix& K) {
+    double W[C][C];  // W[i][k] = L[i][k] d_k
+#pragma GCC unroll 12
+    for (int j = 0; j < N; ++j) {
+      double d = K(j, j);
+#pragma GCC unroll 12
+      for (int k = 0; k < j; ++k) d -= L[j][k] * W[j][k];
+      if (!(d > 0)) return false;
+      Dinv[j] = 1 / d;
+#pragma GCC unroll 12
+      for (int i = j + 1; i < N; ++i) {
+        double w = K(i, j);
+#pragma GCC unroll 12
+        for (int k = 0; k < j; ++k) w -= L[i][k] * W[j][k];
         W[i][j] = w;
         L[i][j] = w * Dinv[j];
       }
