@@ -93,11 +93,11 @@ double smallest_eigenvalue_n(const CouplingMatrix& K, double below) {
 // K = L D L^T for an n x n K (n = N fixed, so that the loops unroll, or N = 0 and n =
 // K's size), L unit lower triangular, D diagonal, kept with the pivots' reciprocals. No
 // square roots: one division per column is the whole sequential part.
-// With N = 0 (more than 6 columns, several blocks) the factor skips K's envelope: row i's
-// entries left of first(i), its first nonzero, are exact zeros that stay zero in L, so
-// every sum starts at first(i) (blocks on different limbs of a fixed-base tree couple
-// nothing: K is block diagonal and costs the sum of its blocks). Skipping exact zeros
-// changes no result.
+// With N = 0 (more than 6 columns, several blocks; a dense K of 12 has N = 12, see
+// solve_by_ldlt) the factor skips K's envelope: row i's entries left of first(i), its
+// first nonzero, are exact zeros that stay zero in L, so every sum starts at first(i)
+// (blocks on different limbs of a fixed-base tree couple nothing: K is block diagonal
+// and costs the sum of its blocks). Skipping exact zeros changes no result.
 template <int N>
 struct Ldlt {
   static constexpr int C = N > 0 ? N : kMaxConstraintColumns;  // storage
@@ -116,6 +116,7 @@ struct Ldlt {
 
   // False if a pivot is not positive (K is not numerically positive definite).
   bool factor(const CouplingMatrix& K) {
+    if constexpr (N > 0) return factor_dense(K);
     if constexpr (N == 0) {
       n_ = static_cast<int>(K.rows());
       for (int i = 0; i < n_; ++i) {
@@ -146,6 +147,30 @@ struct Ldlt {
     return true;
   }
 
+  // factor for N > 0 (every first(i) = 0): the same operations in the same order, its
+  // triangular loops unrolled, which clang does not do by itself for N = 12 (the factor,
+  // solve and bounds of the floating quadruped's K: 4.2k instructions rolled, 2.0k).
+  bool factor_dense(const CouplingMatrix& K) {
+    double W[C][C];  // W[i][k] = L[i][k] d_k
+#pragma GCC unroll 12
+    for (int j = 0; j < N; ++j) {
+      double d = K(j, j);
+#pragma GCC unroll 12
+      for (int k = 0; k < j; ++k) d -= L[j][k] * W[j][k];
+      if (!(d > 0)) return false;
+      Dinv[j] = 1 / d;
+#pragma GCC unroll 12
+      for (int i = j + 1; i < N; ++i) {
+        double w = K(i, j);
+#pragma GCC unroll 12
+        for (int k = 0; k < j; ++k) w -= L[i][k] * W[j][k];
+        W[i][j] = w;
+        L[i][j] = w * Dinv[j];
+      }
+    }
+    return true;
+  }
+
   // x = K^-1 b: L y = b, then L^T x = D^-1 y.
   void solve(const ConstraintVector& b, ConstraintVector& x) const {
     const int n = size();
@@ -161,6 +186,29 @@ struct Ldlt {
       for (int k = i + 1; k < n; ++k) s -= L[k][i] * x[k];
       x[i] = s;
     }
+  }
+
+  // An upper bound of ||K^-1||_inf, K^-1's largest absolute row sum: with M = L's comparison
+  // matrix (1 on the diagonal, -|L_ik| below it), |L^-1| <= M^-1 entrywise (by induction
+  // over forward substitution; M^-1 >= 0), so |K^-1| = |L^-T D^-1 L^-1| <= M^-T D^-1 M^-1
+  // and ||K^-1||_inf <= max_i (M^-T D^-1 M^-1 1)_i: one forward and one backward
+  // substitution of nonnegative terms, O(n^2). Rows outside the envelope add exact zeros.
+  double inverse_row_sum_bound() const {
+    const int n = size();
+    double y[C], z[C];
+    for (int i = 0; i < n; ++i) {  // y = M^-1 1
+      double s = 1;
+      for (int k = first(i); k < i; ++k) s += std::abs(L[i][k]) * y[k];
+      y[i] = s;
+    }
+    double largest = 0;
+    for (int i = n - 1; i >= 0; --i) {  // z = M^-T D^-1 y
+      double s = Dinv[i] * y[i];
+      for (int k = i + 1; k < n; ++k) s += std::abs(L[k][i]) * z[k];
+      z[i] = s;
+      largest = std::max(largest, s);
+    }
+    return largest;
   }
 
   // trace(K^-1) = sum_ij (L^-1)_ij^2 / d_i, column by column of L^-1 (forward
@@ -191,10 +239,38 @@ struct Ldlt {
 };
 
 // 1 / trace(K^-1) <= lambda_min (trace(K^-1) = sum 1/lambda), within a factor n of it;
-// shrunk by a few ulps to stay below it despite its own round-off.
+// shrunk by a few ulps to stay below it despite its own round-off. O(n^3).
 template <int N>
 double lower_bound_of_lambda_min(const Ldlt<N>& f) {
   return (1 - 16 * f.size() * std::numeric_limits<double>::epsilon()) / f.inverse_trace();
+}
+
+// 1 / ||K^-1||_inf <= 1 / ||K^-1||_2 = lambda_min (Ldlt::inverse_row_sum_bound), within a
+// small factor of it when L's entries do not cancel (0.47 to 0.94 of lambda_min on the
+// quadruped's, the dual-arm torso's and the floating humanoid's K of 12 columns); shrunk
+// by a few ulps, as above (its sums add nonnegative terms: their computed values are
+// within 2n roundings of the exact ones). O(n^2).
+template <int N>
+double row_sum_bound_of_lambda_min(const Ldlt<N>& f) {
+  return (1 - 16 * f.size() * std::numeric_limits<double>::epsilon()) / f.inverse_row_sum_bound();
+}
+
+// det K ((n - 1) / trace K)^(n-1) <= lambda_min for n >= 2 (0 for n = 1): the other n - 1
+// eigenvalues sum to at most trace K, so their product is at most (trace K / (n - 1))^(n-1)
+// (AM-GM), and det K = prod d_i. With t = trace K / (n - 1): lambda_min >= t / prod (t / d_i).
+// O(n) from the pivots, and as tight as 1 / trace(K^-1) when the other eigenvalues are alike
+// (the quadruped's four feet); a spread spectrum (positions and angles mixed) makes it
+// small, and the caller tries the next bound. Shrunk by (n^2 + 2n) eps, twice its round-off: the n roundings of t (the
+// trace's n - 1, the division's) enter to the power n - 1, the 3n of the pivots'
+// reciprocals and the products once. (A product that overflows gives 0.)
+template <int N>
+double determinant_bound_of_lambda_min(const Ldlt<N>& f, double trace) {
+  const int n = f.size();
+  if (n < 2) return 0;
+  const double t = trace / (n - 1);
+  double p = 1;
+  for (int i = 0; i < n; ++i) p *= f.Dinv[i] * t;
+  return (1 - (n * n + 2 * n) * std::numeric_limits<double>::epsilon()) * (t / p);
 }
 
 // The fast path of truncate and variable_damping for an n x n K: when the lower bound of
@@ -209,12 +285,19 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
   Ldlt<N> f;
   if (!f.factor(K)) return false;
   const int n = f.size();
-  const double below = lower_bound_of_lambda_min(f);
   const double trace = K.trace();
   double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
   if (options.policy == SingularityPolicy::VariableDamping)
     threshold = std::max(threshold, options.singular_region * trace);
-  if (!(below > threshold && below >= kFactorMinRatio * trace)) return false;
+  auto clears = [&](double below) { return below > threshold && below >= kFactorMinRatio * trace; };
+  // The test is lower_bound_of_lambda_min's, O(n^3). A cheaper bound b <= lambda_min
+  // settles it first when it can: 1 / trace(K^-1) >= lambda_min / n >= b / n, so b / n
+  // clearing (less 64 n ulps for the round-off of both) means the trace bound clears too,
+  // and the path taken, and so every result, is the same to the bit.
+  const double room = (1 - 64 * n * std::numeric_limits<double>::epsilon()) / n;
+  if (!clears(room * determinant_bound_of_lambda_min(f, trace)) && !clears(room * row_sum_bound_of_lambda_min(f)) &&
+      !clears(lower_bound_of_lambda_min(f)))
+    return false;
   f.solve(data.workspace.rhs, data.nu);
   data.rank = n;
   data.dropped.resize(n, 0);
@@ -224,9 +307,18 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
   return true;
 }
 
+// m = 12 (four points held in 3D, two poses in 6D) has its own unrolled factor when K is
+// dense (a floating base, or blocks sharing joints): every row's envelope starts at column
+// 0, so Ldlt<0> would do the same operations in the same order, with loop bounds read at
+// run time. A K of separate blocks (legs on a fixed base) keeps Ldlt<0>'s envelope.
 bool solve_by_ldlt(Data& data, const Options& options) {
-  return with_coupling_size(static_cast<int>(data.K.rows()),
-                            [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
+  const int m = static_cast<int>(data.K.rows());
+  if (m == 12) {
+    bool dense = true;
+    for (int i = 1; i < m; ++i) dense = dense && data.K(i, 0) != 0;
+    if (dense) return solve_by_ldlt_n<12>(data, options);
+  }
+  return with_coupling_size(m, [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
 }
 
 // The smallest eigenvalue of the n x n K: by Laguerre's iteration from the LDL^T bound
