@@ -731,12 +731,16 @@ window.addEventListener('hashchange', () => {
   const linked = settings.own;
   settings.robot = page.settings.robot;
   settings.own = page.settings.own;
+  // Another selected link: the robot is built again with it (its directions, the others'
+  // defaults), as when the page opens on the link.
+  const shownLink = page.sim && page.sim.selected !== page.sim.robot.tip ? page.sim.selected : null;
+  const otherLink = page.sim && (settings.link ?? null) !== shownLink;
   Object.assign(page.settings, settings);
-  page.sim?.rebuild();
+  if (!otherLink) page.sim?.rebuild();
   controls.show(page.settings, page.playing);
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
   if (robot === CUSTOM && linked && linked.ref !== page.settings.own?.ref) openLinkedUrdf(linked);
-  else if (robot !== page.settings.robot) selectRobot(robot, { keepDirections: true });
+  else if (robot !== page.settings.robot || otherLink) selectRobot(robot, { keepDirections: true });
   else writeHash();
 });
 

@@ -134,6 +134,15 @@ test('the floating quadruped on the page', async (t) => {
       assert.ok(Math.abs(s.q[7 + 2] + 1.2) <= step / 2, `lf_kfe is q[9] = ${s.q[9]}`);
       assert.equal(s.q.length, 19);
     });
+    await t.test('a link edited into the hash selects that link with its directions', async () => {
+      await page.evaluate(() => { location.hash = '#robot=quadruped&integrator=rk4&dt=0.001&link=rh_foot&dirs=z:hold,rz:hold'; });
+      await page.waitForFunction(() => window.achdDemo.state().link === 'rh_foot');
+      const s = await state(page);
+      assert.deepEqual(s.directions, { x: 'free', y: 'free', z: 'hold', rx: 'free', ry: 'free', rz: 'hold' });
+      assert.deepEqual(Object.keys(s.links), FEET, 'the other feet held as the robot list holds them');
+      assert.equal(await page.locator('#directions-link').textContent(), 'rh_foot');
+      assert.match(await page.evaluate(() => location.hash), /link=rh_foot/);
+    });
     assert.deepEqual(consoleErrors, []);
   } finally {
     await session.close();
