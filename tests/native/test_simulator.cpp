@@ -21,19 +21,7 @@
 #include "hard_stretched_arm.hpp"
 #include "scene_json.hpp"
 
-namespace {
-
-std::atomic<long> g_allocations{0};  // atomic: a test below allocates from two threads
-
-}  // namespace
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "counted_new.hpp"
 
 namespace {
 
