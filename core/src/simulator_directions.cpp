@@ -2,9 +2,11 @@
 // link, turned into one constraint block of the simulator's case per link with active
 // directions. Sets are created on first use and kept (in the order of nu) until the
 // simulator goes; reset() frees their directions and keeps their weights and points.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "achd/error.hpp"
 #include "achd/simulator.hpp"
@@ -20,21 +22,23 @@ int Simulator::tip_link(const std::string& what) const {
   return model_.num_links() - 1;
 }
 
-LinkDirections* Simulator::find_set(int link, bool create) {
+const LinkDirections* Simulator::find_set(int link) const {
   if (link < 0 || link >= model_.num_links())
     throw Error("direction link index " + std::to_string(link) + " is not in 0.." +
                 std::to_string(model_.num_links() - 1) + " (Model::links)");
-  for (LinkDirections& s : sets_)
+  for (const LinkDirections& s : sets_)
     if (s.link == link) return &s;
+  return nullptr;
+}
+
+LinkDirections* Simulator::find_set(int link, bool create) {
+  if (const LinkDirections* found = std::as_const(*this).find_set(link))
+    return &sets_[static_cast<size_t>(found - sets_.data())];
   if (!create) return nullptr;
   LinkDirections set;  // sets_ holds a capacity of every link: no reallocation
   set.link = link;
   sets_.push_back(set);
   return &sets_.back();
-}
-
-const LinkDirections* Simulator::find_set(int link) const {
-  return const_cast<Simulator*>(this)->find_set(link, false);
 }
 
 void Simulator::update_blocks() {
@@ -82,9 +86,9 @@ void Simulator::set_direction_point(int link, const Vector3& point) {
   if (!point.allFinite())
     throw Error("the direction point of link '" + model_.links[link].name + "' is not finite");
   set->point = point;
-  std::vector<unsigned> bits(sets_.size(), 0);
-  bits[set - sets_.data()] = (1u << kNumDirections) - 1;
-  anchor_directions(bits);
+  std::fill(anchored_.begin(), anchored_.end(), 0u);
+  anchored_[static_cast<size_t>(set - sets_.data())] = (1u << kNumDirections) - 1;  // every direction
+  anchor_directions(anchored_);
   set->max_residual.fill(0);
   update_blocks();
 }
