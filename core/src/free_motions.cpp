@@ -157,4 +157,23 @@ int joint_moving_nothing(const Model& model, const Eigen::VectorXd& q) {
   return -1;
 }
 
+std::array<Eigen::VectorXd, 2> check_configurations(const Model& model) {
+  const int n = model.num_joints();
+  Eigen::VectorXd zero = Eigen::VectorXd::Zero(n), generic(n);
+  for (int i = 0; i < n; ++i) {
+    const JointLimits& l = model.bodies[i].limits;
+    const double lo = std::max(l.lower, -3.0), hi = std::min(l.upper, 3.0);
+    generic[i] = lo + (0.3 + 0.37 * ((i * 7) % 5) / 4.0) * (hi - lo);
+  }
+  return {zero, generic};
+}
+
+int joint_moving_nothing_at_checks(const Model& model) {
+  for (const Eigen::VectorXd& q : check_configurations(model)) {
+    const int i = joint_moving_nothing(model, q);
+    if (i >= 0) return i;
+  }
+  return -1;
+}
+
 }  // namespace achd

@@ -104,7 +104,9 @@ void validate(const Model& model) {
       throw Error(where + ": rotor inertia must be finite and >= 0");
     Eigen::SelfAdjointEigenSolver<Matrix6> eig(b.inertia, Eigen::EigenvaluesOnly);
     if (eig.eigenvalues().minCoeff() < -1e-9 * std::max(1.0, eig.eigenvalues().maxCoeff()))
-      throw Error("link '" + b.link_name + "': spatial inertia is not positive semi-definite");
+      throw Error("link '" + b.link_name + "': spatial inertia is not positive semi-definite (with the links fixed "
+                  "to it); a URDF loads with the inertia option 'repair' (CLI --inertia repair), which makes each "
+                  "link's inertia physical");
   }
   if (model.has_tip() && (model.links.empty() || model.links.back().name != model.tip_name))
     throw Error("the model's last link must be the tip '" + model.tip_name + "'");
@@ -112,19 +114,30 @@ void validate(const Model& model) {
     if (model.links[l].body < -1 || model.links[l].body >= model.num_joints())
       throw Error("link '" + model.links[l].name + "': rides on body " + std::to_string(model.links[l].body) +
                   ", not a body of the model");
-  // Two configurations: the zero pose and a generic one (within limits).
-  Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.num_joints()), generic(model.num_joints());
-  for (int i = 0; i < model.num_joints(); ++i) {
-    const JointLimits& l = model.bodies[i].limits;
-    const double lo = std::max(l.lower, -3.0), hi = std::min(l.upper, 3.0);
-    generic[i] = lo + (0.3 + 0.37 * ((i * 7) % 5) / 4.0) * (hi - lo);
+  if (model.couplings.size() > static_cast<size_t>(kMaxCouplings))
+    throw Error("the model has " + std::to_string(model.couplings.size()) + " coupled joints, more than " +
+                std::to_string(kMaxCouplings));
+  std::vector<bool> follows(model.num_joints(), false);
+  for (const JointCoupling& c : model.couplings) {
+    const int first = model.floating ? 6 : 0;
+    if (c.follower < first || c.follower >= model.num_joints() || c.leader < first || c.leader >= model.num_joints())
+      throw Error("a coupling names joint " + std::to_string(c.follower) + " or " + std::to_string(c.leader) +
+                  ", not a movable joint of the model");
+    const std::string where = "joint '" + model.bodies[c.follower].joint_name + "'";
+    if (c.follower == c.leader) throw Error(where + ": coupled to itself");
+    if (follows[c.follower]) throw Error(where + ": coupled twice");
+    follows[c.follower] = true;
+    if (!std::isfinite(c.multiplier) || !std::isfinite(c.offset))
+      throw Error(where + ": coupling multiplier and offset must be finite");
   }
-  for (const Eigen::VectorXd* q : {&zero, &generic}) {
-    check_no_overflow(model, *q);
-    const int i = joint_moving_nothing(model, *q);
+  for (const Eigen::VectorXd& q : check_configurations(model)) {
+    check_no_overflow(model, q);
+    const int i = joint_moving_nothing(model, q);
     if (i >= 0)
       throw Error("joint '" + model.bodies[i].joint_name + "' moves nothing: the links after it have no "
-                  "mass or inertia along its motion, or later joints take that motion up (D = S^T IA S = 0)");
+                  "mass or inertia along its motion, or later joints take that motion up (D = S^T IA S = 0); "
+                  "a URDF loads with the inertia option 'repair' (CLI --inertia repair), which gives them a "
+                  "floor mass, or with the joint held (--lock " + model.bodies[i].joint_name + "=VALUE)");
   }
 }
 

@@ -14,9 +14,10 @@
 namespace achd::test {
 namespace {
 
-std::string error_of(const std::string& xml, const std::string& root, const std::string& tip) {
+std::string error_of(const std::string& xml, const std::string& root, const std::string& tip,
+                     const UrdfOptions& options = {}) {
   try {
-    load_urdf_string(xml, root, tip);
+    load_urdf_string(xml, root, tip, options);
   } catch (const Error& e) {
     return e.what();
   }
@@ -51,6 +52,31 @@ TEST(BadInputUrdf, FileErrorsStartWithThePath) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()).rfind(path + ": link 'b': negative mass", 0), 0u) << e.what();
   }
+}
+
+// The inertia policies on a link whose principal moments are 1, 1, 2 + 1e-8 (the triangle
+// inequality violated beyond its 1e-9 relative tolerance): accept loads it as written with
+// a warning naming the link; strict refuses it; repair raises the two smaller moments by
+// half the deficit each and says so.
+TEST(BadInputUrdf, InertiaPoliciesOnATriangleViolation) {
+  const std::string urdf =
+      robot(link("a") + link("b", unit_inertial("1", "1", "0", "2.00000001")) + joint("j", "revolute", "a", "b"));
+  const Model accepted = load_urdf_string(urdf, "a", "b");
+  ASSERT_EQ(accepted.warnings.size(), 1u);
+  EXPECT_EQ(accepted.warnings[0],
+            "link 'b': inertia violates the triangle inequality (principal moments 1, 1, 2), loaded as written");
+  UrdfOptions strict, repair;
+  strict.inertia = InertiaPolicy::Strict;
+  repair.inertia = InertiaPolicy::Repair;
+  EXPECT_EQ(error_of(urdf, "a", "b", strict),
+            "URDF: link 'b': inertia violates the triangle inequality (principal moments 1, 1, 2)");
+  const Model repaired = load_urdf_string(urdf, "a", "b", repair);
+  ASSERT_EQ(repaired.warnings.size(), 1u);
+  EXPECT_EQ(repaired.warnings[0].rfind("link 'b': inertia repaired: principal moments 1, 1, 2 -> 1, 1, 2", 0), 0u)
+      << repaired.warnings[0];
+  // The repaired inertia: its moments about the COM sum as the triangle asks.
+  EXPECT_EQ(inertia_policy_from_name("repair", "inertia"), InertiaPolicy::Repair);
+  EXPECT_EQ(std::string(inertia_policy_name(InertiaPolicy::Accept)), "accept");
 }
 
 // The triangle inequality is checked to 1e-9 relative: a rod (moments 1, 1, 2 within
@@ -156,17 +182,30 @@ TEST(BadInputUrdf, LongChainLoadsAndSolvesFinitely) {
   EXPECT_TRUE(d.qdd.allFinite());
 }
 
-// A <mimic> joint on the chain is refused unless asked for as an independent joint; one
-// off the chain does not matter.
-TEST(BadInputUrdf, MimicJointsAreIndependentOnlyOnRequest) {
+// A <mimic> joint on the chain is coupled to its leader by default, refused with the mimic
+// option 'error', a joint of its own with 'independent'; one off the chain does not matter.
+TEST(BadInputUrdf, MimicJointsAreCoupledByDefault) {
   const std::string limit = "<axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>";
   const std::string body = link("a") + link("b") + link("c") + link("d") + joint("j1", "revolute", "a", "b") +
                            joint("j3", "revolute", "a", "d", limit + "<mimic joint=\"j1\"/>");
   const std::string with = robot(body + joint("j2", "revolute", "b", "c", limit + "<mimic joint=\"j1\" multiplier=\"2\"/>"));
   const std::string without = robot(body + joint("j2", "revolute", "b", "c", limit));
-  EXPECT_EQ(error_of(with, "a", "c"),
-            "URDF: joint 'j2': <mimic> of joint 'j1': achd has no coupled joints; load with the mimic option "
-            "'independent' (CLI --mimic independent) to make it a joint of its own, as KDL does");
+  const Model coupled = load_urdf_string(with, "a", "c");
+  ASSERT_EQ(coupled.couplings.size(), 1u);
+  EXPECT_EQ(coupled.couplings[0].follower, 1);
+  EXPECT_EQ(coupled.couplings[0].leader, 0);
+  EXPECT_EQ(coupled.couplings[0].multiplier, 2.0);
+  UrdfOptions refuse;
+  refuse.mimic = MimicJoints::Error;
+  try {
+    load_urdf_string(with, "a", "c", refuse);
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "URDF: joint 'j2': <mimic> of joint 'j1': refused (the mimic option 'error'); the default 'couple' "
+              "holds it to its leader, 'independent' (CLI --mimic independent) makes it a joint of its own, as KDL "
+              "does");
+  }
   UrdfOptions independent;
   independent.mimic = MimicJoints::Independent;
   const Model m = load_urdf_string(with, "a", "c", independent), plain = load_urdf_string(without, "a", "c");
@@ -178,11 +217,12 @@ TEST(BadInputUrdf, MimicJointsAreIndependentOnlyOnRequest) {
   }
   EXPECT_NO_THROW(load_urdf_string(with, "a", "b"));  // j3 and j2 are off the chain a -> b
   EXPECT_EQ(mimic_joints_from_name("independent", "mimic"), MimicJoints::Independent);
+  EXPECT_EQ(mimic_joints_from_name("couple", "mimic"), MimicJoints::Couple);
   try {
-    mimic_joints_from_name("couple", "mimic");
+    mimic_joints_from_name("fold", "mimic");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), "mimic: expected 'error' or 'independent', got 'couple'");
+    EXPECT_EQ(std::string(e.what()), "mimic: expected 'couple', 'independent' or 'error', got 'fold'");
   }
 }
 
