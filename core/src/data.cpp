@@ -43,6 +43,18 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   w.driver_qdd.assign(2 * n, 0.0);
   w.virtual_force.assign(n, Vector6::Zero());
   w.ez.assign(static_cast<size_t>(n) * 2 * constraint_capacity, 0.0);
+  coupling_forces = Eigen::VectorXd::Zero(model.couplings.size());
+  if (!model.couplings.empty()) {
+    // (copies of the case go here: room for every input, so that copying allocates nothing)
+    Case& h = w.coupling_case;
+    h.q = Eigen::VectorXd::Zero(model.num_positions());
+    h.qd = h.ff_torques = h.qdd_given = Eigen::VectorXd::Zero(n);
+    h.prescribed.assign(n, false);
+    h.constraints.reserve(constraint_capacity);
+    h.f_ext.reserve(model.num_links());
+    h.f_virtual.reserve(model.num_links());
+    w.coupling_response = Eigen::MatrixXd::Zero(n, model.couplings.size());
+  }
   if (model.floating) {
     Case& f = w.free_case;
     f.q = Eigen::VectorXd::Zero(model.num_positions());

@@ -45,6 +45,7 @@
 #include "coupling_solve.hpp"
 #include "driver_priorities.hpp"
 #include "free_joint.hpp"
+#include "joint_couplings.hpp"
 #include "joint.hpp"
 #include "joint_subspace.hpp"
 #include "overflow_error.hpp"
@@ -348,16 +349,27 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
   if (probe != 0) name_the_first_overflow(model, d, c, nc);
 }
 
-}  // namespace
-
-void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
-  validate(model, c, d.constraint_capacity());
-  validate(o);
+// One solve of a validated case, without the couplings.
+void solve_uncoupled(const Model& model, Data& d, const Case& c, const Options& o) {
   if (!model.floating) return solve(model, d, c, o);
   // A floating base: solved in the free joint's solver coordinates (free_joint.hpp).
   const Case& s = free_joint_case(c, d.workspace.free_case);
   solve(model, d, s, o);
   free_joint_results(s, d);
+}
+
+}  // namespace
+
+void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
+  validate(model, c, d.constraint_capacity());
+  validate(o);
+  if (model.couplings.empty()) return solve_uncoupled(model, d, c, o);
+  if (d.coupling_forces.size() != static_cast<Eigen::Index>(model.couplings.size()))
+    throw Error("the Data was made for a model with another number of coupled joints");
+  if (c.coupling_beta.size() && c.coupling_beta.size() != d.coupling_forces.size())
+    throw Error("coupling_beta: expected " + std::to_string(d.coupling_forces.size()) +
+                " values (one per coupled joint) or none, got " + std::to_string(c.coupling_beta.size()));
+  coupled_dynamics(model, d, c, o, solve_uncoupled);
 }
 
 }  // namespace achd

@@ -376,6 +376,9 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   validate(o);
   if (o.policy != SingularityPolicy::Truncate)
     throw Error("pv_reference: only the truncate singularity policy is implemented");
+  if (!model.couplings.empty())
+    throw Error("pv_reference: coupled joints (Model::couplings) are not implemented; load with the mimic option "
+                "'independent'");
   if (!model.floating) return solve(model, c, o);
   // A floating base: solved in the free joint's solver coordinates, results converted back.
   Case s;

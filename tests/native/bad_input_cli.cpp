@@ -125,13 +125,16 @@ std::string mimic_urdf() {
                                    joint("j2", "revolute", "b", "c", limit + "<mimic joint=\"j1\"/>")));
 }
 
-TEST(BadInputCli, MimicJointsLoadOnlyWithMimicIndependent) {
+TEST(BadInputCli, MimicJointsAreCoupledUnlessAskedOtherwise) {
   const std::string urdf = mimic_urdf() + " --root a --tip c";
-  const std::string c = write("mimic_case.json", "{\"q\": [0.1, 0.2], \"gravity\": [0, 0, -9.81]}");
-  expect_refused(solve(urdf + " --case " + c), {"joint 'j2': <mimic> of joint 'j1'", "--mimic independent"},
-                 "mimic by default");
-  expect_refused(solve(urdf + " --case " + c + " --mimic couple"),
-                 {"option --mimic: expected 'error' or 'independent', got 'couple'"}, "bad --mimic");
+  const std::string c = write("mimic_case.json", "{\"q\": [0.1, 0.1], \"gravity\": [0, 0, -9.81]}");
+  const auto coupled = solve(urdf + " --case " + c);
+  EXPECT_EQ(coupled.code, 0) << coupled.err;
+  EXPECT_NE(coupled.out.find("\"nu_owners\": [\"coupling j2\"]"), std::string::npos) << coupled.out;
+  expect_refused(solve(urdf + " --case " + c + " --mimic error"), {"joint 'j2': <mimic> of joint 'j1'", "--mimic independent"},
+                 "mimic error");
+  expect_refused(solve(urdf + " --case " + c + " --mimic fold"),
+                 {"option --mimic: expected 'couple', 'independent' or 'error', got 'fold'"}, "bad --mimic");
   const auto ok = solve(urdf + " --case " + c + " --mimic independent");
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_NE(ok.out.find("\"qdd\""), std::string::npos);
@@ -139,23 +142,26 @@ TEST(BadInputCli, MimicJointsLoadOnlyWithMimicIndependent) {
   EXPECT_EQ(explicit_error.code, 2);
   const auto bench = achd("bench", urdf + " --case " + c + " --mimic independent --iterations 1 --repeats 1");
   EXPECT_EQ(bench.code, 0) << bench.err;
-  expect_refused(achd("bench", urdf + " --case " + c + " --iterations 1 --repeats 1"), {"<mimic>"}, "bench mimic");
+  expect_refused(achd("bench", urdf + " --case " + c + " --mimic error --iterations 1 --repeats 1"), {"<mimic>"},
+                 "bench mimic error");
 }
 
 // A scene's "mimic" field, as --mimic.
 TEST(BadInputCli, SceneMimicFieldLoadsMimicJoints) {
   const std::string scene = std::string("{\"urdf\": \"") + mimic_urdf() +
-                            "\", \"root\": \"a\", \"tip\": \"c\", \"q0\": [0.1, 0.2], \"dt\": 0.001, "
+                            "\", \"root\": \"a\", \"tip\": \"c\", \"q0\": [0.1, 0.1], \"dt\": 0.001, "
                             "\"duration\": 0.01";
-  expect_refused(achd("simulate", write("mimic_default.json", scene + "}")), {"<mimic> of joint 'j1'"},
-                 "scene without mimic");
+  const auto coupled = achd("simulate", write("mimic_default.json", scene + "}") + " --out " + temp("coupled.csv"));
+  EXPECT_EQ(coupled.code, 0) << coupled.err;
+  expect_refused(achd("simulate", write("mimic_error.json", scene + ", \"mimic\": \"error\"}")),
+                 {"<mimic> of joint 'j1'"}, "scene mimic error");
   const auto ok = achd("simulate", write("mimic_independent.json", scene + ", \"mimic\": \"independent\"}") +
                                       " --out " + temp("mimic.csv"));
   EXPECT_EQ(ok.code, 0) << ok.err;
   expect_refused(achd("simulate", write("mimic_bad.json", scene + ", \"mimic\": 1}")),
                  {"mimic_bad.json: mimic must be a string"}, "scene mimic not a string");
   expect_refused(achd("simulate", write("mimic_bad2.json", scene + ", \"mimic\": \"both\"}")),
-                 {"mimic: expected 'error' or 'independent', got 'both'"}, "scene mimic bad name");
+                 {"mimic: expected 'couple', 'independent' or 'error', got 'both'"}, "scene mimic bad name");
 }
 
 }  // namespace

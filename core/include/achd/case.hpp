@@ -64,6 +64,9 @@ struct Case {
   // finite everywhere (entries of joints that are not prescribed are not read).
   Eigen::VectorXd qdd_given;
   std::vector<bool> prescribed;
+  // Coupled joints (Model::couplings): qdd_f - k qdd_l for each coupling, empty = 0 (what
+  // q_f = k q_l + c asks); the simulator sets it to hold the coupling's drift.
+  Eigen::VectorXd coupling_beta;
 
   // Constraint columns in all: the tip's and every block's.
   int num_constraints() const;

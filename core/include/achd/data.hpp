@@ -54,6 +54,8 @@ struct Data {
   std::vector<Vector6> constraint_wrenches;  // per Case::constraints block: alpha nu at
                                              // its point, base axes
   std::vector<Vector6> link_accelerations;  // root link first, then Model::links
+  Eigen::VectorXd coupling_forces;  // per Model::couplings entry: nu_c, the robot receiving
+                                    // the torques -C^T nu_c (joint_couplings.hpp)
   int rank = 0;                  // of the coupling matrix K (nc x nc); its
                                  // smallest singular value: sigma_min(data)
   CouplingMatrix dropped;        // nc x k: constraint-space directions truncated/damped
@@ -127,6 +129,10 @@ struct Data {
     // A floating base's case with the free joint's qd, ff_torques and qdd_given in the
     // solver's coordinates (free_joint.hpp), storage reserved by the constructor.
     Case free_case;
+    // Coupled joints (joint_couplings.cpp): the case of the extra solves and the
+    // accelerations under each coupling's unit torques (n x p), reserved by the constructor.
+    Case coupling_case;
+    Eigen::MatrixXd coupling_response;
   } workspace;
  private:
   int capacity_;

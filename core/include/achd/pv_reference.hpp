@@ -37,7 +37,8 @@ struct ReferenceSolution {
 };
 
 // Validates the case and the options (achd::Error, as hybrid_dynamics); throws
-// achd::Error unless options.policy is Truncate (the reference has no other policy).
+// achd::Error unless options.policy is Truncate (the reference has no other policy), and
+// on a model with coupled joints (Model::couplings), which it does not solve.
 ReferenceSolution pv_reference(const Model& model, const Case& c, const Options& options = {});
 
 }  // namespace achd
