@@ -280,7 +280,23 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
   s += "  \"qdd\": " + array(d.qdd) + ",\n";
   s += "  \"constraint_torques\": " + array(d.constraint_torques) + ",\n";
   s += "  \"total_torques\": " + array(d.total_torques) + ",\n";
-  s += "  \"nu\": " + array(d.nu) + ",\n";
+  if (model.couplings.empty()) {
+    s += "  \"nu\": " + array(d.nu) + ",\n";
+  } else {  // the coupled joints' forces follow the constraint columns', each entry named
+    Eigen::VectorXd nu(d.nu.size() + d.coupling_forces.size());
+    nu << d.nu, d.coupling_forces;
+    s += "  \"nu\": " + array(nu) + ",\n  \"nu_owners\": [";
+    std::string owners;  // (no constraint columns in nu with the constraints effect off)
+    if (d.nu.size())
+      for (int k = 0; k < c.alpha.cols(); ++k) owners += std::string(owners.empty() ? "" : ", ") + "\"tip\"";
+    if (d.nu.size())
+      for (const ConstraintBlock& b : c.constraints)
+        for (int k = 0; k < b.alpha.cols(); ++k)
+        owners += std::string(owners.empty() ? "" : ", ") + quoted("link " + model.links[b.link].name);
+    for (const JointCoupling& j : model.couplings)
+      owners += std::string(owners.empty() ? "" : ", ") + quoted("coupling " + model.bodies[j.follower].joint_name);
+    s += owners + "],\n";
+  }
   s += "  \"joint_torques\": " + array(d.joint_torques) + ",\n";
   if (!c.f_virtual.empty()) s += "  \"virtual_torques\": " + array(d.virtual_torques) + ",\n";
   if (c.any_prescribed()) {  // null where the joint is not prescribed, as in qdd_given

@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
+#include "urdf_options.hpp"
 
 namespace achd::cli {
 
@@ -19,6 +20,7 @@ int cmd_accuracy(int argc, char** argv) {
   const Args args(argc, argv, {"--out"}, {"--quick"});
   if (args.positional().size() != 1) throw Error("accuracy: expected one scene file, see `achd help`");
   const Scene scene = load_scene(args.positional()[0]);
+  print_warnings(scene.model, scene.urdf);
   const StudyConfig config = default_config(scene, args.has("--quick"));
   const double planned = planned_steps(scene, config);
   catch_interrupt();

@@ -1,6 +1,6 @@
 // achd bench ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json [--iterations N]
 //            [--repeats R] [--clock cpu|wall] [--against kdl] [--lock JOINT=VALUE ...]
-//            [--mimic error|independent] [solver options]
+//            [--mimic couple|independent|error] [solver options]
 // Loads the robot and reads the case as `achd solve` does (without --tip: the whole tree).
 // Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R rounds of N
 // calls (default: about 2 ms per round, 51 rounds) after a warm-up round; with --against
@@ -32,7 +32,7 @@ int cmd_bench(int argc, char** argv) {
   if (args.positional().size() != 1) throw Error("bench: expected one URDF file, see `achd help`");
   const Options options = solver_options(args);
   const std::string urdf = args.positional()[0];
-  const Model model = load_urdf_file(urdf, args.get("--root", ""), args.get("--tip", ""), urdf_options(args));
+  const Model model = load_robot(urdf, args);
   const std::string case_path = args.get("--case");
   const Case c = parse_case(case_path == "-" ? read_file("/dev/stdin") : read_file(case_path), model,
                             case_path);

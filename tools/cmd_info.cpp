@@ -1,5 +1,6 @@
 // achd info ROBOT.urdf [--root LINK] [--tip LINK] [--lock JOINT=VALUE ...]
-//           [--mimic error|independent] [--convention physical|kdl]
+//           [--mimic couple|independent|error] [--inertia accept|strict|repair]
+//           [--convention physical|kdl] [--srdf FILE]
 // Prints the model the other commands would load, as JSON (model_info.hpp).
 #include <iostream>
 
@@ -12,7 +13,7 @@
 namespace achd::cli {
 
 int cmd_info(int argc, char** argv) {
-  std::set<std::string> valued = {"--root", "--tip", "--convention"};
+  std::set<std::string> valued = {"--root", "--tip", "--convention", "--srdf"};
   valued.insert(kUrdfValued.begin(), kUrdfValued.end());
   const Args args(argc, argv, valued, kUrdfFlags);
   if (args.positional().size() != 1) throw Error("info: expected one URDF file, see `achd help`");
@@ -20,8 +21,10 @@ int cmd_info(int argc, char** argv) {
   if (convention != "physical" && convention != "kdl")
     throw Error("option --convention: expected 'physical' or 'kdl', got '" + convention + "'");
   const std::string urdf = args.positional()[0];
-  const Model model = load_urdf_file(urdf, args.get("--root", ""), args.get("--tip", ""), urdf_options(args));
-  std::cout << model_info_json(model, read_file(urdf));
+  const Model model = load_robot(urdf, args);
+  const std::string srdf = args.get("--srdf", "");
+  const std::vector<SrdfPose> poses = srdf.empty() ? std::vector<SrdfPose>{} : read_srdf_poses(read_file(srdf), srdf);
+  std::cout << model_info_json(model, read_file(urdf), poses);
   return 0;
 }
 

@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
+#include "urdf_options.hpp"
 #include "scene_json.hpp"
 
 namespace achd::cli {
@@ -71,6 +72,7 @@ int cmd_simulate(int argc, char** argv) {
   const Args args(argc, argv, {"--out", "--integrator", "--rtol", "--atol"}, {});
   if (args.positional().size() != 1) throw Error("simulate: expected one scene file, see `achd help`");
   Scene scene = load_scene(args.positional()[0]);
+  print_warnings(scene.model, scene.urdf);
   // The integrator and its tolerances, over the scene's.
   if (args.has("--integrator")) scene.options.integrator = integrator_from_name(args.get("--integrator"), "--integrator");
   for (const auto& [name, value] : {std::pair<const char*, double*>{"--rtol", &scene.options.rtol},

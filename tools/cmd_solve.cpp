@@ -1,5 +1,5 @@
 // achd solve ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json [--lock JOINT=VALUE ...]
-//            [--mimic error|independent] [solver options]
+//            [--mimic couple|independent|error] [solver options]
 // Without --tip: the whole tree below --root (default: the URDF's root link).
 #include <iostream>
 
@@ -20,7 +20,7 @@ int cmd_solve(int argc, char** argv) {
   if (args.positional().size() != 1) throw Error("solve: expected one URDF file, see `achd help`");
   const Options options = solver_options(args);
   const std::string urdf = args.positional()[0];
-  const Model model = load_urdf_file(urdf, args.get("--root", ""), args.get("--tip", ""), urdf_options(args));
+  const Model model = load_robot(urdf, args);
   const std::string case_path = args.get("--case");
   const std::string text = case_path == "-" ? read_file("/dev/stdin") : read_file(case_path);
   const Case c = parse_case(text, model, case_path);

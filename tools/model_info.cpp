@@ -6,6 +6,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "achd/error.hpp"
+#include "achd/srdf.hpp"
 #include "console_capture.hpp"
 
 namespace achd::cli {
@@ -22,7 +23,16 @@ ordered_json body_name(const Model& model, int body) {
 
 }  // namespace
 
-std::string model_info_json(const Model& model, const std::string& urdf_text) {
+// q by joint name (a floating base's free joint: its seven numbers under the root's name).
+ordered_json pose_by_name(const Model& model, const Eigen::VectorXd& q) {
+  ordered_json out = ordered_json::object();
+  if (model.floating) out[model.root_name] = std::vector<double>(q.data(), q.data() + 7);
+  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i)
+    out[model.bodies[i].joint_name] = q[model.position_index(i)];
+  return out;
+}
+
+std::string model_info_json(const Model& model, const std::string& urdf_text, const std::vector<SrdfPose>& poses) {
   urdf::ModelInterfaceSharedPtr urdf;
   {
     // The loader has parsed this text already; urdfdom's log stays off stderr.
@@ -63,11 +73,12 @@ std::string model_info_json(const Model& model, const std::string& urdf_text) {
     info["links"].push_back({{"name", l.name}, {"body", body_name(model, l.body)}, {"mass", mass(l.name)}});
   info["locked_joints"] = ordered_json::array();
   for (const LockedJoint& j : model.locked_joints) info["locked_joints"].push_back({{"name", j.name}, {"value", j.value}});
-  info["default_q"] = ordered_json::object();
-  if (model.floating) info["default_q"][model.root_name] = {0, 0, 0, 0, 0, 0, 1};
-  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
-    const Body& b = model.bodies[i];
-    info["default_q"][b.joint_name] = std::clamp(0.0, b.limits.lower, b.limits.upper);
+  info["warnings"] = model.warnings;
+  info["default_q"] = pose_by_name(model, default_pose(model));
+  if (!poses.empty()) {
+    info["poses"] = ordered_json::array();
+    for (const SrdfPose& p : poses)
+      info["poses"].push_back({{"name", p.name}, {"group", p.group}, {"q", pose_by_name(model, srdf_pose_q(model, p))}});
   }
   return info.dump(2) + "\n";
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "achd/model.hpp"
+#include "achd/srdf.hpp"
 
 namespace achd::cli {
 
@@ -12,9 +13,11 @@ namespace achd::cli {
 // (joint name or null: the root), "link", "limits": {"lower", "upper" (null: unbounded),
 // "velocity", "effort" (0: not given)}}], "links": [{"name", "body" (joint name or null:
 // the root), "mass"}] (root link first), "locked_joints": [{"name", "value"}],
-// "default_q": {joint name: 0, or the nearest limit when 0 is outside the limits}}.
+// "warnings": [the loader's], "default_q": {joint name: 0, or the middle of its limits
+// when 0 is outside them (achd::default_pose)}, and with SRDF poses "poses": [{"name",
+// "group", "q": {joint name: value}}] (achd::srdf_pose_q)}.
 // `urdf_text`: the URDF the model was loaded from, for the links' own masses (a body's
 // inertia is the sum of its links').
-std::string model_info_json(const Model& model, const std::string& urdf_text);
+std::string model_info_json(const Model& model, const std::string& urdf_text, const std::vector<SrdfPose>& poses = {});
 
 }  // namespace achd::cli

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "achd/names.hpp"
+#include "achd/srdf.hpp"
 #include "case_json.hpp"
 
 namespace achd::cli {
@@ -152,16 +153,31 @@ Eigen::VectorXd gains(const json& j, const std::string& field, const Model& mode
   return g;
 }
 
-// "joint_control": {"target": a pose as q0 (default q0), "kp": gains, "kd": gains}; the
-// simulator checks the values (Simulator::set_joint_control).
+// "joint_control": {"target": a pose as q0 (default q0), then "kp": gains, "kd": gains, or
+// "frequency": Hz, "damping_ratio": zeta (JointControl), and "feedforward": "hold" or
+// "none" (default)}; the simulator checks the values (Simulator::set_joint_control).
 void joint_control(const json& j, Scene& s) {
-  if (!j.is_object()) throw Error("joint_control must be an object {target, kp, kd}");
-  only_known(j, "joint_control.", {"target", "kp", "kd"});
+  if (!j.is_object()) throw Error("joint_control must be an object {target, kp, kd} or {target, frequency, damping_ratio}");
+  only_known(j, "joint_control.", {"target", "kp", "kd", "frequency", "damping_ratio", "feedforward"});
   s.joint_control = true;
   s.control.target = j.contains("target") ? vector(j["target"], "joint_control.target", s.model.num_positions()) : s.q0;
-  s.control.kp = gains(required_in(j, "kp", "joint_control"), "joint_control.kp", s.model);
-  s.control.kd = j.contains("kd") ? gains(j["kd"], "joint_control.kd", s.model)
-                                  : Eigen::VectorXd::Zero(s.model.num_joints());
+  if (j.contains("frequency") || j.contains("damping_ratio")) {
+    if (j.contains("kp") || j.contains("kd"))
+      throw Error("joint_control: give kp and kd, or frequency and damping_ratio, not both");
+    s.control.frequency = number(required_in(j, "frequency", "joint_control"), "joint_control.frequency");
+    s.control.damping_ratio =
+        j.contains("damping_ratio") ? number(j["damping_ratio"], "joint_control.damping_ratio") : 1.0;
+  } else {
+    s.control.kp = gains(required_in(j, "kp", "joint_control"), "joint_control.kp", s.model);
+    s.control.kd = j.contains("kd") ? gains(j["kd"], "joint_control.kd", s.model)
+                                    : Eigen::VectorXd::Zero(s.model.num_joints());
+  }
+  if (j.contains("feedforward")) {
+    const std::string ff = text(j["feedforward"], "joint_control.feedforward");
+    if (ff != "hold" && ff != "none")
+      throw Error("joint_control.feedforward: expected 'hold' or 'none', got '" + ff + "'");
+    s.control.hold = ff == "hold";
+  }
 }
 
 // "prescribed": [{"joint": NAME, "motion": KIND, "position", "velocity", "amplitude",
@@ -233,7 +249,9 @@ bool Scene::conserves_energy() const {
   if (e & kExternalWrenches)
     for (const Vector6& f : f_ext)
       if (f.cwiseAbs().maxCoeff() != 0) return false;
-  if (joint_control && (control.kp.cwiseAbs().maxCoeff() != 0 || control.kd.cwiseAbs().maxCoeff() != 0)) return false;
+  if (joint_control && (control.hold || control.frequency != 0 || control.kp.cwiseAbs().maxCoeff() != 0 ||
+                        control.kd.cwiseAbs().maxCoeff() != 0))
+    return false;
   if (e & kConstraints) {
     for (DirectionMode m : modes)
       if (m == DirectionMode::Accelerate) return false;
@@ -244,7 +262,7 @@ bool Scene::conserves_energy() const {
   return true;
 }
 
-std::string resolve_scene_path(const std::string& path, const std::string& scene_file) {
+std::string resolve_scene_path(const std::string& path, const std::string& scene_file, const std::string& field) {
   namespace fs = std::filesystem;
   const fs::path p(path);
   if (p.is_absolute()) return path;
@@ -252,7 +270,7 @@ std::string resolve_scene_path(const std::string& path, const std::string& scene
     if (fs::exists(dir / p)) return (dir / p).lexically_normal().string();
     if (dir == dir.root_path() || dir.empty()) break;
   }
-  throw Error("urdf: '" + path + "' not found from the scene's directory or any parent");
+  throw Error(field + ": '" + path + "' not found from the scene's directory or any parent");
 }
 
 Scene parse_scene(const std::string& text_in, const std::string& source) {
@@ -269,7 +287,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions", "direction_weights",
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
-                       "rotor_inertia", "mimic", "rtol", "atol", "policy",
+                       "rotor_inertia", "mimic", "inertia", "srdf", "pose", "rtol", "atol", "policy",
                        "singular_region", "max_damping", "prescribed", "floating", "link_directions",
                        "joint_control"});
     if (j.contains("description")) text(j["description"], "description");
@@ -282,9 +300,20 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
       if (!j["floating"].is_boolean()) throw Error("floating must be true or false");
       urdf_options.floating = j["floating"].get<bool>();
     }
+    if (j.contains("inertia"))
+      urdf_options.inertia = inertia_policy_from_name(text(j["inertia"], "inertia"), "inertia");
     s.model = load_urdf_file(s.urdf, s.root, s.tip, urdf_options);
     const int n = s.model.num_joints();
-    s.q0 = vector(required(j, "q0"), "q0", s.model.num_positions());
+    // q0: given, or the SRDF's pose ("srdf": a path resolved as urdf is, "pose": a
+    // group_state name), or the default pose (every joint at 0 or mid-limits).
+    if (j.contains("srdf") != j.contains("pose")) throw Error("srdf and pose go together: the file and the state's name");
+    if (j.contains("srdf") && j.contains("q0")) throw Error("give q0 or srdf and pose, not both");
+    if (j.contains("srdf")) {
+      const std::string srdf = resolve_scene_path(text(j["srdf"], "srdf"), source, "srdf");
+      s.q0 = srdf_pose_q(s.model, find_srdf_pose(read_srdf_poses(read_file(srdf), srdf), text(j["pose"], "pose"), srdf));
+    } else {
+      s.q0 = j.contains("q0") ? vector(j["q0"], "q0", s.model.num_positions()) : default_pose(s.model);
+    }
     s.qd0 = j.contains("qd0") ? vector(j["qd0"], "qd0", n) : Eigen::VectorXd::Zero(n);
     s.ff_torques = j.contains("ff_torques") ? vector(j["ff_torques"], "ff_torques", n)
                                             : Eigen::VectorXd::Zero(n);
@@ -310,7 +339,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     if (j.contains("integrator")) s.options.integrator = integrator(j["integrator"]);
     if (j.contains("limits")) s.options.limits = limits(j["limits"]);
     if (j.contains("gravity")) s.options.gravity = vector(j["gravity"], "gravity", 3);
-    s.dt = positive(required(j, "dt"), "dt");
+    s.dt = j.contains("dt") ? positive(j["dt"], "dt") : kDefaultSceneDt;
     s.duration = number(required(j, "duration"), "duration");
     if (s.duration < 0) throw Error("duration must be >= 0");
     s.steps();  // a whole number of steps that can be run, else an error naming it

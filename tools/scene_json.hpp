@@ -17,6 +17,10 @@
 
 namespace achd::cli {
 
+// A scene's output step when it gives no "dt": 1 ms, the page's step (the adaptive
+// default integrator takes the substeps it needs within it).
+constexpr double kDefaultSceneDt = 1e-3;
+
 struct Scene {
   std::string source;  // the scene file, as given
   std::string urdf;    // the URDF path, resolved (see resolve_scene_path)
@@ -42,7 +46,8 @@ struct Scene {
     std::array<double, kNumDirections> w_fext{1, 1, 1, 1, 1, 1}, w_ff{1, 1, 1, 1, 1, 1};
   };
   std::vector<LinkSet> link_directions;
-  // "joint_control": {"target": pose (default q0), "kp": gains, "kd": gains}
+  // "joint_control": {"target": pose (default q0), "kp", "kd" or "frequency",
+  // "damping_ratio", "feedforward": "hold"}
   bool joint_control = false;
   JointControl control;
   double dt = 0, duration = 0;
@@ -66,7 +71,8 @@ Scene load_scene(const std::string& path);
 // scene file's directory and then each of its parent directories, and the first that
 // holds it wins (so robots/scenes/x.json finds "robots/kuka_lwr4.urdf" from any working
 // directory). Absolute paths are used as they are.
-std::string resolve_scene_path(const std::string& path, const std::string& scene_file);
+std::string resolve_scene_path(const std::string& path, const std::string& scene_file,
+                               const std::string& field = "urdf");
 
 // Puts the scene's initial state, torques, wrenches, prescribed joints (on their
 // trajectories at t = 0, whatever q0 says for them) and directions (held where the tip is

@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 
 namespace achd::cli {
 
-const std::set<std::string> kUrdfValued = {"--mimic", "--lock"};
+const std::set<std::string> kUrdfValued = {"--mimic", "--lock", "--inertia"};
 const std::set<std::string> kUrdfFlags = {"--floating"};
 
 namespace {
@@ -27,12 +28,23 @@ void add_lock(const std::string& text, std::map<std::string, double>& locked) {
 
 UrdfOptions urdf_options(const Args& args) {
   UrdfOptions options;
-  options.mimic = mimic_joints_from_name(args.get("--mimic", "error"), "option --mimic");
+  options.mimic = mimic_joints_from_name(args.get("--mimic", "couple"), "option --mimic");
   for (const std::string& lock : args.all("--lock")) add_lock(lock, options.locked);
   // KDL's chain holds the links on the root-to-tip path only.
   if (args.get("--convention", "") == "kdl") options.side_branches = SideBranches::Ignore;
   options.floating = args.has("--floating");
+  options.inertia = inertia_policy_from_name(args.get("--inertia", "accept"), "option --inertia");
   return options;
+}
+
+void print_warnings(const Model& model, const std::string& path) {
+  for (const std::string& w : model.warnings) std::cerr << "achd: warning: " << path << ": " << w << "\n";
+}
+
+Model load_robot(const std::string& path, const Args& args) {
+  Model model = load_urdf_file(path, args.get("--root", ""), args.get("--tip", ""), urdf_options(args));
+  print_warnings(model, path);
+  return model;
 }
 
 }  // namespace achd::cli

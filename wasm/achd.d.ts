@@ -280,14 +280,24 @@ export interface SimulatorOptions {
   jointControl?: JointControl;
 }
 
-/** The joint PD controller: every solve adds kp (target - q) - kd qd to ff_torques. */
+/** The joint PD controller: every solve adds kp (target - q) - kd qd (+ the hold
+ * torques with feedforward 'hold') to ff_torques. Gains are kp and kd, or come from
+ * frequency and dampingRatio: kp_i = M_ii (2 pi f)^2, kd_i = 2 zeta M_ii (2 pi f) with M
+ * the joint-space inertia at the target. */
 export interface JointControl {
   /** a pose as q (numPositions numbers); default the simulator's q when it is set. */
   target?: Vec;
   /** one number for every joint (0 on a floating base's free joint) or numJoints numbers, >= 0. */
-  kp: number | Vec;
+  kp?: number | Vec;
   /** the same; default 0. */
   kd?: number | Vec;
+  /** Hz, > 0: the gains from the joint-space inertia (instead of kp and kd). */
+  frequency?: number;
+  /** with frequency; default 1 (critically damped). */
+  dampingRatio?: number;
+  /** 'hold': add the torques that keep the robot at rest at the target under gravity
+   * with the held directions (recomputed when they change); default 'none'. */
+  feedforward?: 'hold' | 'none';
 }
 
 /** A link (name or index into linkNames, the links after the root); omitted: a chain's tip. */
@@ -409,8 +419,20 @@ export interface Robot {
   readonly root: string;
   /** null for a tree (loaded without a tip). */
   readonly tip: string | null;
-  /** joints the loader held fixed: a chain's movable side joints. */
+  /** joints the loader held fixed: LoadOptions.locked, a chain's movable side joints. */
   readonly lockedJoints: LockedJoint[];
+  /** coupled joints (URDF <mimic>): joint = multiplier leader + offset in every solve. */
+  readonly couplings: Array<{ joint: string; leader: string; multiplier: number; offset: number }>;
+  /** what the loader found odd in the URDF but loaded, or repaired (LoadOptions.inertia),
+   * one line per finding naming the link; empty for a clean file. */
+  readonly warnings: string[];
+  /** q with every joint at 0, or the middle of its limits when 0 is outside them (a
+   * floating base at the identity pose). */
+  readonly defaultPose: number[];
+  /** the SRDF's named poses (LoadOptions.srdf's group_states) as q, by name. */
+  readonly poses: Record<string, number[]>;
+  /** the pose LoadOptions.pose names, else defaultPose. */
+  readonly startPose: number[];
   /** loaded with {floating: true}: a free joint between the world and the root link comes
    * first in jointNames, named after the root, with 7 numbers in q ([x, y, z, qx, qy, qz,
    * qw]) and 6 in qd, qdd and the torques ([v; w], world axes). */
@@ -449,17 +471,28 @@ export interface LoadOptions {
   root?: string;
   /** the chain root -> tip; absent: the whole tree below root. */
   tip?: string;
-  /** positions (rad or m) of a chain's movable side joints, locked there (others at 0). */
+  /** positions (rad or m) of movable joints held fixed there (a chain's other side joints:
+   * at 0). */
   locked?: Record<string, number>;
   /** a chain's side branches: 'merge' (default: riding on the body they hang from, no mass
    * lost) or 'ignore' (dropped, as KDL's chain does). */
   sideBranches?: 'merge' | 'ignore';
-  /** a joint of the chain with a <mimic> element: an Error naming it ('error', the
-   * default) or a joint of its own, as KDL loads it ('independent'). */
-  mimic?: 'error' | 'independent';
+  /** a joint with a <mimic> element: coupled to its leader in every solve ('couple', the
+   * default; Robot.couplings, its force last in nu), a joint of its own as KDL loads it
+   * ('independent'), or an Error naming it ('error'). */
+  mimic?: 'couple' | 'independent' | 'error';
   /** a free joint (6 DoF) between the world and the root link, whose mass then counts;
    * default false (the root link is the fixed base). */
   floating?: boolean;
+  /** the links' inertias: 'accept' (default: loaded whenever the dynamics are defined, odd
+   * ones listed in Robot.warnings), 'strict' (odd ones refused) or 'repair' (made
+   * physical with the least change, a massless moving link given a floor mass; listed). */
+  inertia?: 'accept' | 'strict' | 'repair';
+  /** SRDF text: its group_states become Robot.poses (joints it does not name: as in
+   * defaultPose; a floating base from its 'root_joint' entry, x y z qx qy qz qw). */
+  srdf?: string;
+  /** the group_state of srdf that Robot.startPose is. */
+  pose?: string;
 }
 
 export interface Achd {

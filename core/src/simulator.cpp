@@ -11,6 +11,7 @@
 #include "achd/kinematics.hpp"
 #include "direction_events.hpp"
 #include "held_directions.hpp"
+#include "joint_couplings.hpp"
 #include "message_number.hpp"
 #include "tip_kinematics.hpp"
 
@@ -126,6 +127,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   qd = ff_torques = Eigen::VectorXd::Zero(n);
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
   case_.f_ext.reserve(model_.num_links());
+  case_.coupling_beta = Eigen::VectorXd::Zero(model_.couplings.size());
   // Direction sets, their blocks and held angles: room for every link, so that setting a
   // direction never moves them and no step allocates.
   const int links = model_.num_links();
@@ -283,6 +285,13 @@ void Simulator::evaluate(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_
   }
   for (int i = 0; i < model_.num_joints(); ++i)
     if (moving_[i]) case_.qdd_given[i] = sample(motions_[i], t_at).qdd;
+  // Coupled joints: e = q_f - k q_l - c decays as the held directions' errors do,
+  //   e'' = -2 zeta w e' - w^2 e.
+  for (size_t j = 0; j < model_.couplings.size(); ++j) {
+    const JointCoupling& cj = model_.couplings[j];
+    case_.coupling_beta[j] = -2 * options_.stabilisation_damping * w_n * coupling_rate_error(model_, cj, qd_at) -
+                             w_n * w_n * coupling_position_error(model_, cj, q_at);
+  }
   apply_joint_control(q_at, qd_at);
   case_.q = q_at;
   case_.qd = qd_at;

@@ -54,6 +54,7 @@ void Simulator::update_blocks() {
     direction_weights(set.held, b.w_fext, b.w_ff);
     block_set_.push_back(s);
   }
+  update_control_terms();  // the frequency gains and hold feed-forward follow the held set
 }
 
 void Simulator::set_direction(int link, int index, DirectionMode mode, double setpoint) {

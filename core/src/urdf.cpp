@@ -4,6 +4,7 @@
 #include "achd/urdf.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -20,6 +21,8 @@
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
 #include "console_capture.hpp"
+#include "free_motions.hpp"
+#include "link_inertia.hpp"
 #include "sin_cos.hpp"
 #include "xml_depth.hpp"
 
@@ -52,9 +55,11 @@ bool finite3(double x, double y, double z) {
 // angles themselves, the loader builds every rotation with achd's sin_cos instead.
 // The joints' positions in the file are read with them: the order in which the tree's
 // children are walked.
+// And the round-off of each link's six <inertia> numbers as written (link_inertia.hpp).
 struct OriginAngles {
   std::map<std::string, urdf::Vector3> joint, inertial;  // by joint / link name
   std::map<std::string, int> joint_position;             // by joint name: 0, 1, ... in the file
+  std::map<std::string, std::array<double, 6>> inertia_roundoff;  // by link name
 };
 
 OriginAngles read_origin_angles(const std::string& xml) {
@@ -78,6 +83,12 @@ OriginAngles read_origin_angles(const std::string& xml) {
     urdf::Vector3 rpy;
     if (l->Attribute("name") && inertial && rpy_of(inertial->FirstChildElement("origin"), rpy))
       angles.inertial[l->Attribute("name")] = rpy;
+    const TiXmlElement* moments = inertial ? inertial->FirstChildElement("inertia") : nullptr;
+    if (l->Attribute("name") && moments) {
+      std::array<double, 6>& r = angles.inertia_roundoff[l->Attribute("name")];
+      const char* names[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+      for (int k = 0; k < 6; ++k) r[k] = written_roundoff(moments->Attribute(names[k]));
+    }
   }
   return angles;
 }
@@ -115,34 +126,21 @@ const urdf::Vector3* find_angles(const Map& map, const std::string& name) {
   return it == map.end() ? nullptr : &it->second;
 }
 
-// Spatial inertia of a URDF link about the link frame origin. Checks mass >= 0, the
-// rotational inertia at the COM positive semi-definite and the triangle inequality
-// (each principal moment <= the sum of the other two) to 1e-9 relative.
-Matrix6 link_inertia(const urdf::Link& link, const urdf::Vector3* rpy) {
+// Spatial inertia of a URDF link about the link frame origin, its rotational inertia
+// checked (and under the repair policy repaired) by checked_rotational_inertia.
+Matrix6 link_inertia(const urdf::Link& link, const urdf::Vector3* rpy, const double* roundoff,
+                     InertiaPolicy policy, std::vector<std::string>& warnings) {
   if (!link.inertial) return Matrix6::Zero();  // massless link: valid
   const urdf::Inertial& in = *link.inertial;
-  const std::string where = "link '" + link.name + "'";
-  // The messages name the field and its value as urdfdom's own do (urdfdom refuses
-  // "nan" and "inf" itself, natively and in wasm, see wasm/urdfdom_shim; these checks
-  // keep non-finite numbers out whatever its parser lets through).
-  if (!std::isfinite(in.mass))
-    throw Error(where + ": mass [" + std::to_string(in.mass) + "] is not finite");
-  if (in.mass < 0) throw Error(where + ": negative mass " + std::to_string(in.mass));
+  WrittenInertia written;
+  written.mass = in.mass;
   const double v[6] = {in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
-  const char* names[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
-  for (int k = 0; k < 6; ++k)
-    if (!std::isfinite(v[k]))
-      throw Error(where + ": inertia " + names[k] + " [" + std::to_string(v[k]) + "] is not finite");
-  Matrix3 Ic;
-  Ic << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-  const Eigen::SelfAdjointEigenSolver<Matrix3> eig(Ic, Eigen::EigenvaluesOnly);
-  const Vector3 m = eig.eigenvalues();
-  const double tol = 1e-9 * std::max(m.cwiseAbs().maxCoeff(), 1e-300);
-  if (m.minCoeff() < -tol) throw Error(where + ": inertia is not positive semi-definite");
-  if (m[0] + m[1] < m[2] - tol)
-    throw Error(where + ": inertia violates the triangle inequality (principal moments " +
-                std::to_string(m[0]) + ", " + std::to_string(m[1]) + ", " + std::to_string(m[2]) +
-                ")");
+  for (int k = 0; k < 6; ++k) {
+    written.moments[k] = v[k];
+    written.roundoff[k] = roundoff ? roundoff[k] : 0;
+  }
+  const Matrix3 Ic = checked_rotational_inertia(link.name, written, policy, warnings);
+  const std::string where = "link '" + link.name + "'";
   const Transform com = to_transform(in.origin, rpy, where + " <inertial>");
   const Matrix6 I = spatial_inertia(in.mass, com.p, com.R * Ic * com.R.transpose());
   if (!I.allFinite())
@@ -275,34 +273,35 @@ class Walk {
       b.X_tree = Transform{steps[k % 3], Vector3::Zero()};
       model_.bodies.push_back(b);
     }
-    model_.bodies.back().inertia = link_inertia(root, find_angles(angles_.inertial, root.name));
+    model_.bodies.back().inertia = inertia_of(root);
     placed_[root.name] = Placed{5, Transform{}};
   }
 
   // Places j's child link as a link of the model: a body of its own if j is movable,
-  // riding on its parent's body if j is fixed; appends it to Model::links.
+  // riding on its parent's body if j is fixed or locked (options.locked); appends it to
+  // Model::links.
   void add_link(const urdf::Joint& j) {
     const std::string where = "joint '" + j.name + "'";
     if (j.mimic && j.type != urdf::Joint::FIXED && options_.mimic == MimicJoints::Error)
       throw Error(where + ": <mimic> of joint '" + j.mimic->joint_name +
-                  "': achd has no coupled joints; load with the mimic option 'independent' "
-                  "(CLI --mimic independent) to make it a joint of its own, as KDL does");
+                  "': refused (the mimic option 'error'); the default 'couple' holds it to its leader, "
+                  "'independent' (CLI --mimic independent) makes it a joint of its own, as KDL does");
     const Placed& parent = placed_.at(j.parent_link_name);
     const int body = parent.body;
-    const Transform X = origin(j, parent);
     const Matrix6 inertia = child_inertia(j);
     Placed child;
-    if (j.type == urdf::Joint::FIXED) {
-      child = Placed{body, X};  // the child rides on the parent's body
+    if (j.type == urdf::Joint::FIXED || options_.locked.count(j.name)) {  // (a movable one locked)
+      child = Placed{body, rigid_offset(j, parent)};  // the child rides on the parent's body
       add_inertia(j, child, inertia);
     } else {
       Matrix3 R_axis;
-      model_.bodies.push_back(make_body(j, X, body, R_axis));
+      model_.bodies.push_back(make_body(j, origin(j, parent), body, R_axis));
       child.body = model_.num_joints() - 1;
       // The child link's frame in the body (joint) frame is R_axis^T, constant as the
       // joint turns about or slides along z.
       child.offset = Transform{R_axis.transpose(), Vector3::Zero()};
       model_.bodies[child.body].inertia = inertia_to_parent(child.offset, inertia);
+      if (j.mimic && options_.mimic == MimicJoints::Couple) mimics_.push_back(&j);
     }
     placed_[j.child_link_name] = child;
     model_.links.push_back({j.child_link_name, child.body, child.offset});
@@ -313,28 +312,49 @@ class Walk {
   // of the model (a chain's links are its path's).
   void add_side_link(const urdf::Joint& j) {
     const Placed& parent = placed_.at(j.parent_link_name);
-    Transform X = origin(j, parent);
     const Matrix6 inertia = child_inertia(j);
-    if (j.type != urdf::Joint::FIXED) {
-      const std::string where = "joint '" + j.name + "'";
-      Matrix3 R_axis;
-      const Body b = make_body(j, X, parent.body, R_axis);
-      const auto given = options_.locked.find(j.name);
-      const double value = given == options_.locked.end() ? 0.0 : given->second;
-      if (!std::isfinite(value)) throw Error("locked " + where + ": value is not finite");
-      if (value < b.limits.lower || value > b.limits.upper)
-        throw Error("locked " + where + ": value " + std::to_string(value) + " is outside its limits [" +
-                    std::to_string(b.limits.lower) + ", " + std::to_string(b.limits.upper) + "]");
-      X = joint_transform(b, value) * Transform{R_axis.transpose(), Vector3::Zero()};
-      if (!X.p.allFinite()) throw Error(where + ": origin overflows: its locked position is not finite");
-      model_.locked_joints.push_back({j.name, value});
-    }
-    const Placed child{parent.body, X};
+    const Placed child{parent.body, rigid_offset(j, parent)};
     add_inertia(j, child, inertia);
     placed_[j.child_link_name] = child;
   }
 
+  // The couplings of the movable <mimic> joints placed as bodies (MimicJoints::Couple):
+  // each to its leader, which must be a movable joint of the model too.
+  void add_couplings() const {
+    for (const urdf::Joint* j : mimics_) {
+      const int follower = model_.joint_index(j->name), leader = model_.joint_index(j->mimic->joint_name);
+      if (leader < 0 || (model_.floating && leader < 6))
+        throw Error("joint '" + j->name + "': <mimic> of joint '" + j->mimic->joint_name +
+                    "', which is not a movable joint of the loaded robot (fixed, locked or not loaded); load with "
+                    "the mimic option 'independent' (CLI --mimic independent) to make it a joint of its own");
+      if (!std::isfinite(j->mimic->multiplier) || !std::isfinite(j->mimic->offset))
+        throw Error("joint '" + j->name + "': <mimic> multiplier and offset must be finite");
+      model_.couplings.push_back({follower, leader, j->mimic->multiplier, j->mimic->offset});
+    }
+  }
+
  private:
+  // The frame of j's child link relative to the body its parent link rides on, j fixed or
+  // (if movable) locked at its options.locked value or 0, listed in Model::locked_joints.
+  Transform rigid_offset(const urdf::Joint& j, const Placed& parent) {
+    Transform X = origin(j, parent);
+    if (j.type == urdf::Joint::FIXED) return X;
+    const std::string where = "joint '" + j.name + "'";
+    Matrix3 R_axis;
+    const Body b = make_body(j, X, parent.body, R_axis);
+    const auto given = options_.locked.find(j.name);
+    const double value = given == options_.locked.end() ? 0.0 : given->second;
+    if (!std::isfinite(value)) throw Error("locked " + where + ": value is not finite");
+    if (value < b.limits.lower || value > b.limits.upper)
+      throw Error("locked " + where + ": value " + inertia_number(value) + " is outside its limits [" +
+                  inertia_number(b.limits.lower) + ", " + inertia_number(b.limits.upper) + "]" +
+                  (given == options_.locked.end() ? " (give it a value with --lock " + j.name + "=VALUE)" : ""));
+    X = joint_transform(b, value) * Transform{R_axis.transpose(), Vector3::Zero()};
+    if (!X.p.allFinite()) throw Error(where + ": origin overflows: its locked position is not finite");
+    model_.locked_joints.push_back({j.name, value});
+    return X;
+  }
+
   // The frame of j relative to the body its parent link rides on.
   Transform origin(const urdf::Joint& j, const Placed& parent) const {
     const std::string where = "joint '" + j.name + "'";
@@ -349,9 +369,13 @@ class Walk {
     return X;
   }
 
-  Matrix6 child_inertia(const urdf::Joint& j) const {
-    const auto child = urdf_.getLink(j.child_link_name);
-    return link_inertia(*child, find_angles(angles_.inertial, child->name));
+  Matrix6 child_inertia(const urdf::Joint& j) { return inertia_of(*urdf_.getLink(j.child_link_name)); }
+
+  Matrix6 inertia_of(const urdf::Link& link) {
+    const auto roundoff = angles_.inertia_roundoff.find(link.name);
+    return link_inertia(link, find_angles(angles_.inertial, link.name),
+                        roundoff == angles_.inertia_roundoff.end() ? nullptr : roundoff->second.data(),
+                        options_.inertia, model_.warnings);
   }
 
   // Adds a rigidly riding link's inertia to its body (nothing on the root, which does
@@ -370,6 +394,7 @@ class Walk {
   const UrdfOptions& options_;
   Model& model_;
   std::map<std::string, Placed> placed_;  // by link name
+  std::vector<const urdf::Joint*> mimics_;  // movable <mimic> joints placed as bodies
 };
 
 // Every link below `from` in depth-first order (a link, then each child joint's subtree in
@@ -398,7 +423,8 @@ std::vector<urdf::JointConstSharedPtr> subtree_joints(const urdf::ModelInterface
   return out;
 }
 
-// A `locked` entry must name a movable side joint of the chain.
+// A `locked` entry must name a movable joint of the loaded robot (a chain's path and side
+// branches, or the tree).
 void check_locked_names(const urdf::ModelInterface& urdf_model, const Model& model, const UrdfOptions& options) {
   for (const auto& entry : options.locked) {
     const std::string& name = entry.first;
@@ -408,14 +434,41 @@ void check_locked_names(const urdf::ModelInterface& urdf_model, const Model& mod
     const auto joint = urdf_model.getJoint(name);
     const std::string what =
         !joint ? "there is no joint of that name"
-        : model.joint_index(name) >= 0 ? "it is a joint of the model, not locked"
         : joint->type == urdf::Joint::FIXED ? "it is a fixed joint"
-        : !model.has_tip() ? "only a chain's side joints are locked (the tree has no side branches)"
         : options.side_branches == SideBranches::Ignore ? "side branches are ignored (the KDL convention)"
                                                         : "it does not hang off the chain from '" + model.root_name +
                                                               "' to '" + model.tip_name + "'";
-    throw Error("locked joint '" + name + "': not a movable side joint of the chain (" + what + ")");
+    throw Error("locked joint '" + name + "': not a movable joint of the loaded robot (" + what + ")");
   }
+}
+
+// Under the repair policy, each body whose joint moves nothing (no mass or inertia after it
+// along its motion: a massless finger) gets floor_inertia, until every joint moves
+// something; each repair is a warning naming the joint and its link.
+void repair_joints_moving_nothing(Model& model) {
+  double robot_mass = 0;
+  for (const Body& b : model.bodies) robot_mass += b.inertia.topLeftCorner<3, 3>().trace() / 3;
+  if (!std::isfinite(robot_mass)) return;  // validate() names the overflow
+  const Matrix6 floor = floor_inertia(robot_mass);
+  for (int round = 0; round < model.num_joints(); ++round) {
+    const int i = joint_moving_nothing_at_checks(model);
+    if (i < 0) return;
+    Body& b = model.bodies[i];
+    b.inertia += floor;
+    model.warnings.push_back("joint '" + b.joint_name + "' moved nothing (no mass or inertia after it along its "
+                             "motion): link '" + b.link_name + "' was given a floor mass of " +
+                             inertia_number(floor(0, 0)) + " kg and a rotational inertia of " +
+                             inertia_number(floor(3, 3)) + " kg m^2 at its joint");
+  }
+}
+
+// The last checks of a loaded model: the repairs the policy allows, then validate().
+void finish(Model& model, const UrdfOptions& options) {
+  if (model.num_joints() == 0 && !model.has_tip())
+    throw Error("the tree below '" + model.root_name + "' has no movable joint; load it with a floating base "
+                "(CLI --floating, JS {floating: true}) to move it as a free body");
+  if (options.inertia == InertiaPolicy::Repair) repair_joints_moving_nothing(model);
+  validate(model);
 }
 
 Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
@@ -437,8 +490,9 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
     // The whole tree below the root: every link in depth-first order, so that each body's
     // subtree is the range of bodies after it.
     for (const auto& j : subtree_joints(urdf_model, walk, *root_link, {})) walk.add_link(*j);
+    walk.add_couplings();
     check_locked_names(urdf_model, model, options);
-    validate(model);
+    finish(model, options);
     return model;
   }
 
@@ -475,8 +529,9 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
         for (const auto& j : subtree_joints(urdf_model, walk, *side_link, {})) walk.add_side_link(*j);
       }
   }
+  walk.add_couplings();
   check_locked_names(urdf_model, model, options);
-  validate(model);
+  finish(model, options);
   return model;
 }
 
@@ -522,13 +577,23 @@ Model load(const std::string& text, const std::string& root, const std::string& 
 }  // namespace
 
 const char* mimic_joints_name(MimicJoints mimic) {
-  return mimic == MimicJoints::Independent ? "independent" : "error";
+  return mimic == MimicJoints::Independent ? "independent" : mimic == MimicJoints::Couple ? "couple" : "error";
+}
+
+const char* inertia_policy_name(InertiaPolicy policy) {
+  return policy == InertiaPolicy::Strict ? "strict" : policy == InertiaPolicy::Repair ? "repair" : "accept";
+}
+
+InertiaPolicy inertia_policy_from_name(const std::string& name, const std::string& field) {
+  for (InertiaPolicy p : {InertiaPolicy::Accept, InertiaPolicy::Strict, InertiaPolicy::Repair})
+    if (name == inertia_policy_name(p)) return p;
+  throw Error(field + ": expected 'accept', 'strict' or 'repair', got '" + name + "'");
 }
 
 MimicJoints mimic_joints_from_name(const std::string& name, const std::string& field) {
-  for (MimicJoints m : {MimicJoints::Error, MimicJoints::Independent})
+  for (MimicJoints m : {MimicJoints::Error, MimicJoints::Independent, MimicJoints::Couple})
     if (name == mimic_joints_name(m)) return m;
-  throw Error(field + ": expected 'error' or 'independent', got '" + name + "'");
+  throw Error(field + ": expected 'couple', 'independent' or 'error', got '" + name + "'");
 }
 
 Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip,

@@ -284,7 +284,7 @@ TEST_F(CliTrees, InfoDescribesAChain) {
        "limits": {"lower": -3.141592653589793, "upper": 3.141592653589793, "velocity": 10.0, "effort": 100.0}}],
     "links": [{"name": "base_link", "body": null, "mass": 0.0}, {"name": "link1", "body": "joint1", "mass": 1.0},
               {"name": "link2", "body": "joint2", "mass": 1.0}],
-    "locked_joints": [],
+    "locked_joints": [], "warnings": [],
     "default_q": {"joint1": 0.0, "joint2": 0.0}})");
   EXPECT_EQ(i, expected);
   refused({"info"}, "info: expected one URDF file");
@@ -317,7 +317,7 @@ TEST_F(CliTrees, InfoDescribesTheWholeTree) {
   EXPECT_EQ(links["left_foot"].at("body"), "left_knee");
   EXPECT_EQ(links["right_foot"].at("mass"), 0.15);
   EXPECT_EQ(i.at("locked_joints"), json::array());
-  EXPECT_EQ(i.at("default_q").at("left_knee"), 0.2);  // 0 is below its lower limit
+  EXPECT_DOUBLE_EQ(i.at("default_q").at("left_knee"), 0.5 * (0.2 + 2.5));  // 0 is below its limits: the middle
   EXPECT_EQ(i.at("default_q").at("left_hip"), 0.0);
 }
 
@@ -393,7 +393,8 @@ TEST_F(CliTrees, LockedSideJointsAreReported) {
   std::vector<std::string> args = {"solve", kTree, "--case", write("locked.json", bad.dump())};
   args.insert(args.end(), chain.begin(), chain.end());
   refused(args, "q: joint 'right_hip' is locked at 0");
-  refused({"info", kTree, "--root", "base", "--tip", "left_foot", "--lock", "left_knee=1"}, "left_knee");
+  refused({"info", kTree, "--root", "base", "--tip", "left_foot", "--lock", "left_knee=3"},
+          "locked joint 'left_knee': value 3 is outside its limits [0.2, 2.5]");
   refused({"info", kTree, "--lock", "right_knee"}, "option --lock: expected JOINT=VALUE, got 'right_knee'");
   refused({"info", kTree, "--lock", "right_knee=1", "--lock", "right_knee=2"}, "joint 'right_knee' is locked twice");
   const json kdl = info(kTree, {"--root", "base", "--tip", "left_foot", "--convention", "kdl"});

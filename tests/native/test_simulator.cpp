@@ -582,6 +582,11 @@ TEST(Scenes, RepositoryScenesDoWhatTheirDescriptionsSay) {
   for (const auto& entry : std::filesystem::directory_iterator(kRoot / "robots/scenes")) {
     if (entry.path().extension() != ".json") continue;
     const std::string name = entry.path().stem().string();
+    // The real robots standing (example-robot-data): real_robots_stand.cpp runs and checks them.
+    if (name == "anymal_c_stand" || name == "solo12_stand" || name == "go2_stand" || name == "talos_stand") {
+      ++count;
+      continue;
+    }
     const cli::Scene scene = cli::load_scene(entry.path().string());
     Simulator sim(scene.model, scene.options);
     const SceneRun run = run_scene(scene, sim);
@@ -667,7 +672,7 @@ TEST(Scenes, RepositoryScenesDoWhatTheirDescriptionsSay) {
     }
     ++count;
   }
-  EXPECT_EQ(count, 8);
+  EXPECT_EQ(count, 12);
 }
 
 std::string scene_error(const std::string& text) {
@@ -694,7 +699,7 @@ TEST(Scenes, BadFieldsAreNamed) {
       {head + R"("q0": [0, 0], "limits": "soft"})", "limits"},
       {head + R"("q0": [0, 0], "gravity": [0, 0]})", "gravity"},
       {head + R"("q0": [0, 0], "f_ext": {"nowhere": [0, 0, 0, 0, 0, 0]}})", "f_ext.nowhere"},
-      {R"({"urdf": "robots/planar2.urdf", "root": "base_link", "tip": "link2", "q0": [0, 0], "duration": 1})", "dt"},
+      {R"({"urdf": "robots/planar2.urdf", "root": "base_link", "tip": "link2", "q0": [0, 0], "dt": 0, "duration": 1})", "dt"},
       {R"({"urdf": "robots/none.urdf", "root": "a", "tip": "b", "q0": [], "dt": 1, "duration": 1})", "urdf"},
       {head + R"("q0": [0, 0], "dt": -1})", "dt"},
       {head + R"("q0": [0, 0], "prescribed": [{"joint": "elbow", "motion": "sine"}]})", "prescribed[0].joint"},

@@ -96,9 +96,6 @@ const badUrdfs = [
   ['an inertial origin 1e200 m away', robot(link('a') + link('b', '<inertial><origin xyz="0 1e200 0"/><mass value="1"/>' +
     '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>') + joint('j', 'revolute', 'a', 'b')), 'a', 'b',
   /link 'b': <inertial> overflows/],
-  ['mimic joint', robot(ab + link('c') + joint('j1', 'revolute', 'a', 'b') +
-    joint('j2', 'revolute', 'b', 'c', `${limit}<mimic joint="j1" multiplier="-1"/>`)), 'a', 'c',
-  /joint 'j2': <mimic> of joint 'j1'.*mimic option 'independent'/],
 ];
 
 for (const [what, xml, root, tip, message] of badUrdfs) {
@@ -184,13 +181,18 @@ test('a denormal mass loads, and solving it gives finite numbers or an Error nam
   }
 });
 
-test('mimic joints load as independent joints only with mimic: \'independent\'', () => {
+test('mimic joints are coupled by default, refused with mimic: \'error\', independent on request', () => {
   const body = ab + link('c') + joint('j1', 'revolute', 'a', 'b');
-  const xml = robot(body + joint('j2', 'revolute', 'b', 'c', `${limit}<mimic joint="j1"/>`));
-  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c' }), /joint 'j2': <mimic> of joint 'j1'/);
-  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'error' }), /<mimic>/);
-  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'couple' }),
-    /loadURDF: options.mimic: expected 'error' or 'independent', got 'couple'/);
+  const xml = robot(body + joint('j2', 'revolute', 'b', 'c', `${limit}<mimic joint="j1" multiplier="-1"/>`));
+  const coupled = achd.loadURDF(xml, { root: 'a', tip: 'c' });
+  assert.deepEqual(coupled.couplings, [{ joint: 'j2', leader: 'j1', multiplier: -1, offset: 0 }]);
+  const r = coupled.solve({ q: [0.2, -0.2], gravity: [0, 0, -9.81] });
+  assert.ok(Math.abs(r.qdd[1] + r.qdd[0]) <= 1e-12 * Math.abs(r.qdd[0]), `qdd ${r.qdd}`);
+  assert.deepEqual(r.nu_owners, ['coupling j2']);
+  coupled.delete();
+  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'error' }), /joint 'j2': <mimic> of joint 'j1'/);
+  assert.throws(() => achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'fold' }),
+    /loadURDF: options.mimic: expected 'error' or 'independent' or 'couple', got 'fold'/);
   const m = achd.loadURDF(xml, { root: 'a', tip: 'c', mimic: 'independent' });
   const plain = achd.loadURDF(robot(body + joint('j2', 'revolute', 'b', 'c')), { root: 'a', tip: 'c' });
   const c = { q: [0.2, -0.4], gravity: [0, 0, -9.81] };

@@ -9,23 +9,33 @@ import { Robot } from './robot.mjs';
 export function installAchd(Module) {
   // Loads the chain root -> tip from URDF text, or without a tip the whole tree below
   // root (default: the URDF's root link); throws an Error naming the problem.
-  // options.mimic: 'error' (default: a <mimic> joint on the chain is an error) or
-  // 'independent' (loaded as a joint of its own, as KDL does); achd::MimicJoints' order.
-  // options.locked: {joint name: position} for a chain's movable side joints (others: 0).
+  // options.mimic: 'couple' (default: a <mimic> joint follows its leader in every solve,
+  // robot.couplings), 'independent' (a joint of its own, as KDL loads it) or 'error';
+  // achd::MimicJoints' order.
+  // options.locked: {joint name: position}: movable joints held fixed (a chain's other side
+  // joints: at 0).
   // options.sideBranches: 'merge' (default: what hangs off a chain rides on the body it
   // hangs from) or 'ignore' (dropped, as KDL's chain does); achd::SideBranches' order.
   // options.floating: true for a free joint between the world and the root link (its 7
   // positions [x, y, z, qx, qy, qz, qw] and 6 rates [v; w] come first).
+  // options.inertia: 'accept' (default: odd inertias loaded, listed in robot.warnings),
+  // 'strict' (refused) or 'repair' (made physical, listed); achd::InertiaPolicy's order.
+  // options.srdf: SRDF text whose named poses (group_states) become robot.poses;
+  // options.pose: the one of them robot.startPose is (default: robot.defaultPose).
   Module['loadURDF'] = function loadURDF(text, options) {
     if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating']);
+    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating', 'inertia', 'srdf', 'pose']);
+    if (options.srdf !== undefined && typeof options.srdf !== 'string') throw new Error('loadURDF: options.srdf must be SRDF text (a string)');
+    if (options.pose !== undefined && (typeof options.pose !== 'string' || options.srdf === undefined))
+      throw new Error('loadURDF: options.pose must name a group_state of options.srdf');
     if (options.floating !== undefined && typeof options.floating !== 'boolean')
       throw new Error('loadURDF: options.floating must be true or false');
     for (const key of ['root', 'tip'])
       if (options[key] !== undefined && typeof options[key] !== 'string')
         throw new Error(`loadURDF: options.${key} must be a link name`);
-    const mimic = achdChoice(options.mimic, ['error', 'independent'], 'error', 'loadURDF: options.mimic');
+    const mimic = achdChoice(options.mimic, ['error', 'independent', 'couple'], 'couple', 'loadURDF: options.mimic');
+    const inertia = achdChoice(options.inertia, ['accept', 'strict', 'repair'], 'accept', 'loadURDF: options.inertia');
     const sides = achdChoice(options.sideBranches, ['merge', 'ignore'], 'merge', 'loadURDF: options.sideBranches');
     const locked = options.locked === undefined ? {} : options.locked;
     achdCheckObject(locked, 'loadURDF: options.locked', Object.keys(locked));
@@ -41,10 +51,17 @@ export function installAchd(Module) {
       achdWithString(tip, (t) => achdWithString(names.map((n) => `${n}\n`).join(''), (ln) =>
         achdWithScratch(values.length, (v) => {
           achdWasm.module.HEAPF64.set(values, v);
-          return achdWasm.module._achd_robot_load(x, r, t, mimic, sides, ln, 8 * v, options.floating ? 1 : 0);
+          return achdWasm.module._achd_robot_load(x, r, t, mimic, sides, ln, 8 * v, options.floating ? 1 : 0, inertia);
         })))));
     if (!ptr) throw achdLastError();
-    return new Robot(ptr);
+    const robot = new Robot(ptr);
+    try {
+      robot._readPoses(options.srdf === undefined ? '' : options.srdf, options.pose);
+    } catch (e) {
+      robot.delete();
+      throw e;
+    }
+    return robot;
   };
   // Bytes of wasm memory (grows, never shrinks): for leak checks.
   Module['memoryBytes'] = function memoryBytes() { return achdWasm.module.HEAPU8.length; };

@@ -3,7 +3,7 @@ import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeprecated } from './cons
 import { achdLastError, achdWasm } from './runtime.mjs';
 import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdEffectBits, achdIsArrayLike, achdPositive, achdSolverOptions, achdWriteSpatialList, achdWriteVector } from './validation.mjs';
 import { achdDriverWeights, achdJointValues, achdLinkWrenches, achdPrescribedJoints } from './case_names.mjs';
-import { achdChunks, achdWithScratch } from './memory.mjs';
+import { achdChunks, achdWithScratch, achdWithString } from './memory.mjs';
 import { AchdHandle } from './handle.mjs';
 import { Solver } from './solver.mjs';
 import { Simulator } from './simulator.mjs';
@@ -15,8 +15,14 @@ export class Robot extends AchdHandle {
     const bound = (x) => (Math.abs(x) >= 1e300 ? Math.sign(x) * Infinity : x);
     this.root = info.root;
     this.tip = info.tip;  // null for a tree
-    // Joints the loader held fixed (a chain's movable side joints), [{name, value}].
+    // Joints the loader held fixed (options.locked, a chain's side joints), [{name, value}].
     this.lockedJoints = info.locked_joints;
+    // What the loader found odd in the URDF but loaded, or repaired (options.inertia), one
+    // line per finding naming the link.
+    this.warnings = info.warnings;
+    // Coupled joints (URDF <mimic>, loaded coupled by default): [{joint, leader,
+    // multiplier, offset}], q_joint = multiplier q_leader + offset in every solve.
+    this.couplings = info.couplings;
     // With a floating base (options.floating) the free joint comes first in jointNames, named
     // after the root link, with 7 of the numPositions numbers of q and 6 of the numJoints
     // numbers of qd, qdd and the torques; without one both counts are the joints'.
@@ -33,6 +39,22 @@ export class Robot extends AchdHandle {
     this.friction = info.joints.map((j) => j.friction);
     this.linkNames = info.links;
     this._solver = null;  // the solver behind solve(), created on first use
+  }
+  // robot.defaultPose: q with every joint at 0, or the middle of its limits when 0 is
+  // outside them (a floating base at the identity); robot.poses: {name: q} of the SRDF's
+  // group_states (loadURDF's options.srdf); robot.startPose: the one options.pose names,
+  // else defaultPose. q in model order (numPositions numbers).
+  _readPoses(srdf, pose) {
+    const text = srdf === '' ? '<robot/>' : srdf;
+    const json = achdWithString(text, (p) => achdWasm.module._achd_robot_poses(this._live(), p));
+    if (!json) throw achdLastError();
+    const info = JSON.parse(achdWasm.text.UTF8ToString(json));
+    this.defaultPose = info.default;
+    this.poses = Object.create(null);
+    for (const p of info.poses) this.poses[p.name] = p.q;
+    if (pose !== undefined && !Object.prototype.hasOwnProperty.call(this.poses, pose))
+      throw new Error(`loadURDF: options.pose: the SRDF has no group_state '${pose}' (it has ${Object.keys(this.poses).map((n) => `'${n}'`).join(', ') || 'none'})`);
+    this.startPose = pose === undefined ? this.defaultPose : this.poses[pose];
   }
   delete() {
     if (this._solver) this._solver.delete();
@@ -207,10 +229,11 @@ export class Robot extends AchdHandle {
     });
     if (!sim) throw achdLastError();
     const simulator = new Simulator(this, sim);
-    // jointControl: {target, kp, kd} as Simulator.setJointControl, target required
+    // jointControl: as Simulator.setJointControl ({target, kp, kd} or {target, frequency,
+    // dampingRatio, feedforward}), target required
     if (options.jointControl !== undefined) {
       try {
-        achdCheckObject(options.jointControl, 'options.jointControl', ['target', 'kp', 'kd']);
+        achdCheckObject(options.jointControl, 'options.jointControl', ['target', 'kp', 'kd', 'frequency', 'dampingRatio', 'feedforward']);
         // (the simulator starts at the zero pose: a target by default would be that)
         if (options.jointControl.target === undefined) throw new Error('options.jointControl.target is required (a pose as q)');
         simulator.setJointControl(options.jointControl);

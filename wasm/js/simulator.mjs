@@ -139,8 +139,18 @@ export class Simulator extends AchdHandle {
   // The joint PD controller: every solve adds kp (target - q) - kd qd to ff_torques.
   // target: a pose as q (numPositions numbers, default the current q); kp, kd: one number
   // for every joint (0 on a floating base's free joint) or numJoints numbers.
-  setJointControl({ target, kp, kd = 0 } = {}) {
+  setJointControl(control = {}) {
     const ptr = this._live(), n = this.numJoints, nq = this.numPositions;
+    achdCheckObject(control, 'setJointControl', ['target', 'kp', 'kd', 'frequency', 'dampingRatio', 'feedforward']);
+    const { target, kp, kd = 0, frequency, dampingRatio = 1, feedforward = 'none' } = control;
+    const byFrequency = frequency !== undefined;
+    if (byFrequency && (kp !== undefined || control.kd !== undefined))
+      throw new Error('setJointControl: give kp and kd, or frequency and dampingRatio, not both');
+    if (!byFrequency && kp === undefined) throw new Error('setJointControl: kp (or frequency) is required');
+    for (const [x, name] of [[frequency, 'frequency'], [dampingRatio, 'dampingRatio']])
+      if (byFrequency && typeof x !== 'number') throw new Error(`setJointControl: ${name} must be a number, got ${typeof x}`);
+    if (feedforward !== 'hold' && feedforward !== 'none')
+      throw new Error(`setJointControl: feedforward: expected 'hold' or 'none', got '${feedforward}'`);
     const gains = (g, name) => {
       if (typeof g === 'number') {
         const out = new Float64Array(n).fill(g);
@@ -150,12 +160,16 @@ export class Simulator extends AchdHandle {
       achdCheckVector(g, `setJointControl: ${name}`, n);
       return g;
     };
-    const kpv = gains(kp, 'kp'), kdv = gains(kd, 'kd');
+    const kpv = byFrequency ? null : gains(kp, 'kp'), kdv = byFrequency ? null : gains(kd, 'kd');
     achdWithScratch(nq + 2 * n, (p) => {
       achdWriteVector(target === undefined ? this.q : target, 'setJointControl: target', nq, p);
-      achdWriteVector(kpv, 'setJointControl: kp', n, p + nq);
-      achdWriteVector(kdv, 'setJointControl: kd', n, p + nq + n);
-      if (achdWasm.module._achd_sim_set_joint_control(ptr, 8 * p, 8 * (p + nq), 8 * (p + nq + n))) throw achdLastError();
+      if (!byFrequency) {
+        achdWriteVector(kpv, 'setJointControl: kp', n, p + nq);
+        achdWriteVector(kdv, 'setJointControl: kd', n, p + nq + n);
+      }
+      const kpPtr = byFrequency ? 0 : 8 * (p + nq), kdPtr = byFrequency ? 0 : 8 * (p + nq + n);
+      if (achdWasm.module._achd_sim_set_joint_control(ptr, 8 * p, kpPtr, kdPtr, byFrequency ? frequency : 0,
+        byFrequency ? dampingRatio : 0, feedforward === 'hold' ? 1 : 0)) throw achdLastError();
     });
   }
   clearJointControl() { achdWasm.module._achd_sim_clear_joint_control(this._live()); }

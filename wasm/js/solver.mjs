@@ -17,10 +17,11 @@ export class Solver extends AchdHandle {
     this.numPositions = robot.numPositions;
     this._names = { root: robot.root, tip: robot.tip, floating: robot.floating, numJoints: robot.numJoints,
       numPositions: robot.numPositions, jointNames: robot.jointNames, linkNames: robot.linkNames,
-      lockedJoints: robot.lockedJoints };
+      lockedJoints: robot.lockedJoints, couplings: robot.couplings };
     this._nc = 0;
     this._blocks = 0;
     this._blockColumns = 0;
+    this._blockOwners = [];
     this._external = false;
     this._virtual = false;
     this._prescribed = new Array(robot.numJoints).fill(false);
@@ -81,6 +82,8 @@ export class Solver extends AchdHandle {
     });
     this._blocks = blocks.length;
     this._blockColumns = blocks.reduce((n, b) => n + b.alpha.length, 0);
+    // who owns each block column of nu: 'link NAME' (blocks name their link)
+    this._blockOwners = blocks.flatMap((b) => b.alpha.map(() => `link ${b.link}`));
     this._buffer = null;  // the nu and constraint_wrenches views' lengths changed
   }
   get numBlocks() { this._live(); return this._blocks; }
@@ -161,6 +164,12 @@ export class Solver extends AchdHandle {
     if (this._prescribed.includes(true)) {
       const torques = copy('prescribed_torques', nj);
       out.prescribed_torques = torques.map((x, i) => (this._prescribed[i] ? x : null));
+    }
+    // Coupled joints: their forces follow the constraint columns' in nu, each entry named.
+    if (model.couplings.length) {
+      out.nu_owners = nc ? [...new Array(this._nc).fill('tip'), ...this._blockOwners] : [];
+      out.nu = out.nu.concat(copy('coupling_forces', model.couplings.length));
+      for (const c of model.couplings) out.nu_owners.push(`coupling ${c.joint}`);
     }
     if (model.lockedJoints.length) out.locked_joints = model.lockedJoints.map((j) => ({ name: j.name, value: j.value }));
     return out;

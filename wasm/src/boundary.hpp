@@ -16,13 +16,14 @@ enum SolverBuffer {
   kSolverQdd, kSolverNu, kSolverJointTorques, kSolverConstraintTorques, kSolverTotalTorques,
   kSolverLinkAccelerations, kSolverConstraintWrench, kSolverDropped, kSolverConstraintWrenches,
   kSolverQddGiven, kSolverWFext, kSolverWFf, kSolverFVirtual, kSolverPrescribedTorques, kSolverVirtualTorques,
-  kNumSolverBuffers
+  kSolverCouplingForces, kNumSolverBuffers
 };
 inline constexpr const char* kSolverBufferNames[] = {
     "q", "qd", "ff_torques", "gravity", "alpha", "beta", "f_ext",
     "qdd", "nu", "joint_torques", "constraint_torques", "total_torques",
     "link_accelerations", "constraint_wrench", "dropped", "constraint_wrenches",
-    "qdd_given", "w_fext", "w_ff", "f_virtual", "prescribed_torques", "virtual_torques"};
+    "qdd_given", "w_fext", "w_ff", "f_virtual", "prescribed_torques", "virtual_torques",
+    "coupling_forces"};
 static_assert(sizeof kSolverBufferNames / sizeof kSolverBufferNames[0] == kNumSolverBuffers,
               "one name per SolverBuffer");
 

@@ -35,7 +35,8 @@ std::string number(double x) {
 // {"root", "tip" (null for a tree), "floating", "num_joints" (joint rates: qd's length),
 // "num_positions" (q's), "joints": [{name, type, lower, upper, velocity, effort, damping,
 // friction}] (a floating base's free joint once, type "floating"), "links": [names after
-// the root], "locked_joints": [{name, value}]}
+// the root], "locked_joints": [{name, value}], "couplings": [{joint, leader, multiplier,
+// offset}] (Model::couplings), "warnings": [the loader's, Model::warnings]}
 std::string describe(const Model& m) {
   std::string s = "{\"root\":" + quoted(m.root_name) + ",\"tip\":" + (m.has_tip() ? quoted(m.tip_name) : "null") +
                   ",\"floating\":" + (m.floating ? "true" : "false") +
@@ -58,6 +59,15 @@ std::string describe(const Model& m) {
   for (size_t k = 0; k < m.locked_joints.size(); ++k)
     s += std::string(k ? "," : "") + "{\"name\":" + quoted(m.locked_joints[k].name) +
          ",\"value\":" + number(m.locked_joints[k].value) + "}";
+  s += "],\"couplings\":[";
+  for (size_t k = 0; k < m.couplings.size(); ++k) {
+    const JointCoupling& c = m.couplings[k];
+    s += std::string(k ? "," : "") + "{\"joint\":" + quoted(m.bodies[c.follower].joint_name) +
+         ",\"leader\":" + quoted(m.bodies[c.leader].joint_name) + ",\"multiplier\":" + number(c.multiplier) +
+         ",\"offset\":" + number(c.offset) + "}";
+  }
+  s += "],\"warnings\":[";
+  for (size_t k = 0; k < m.warnings.size(); ++k) s += (k ? "," : "") + quoted(m.warnings[k]);
   return s + "]}";
 }
 
@@ -73,14 +83,16 @@ using achd::wasm::Robot;
 // achd::MimicJoints value (0 error, 1 independent); side_branches an achd::SideBranches
 // value (0 merge, 1 ignore); locked: the joints to lock (UrdfOptions::locked), their
 // names one per line in locked_names and their values in locked_values; floating != 0: a
-// free joint above the root link (UrdfOptions::floating).
+// free joint above the root link (UrdfOptions::floating); inertia an achd::InertiaPolicy
+// value (0 accept, 1 strict, 2 repair).
 ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip, int mimic,
                                    int side_branches, const char* locked_names, const double* locked_values,
-                                   int floating) {
+                                   int floating, int inertia) {
   Robot* robot = nullptr;
   achd::wasm::guarded([&] {
     achd::UrdfOptions options;
     options.floating = floating != 0;
+    options.inertia = static_cast<achd::InertiaPolicy>(inertia);
     options.mimic = static_cast<achd::MimicJoints>(mimic);
     options.side_branches = static_cast<achd::SideBranches>(side_branches);
     std::string name;
@@ -148,4 +160,29 @@ ACHD_EXPORT int achd_robot_rnea(const Robot* r, const double* q, const double* q
                                            wrenches, effects, friction_velocity);
     Eigen::Map<Eigen::VectorXd>(out, n) = tau;
   });
+}
+
+// The named poses of an SRDF text for this robot (achd::read_srdf_poses, srdf_pose_q) and
+// its default pose, as JSON {"default": [q], "poses": [{"name", "group", "q": [q]}]}
+// (q in model order, num_positions() numbers); null with the reason in achd_last_error().
+// Valid until the next call.
+ACHD_EXPORT const char* achd_robot_poses(const Robot* r, const char* srdf) {
+  static std::string json;
+  const char* out = nullptr;
+  achd::wasm::guarded([&] {
+    auto q_json = [](const Eigen::VectorXd& q) {
+      std::string s = "[";
+      for (Eigen::Index k = 0; k < q.size(); ++k) s += (k ? "," : "") + achd::wasm::number(q[k]);
+      return s + "]";
+    };
+    const achd::Model& m = *r->model;
+    json = "{\"default\":" + q_json(achd::default_pose(m)) + ",\"poses\":[";
+    const std::vector<achd::SrdfPose> poses = achd::read_srdf_poses(srdf, "SRDF");
+    for (size_t k = 0; k < poses.size(); ++k)
+      json += std::string(k ? "," : "") + "{\"name\":" + achd::wasm::quoted(poses[k].name) +
+              ",\"group\":" + achd::wasm::quoted(poses[k].group) + ",\"q\":" + q_json(achd::srdf_pose_q(m, poses[k])) + "}";
+    json += "]}";
+    out = json.c_str();
+  });
+  return out;
 }

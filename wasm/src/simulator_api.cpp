@@ -118,15 +118,19 @@ ACHD_EXPORT int achd_sim_direction_sets(const achd::Simulator* sim, int* out) {
 }
 
 // The joint PD controller (Simulator::set_joint_control): target num_positions()
-// doubles, kp and kd num_joints() each.
+// doubles; kp and kd num_joints() each, or both null for gains from frequency (Hz) and
+// damping_ratio; hold != 0 adds the hold feed-forward (JointControl::hold).
 ACHD_EXPORT int achd_sim_set_joint_control(achd::Simulator* sim, const double* target, const double* kp,
-                                           const double* kd) {
+                                           const double* kd, double frequency, double damping_ratio, int hold) {
   return achd::wasm::guarded([&] {
     const int nq = static_cast<int>(sim->q.size()), n = static_cast<int>(sim->qd.size());
     achd::JointControl c;
     c.target = Eigen::Map<const Eigen::VectorXd>(target, nq);
-    c.kp = Eigen::Map<const Eigen::VectorXd>(kp, n);
-    c.kd = Eigen::Map<const Eigen::VectorXd>(kd, n);
+    if (kp) c.kp = Eigen::Map<const Eigen::VectorXd>(kp, n);
+    if (kd) c.kd = Eigen::Map<const Eigen::VectorXd>(kd, n);
+    c.frequency = frequency;
+    c.damping_ratio = damping_ratio;
+    c.hold = hold != 0;
     sim->set_joint_control(c);
   });
 }

@@ -97,6 +97,7 @@ ACHD_EXPORT double* achd_solver_buffer(Solver* s, int which) {
     case achd::wasm::kSolverFVirtual: return f_virtual.front().data();
     case achd::wasm::kSolverPrescribedTorques: return d.prescribed_torques.data();
     case achd::wasm::kSolverVirtualTorques: return d.virtual_torques.data();
+    case achd::wasm::kSolverCouplingForces: return d.coupling_forces.data();
     default: return nullptr;
   }
 }

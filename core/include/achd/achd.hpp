@@ -11,4 +11,5 @@
 #include "achd/pv_reference.hpp"
 #include "achd/simulator.hpp"
 #include "achd/spatial.hpp"
+#include "achd/srdf.hpp"
 #include "achd/urdf.hpp"

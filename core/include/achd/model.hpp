@@ -46,6 +46,16 @@ struct Link {
   Transform offset;
 };
 
+// A joint whose motion follows another's (URDF <mimic>): q_follower = multiplier q_leader
+// + offset, so qd and qdd follow with the multiplier (joint_couplings.hpp solves it).
+struct JointCoupling {
+  int follower = 0, leader = 0;  // body (joint rate) indices
+  double multiplier = 1, offset = 0;
+};
+
+// The most couplings a model may have.
+constexpr int kMaxCouplings = 32;
+
 // A movable joint of the URDF that the model holds fixed (a side branch of a chain): its
 // child link rides rigidly on the body it hangs from, at the joint position `value`.
 struct LockedJoint {
@@ -71,6 +81,13 @@ struct Model {
   std::vector<Link> links;   // every link after the root, parents before children; a
                              // chain's tip last
   std::vector<LockedJoint> locked_joints;  // held fixed by the loader, reported
+  // Coupled joints (URDF <mimic>, UrdfOptions::mimic Couple): every solve holds each as a
+  // joint-space constraint; their forces follow the constraint columns' in nu.
+  std::vector<JointCoupling> couplings;
+  // What the loader found odd in the file but loaded (or repaired), one line per finding,
+  // naming the link: inertias violating the triangle inequality, moments within round-off
+  // of zero, repairs (achd::InertiaPolicy).
+  std::vector<std::string> warnings;
 
   // Joint rates (qd, qdd, torques): one per body, 6 for a free joint.
   int num_joints() const { return static_cast<int>(bodies.size()); }

@@ -77,12 +77,25 @@ struct LinkDirections {
 };
 
 // Joint PD control toward a target pose (Simulator::set_joint_control): every solve adds
-//   tau_i = kp_i (q_target,i - q_i) - kd_i qd_i
+//   tau_i = kp_i (q_target,i - q_i) - kd_i qd_i + tau_hold,i
 // to ff_torques for each joint (its position index for q). A floating base's free joint
 // takes none (its gains are 0: nothing between the world and the root is actuated).
+// The gains are given per joint (kp, kd), or by a natural frequency f (Hz) and a damping
+// ratio zeta, the same for every joint (kp and kd left empty):
+//   kp_i = m_i (2 pi f)^2,  kd_i = 2 zeta m_i (2 pi f),
+// m_i the inertia joint i moves at the target while the other joints and the held links
+// stay still (the joint-space inertia's M_ii when nothing is held; the rest of the robot
+// for an ankle whose foot is held: anchored_inertia.hpp), so that each joint alone rings
+// at f whatever it carries. They are recomputed when the held set changes.
+// With hold, tau_hold are the torques that keep the robot at rest at the target under
+// gravity with the held directions (hold_torques.hpp), recomputed when the target or the
+// held set changes; without it, tau_hold = 0.
 struct JointControl {
   Eigen::VectorXd target;  // Model::num_positions() numbers, a pose as q
   Eigen::VectorXd kp, kd;  // per joint, >= 0 (N m/rad or N/m; N m s/rad or N s/m)
+  double frequency = 0;      // Hz, > 0 when kp and kd are empty
+  double damping_ratio = 0;  // >= 0, with frequency
+  bool hold = false;
 };
 
 // The physics of a scene does not depend on the step: friction's smoothing velocity
@@ -203,8 +216,9 @@ class Simulator {
   double setpoint(int index) const;
   void set_direction_weights(int index, double w_fext, double w_ff);
   // The joint PD controller (JointControl): target of num_positions() finite numbers,
-  // gains per joint, finite and >= 0, 0 on a floating base's free joint; an achd::Error
-  // names the field, joint and value otherwise. Kept by reset().
+  // gains per joint, finite and >= 0, 0 on a floating base's free joint (or a frequency
+  // > 0 and a damping ratio >= 0, from which joint_control() then holds the gains); an
+  // achd::Error names the field, joint and value otherwise. Kept by reset().
   void set_joint_control(const JointControl& control);
   void clear_joint_control();
   bool joint_control_on() const { return control_on_; }
@@ -328,6 +342,10 @@ class Simulator {
   std::vector<TipState> impact_points_;  // joint_limits.cpp: each set's point before an impact
   JointControl control_;
   bool control_on_ = false;
+  Eigen::VectorXd hold_torques_;  // JointControl::hold's tau_hold (zeros without it)
+  // Recomputes the frequency gains (JointControl::frequency) and hold_torques_
+  // (JointControl::hold) for the current target and held set.
+  void update_control_terms();
   std::vector<int> limit_hits_;
   std::unique_ptr<DirectionEventLog> events_;  // direction_events.hpp
   std::vector<double> mass_;   // per body, from the spatial inertia

@@ -8,11 +8,19 @@
 
 namespace achd {
 
-// What to do with a joint of the chain that has a <mimic> element (its position a
-// multiple of another joint's, like the second finger of a parallel gripper): achd has
-// no coupled joints, so by default such a URDF is refused, naming the joint; Independent
-// loads it as a joint of its own, as KDL does.
-enum class MimicJoints { Error, Independent };
+// How the loader takes the links' <inertial> elements (link_inertia.hpp has the rules):
+// Accept (the default) loads every inertia whose dynamics are defined, a moment within
+// the file's round-off of zero counting as zero and a violated triangle inequality loaded
+// as written, each such link reported in Model::warnings; Strict refuses both; Repair
+// makes each inertia physical with the least change and gives a body whose joint moves
+// nothing a floor mass, reporting every change in Model::warnings.
+enum class InertiaPolicy { Accept, Strict, Repair };
+
+// What to do with a movable joint that has a <mimic> element (its position a multiple of
+// another joint's, like the second finger of a parallel gripper): Couple (the default)
+// holds q = multiplier q_leader + offset in every solve (Model::couplings); Independent
+// loads it as a joint of its own, as KDL does; Error refuses the URDF, naming the joint.
+enum class MimicJoints { Error, Independent, Couple };
 
 // A chain's side branches (links hanging off the root-to-tip path): merged rigidly into
 // the body they hang from, their movable joints locked (Model::locked_joints), so that no
@@ -20,21 +28,27 @@ enum class MimicJoints { Error, Independent };
 enum class SideBranches { Merge, Ignore };
 
 struct UrdfOptions {
-  MimicJoints mimic = MimicJoints::Error;
+  MimicJoints mimic = MimicJoints::Couple;
   SideBranches side_branches = SideBranches::Merge;
-  // Positions (rad or m) of the movable side joints of a chain that are locked; a side
-  // joint not named here is locked at 0. Naming a joint that is not a movable side joint
-  // of the loaded chain is an error.
+  // Positions (rad or m) of movable joints held fixed (Model::locked_joints): any joint of
+  // the tree or chain named here, and a chain's side joints (locked at 0 unless named).
+  // Naming a joint that is not a movable joint of what is loaded is an error.
   std::map<std::string, double> locked;
   // A floating base: a free joint between the world and the root link (Model::floating),
   // whose inertia then counts.
   bool floating = false;
+  InertiaPolicy inertia = InertiaPolicy::Accept;
 };
 
-// The name of a MimicJoints value in the CLI, JS and scene files ("error",
-// "independent"), and back; the latter throws achd::Error naming `field` on another name.
+// The name of a MimicJoints value in the CLI, JS and scene files ("couple",
+// "independent", "error"), and back; the latter throws achd::Error naming `field` on another name.
 const char* mimic_joints_name(MimicJoints mimic);
 MimicJoints mimic_joints_from_name(const std::string& name, const std::string& field);
+
+// The name of an InertiaPolicy value in the CLI, JS and scene files ("accept", "strict",
+// "repair"), and back; the latter throws achd::Error naming `field` on another name.
+const char* inertia_policy_name(InertiaPolicy policy);
+InertiaPolicy inertia_policy_from_name(const std::string& name, const std::string& field);
 
 // Elements nested deeper than this are refused before the XML parser (which recurses
 // once per level) sees them; robot descriptions nest 5 to 8 deep.
@@ -45,8 +59,9 @@ constexpr int kMaxUrdfNesting = 100;
 // body's subtree follows it). Throws achd::Error naming the file, link
 // or joint on malformed XML, elements nested deeper than kMaxUrdfNesting, unknown links,
 // a tip not below the root, unsupported joint types (floating, planar), mimic joints
-// (unless options.mimic is Independent), non-physical inertias, geometry whose numbers
-// overflow, or joints that move nothing.
+// (unless options.mimic is Independent), inertias the policy refuses, geometry whose
+// numbers overflow, joints that move nothing, or a tree without a movable joint (unless
+// floating). What it loaded but found odd, or repaired, is in Model::warnings.
 Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip,
                      const UrdfOptions& options = {});
 Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip,
