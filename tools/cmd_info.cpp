@@ -7,6 +7,7 @@
 #include "case_json.hpp"
 #include "commands.hpp"
 #include "model_info.hpp"
+#include "read_text_file.hpp"
 #include "urdf_options.hpp"
 
 namespace achd::cli {
@@ -21,7 +22,7 @@ int cmd_info(int argc, char** argv) {
     throw Error("option --convention: expected 'physical' or 'kdl', got '" + convention + "'");
   const std::string urdf = args.positional()[0];
   const Model model = load_urdf_file(urdf, args.get("--root", ""), args.get("--tip", ""), urdf_options(args));
-  std::cout << model_info_json(model, read_file(urdf));
+  std::cout << model_info_json(model, read_text_file(urdf, kMaxUrdfFileBytes, "a URDF file"));
   return 0;
 }
 
