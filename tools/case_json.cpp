@@ -7,6 +7,10 @@
 #include <sstream>
 #include <utility>
 
+#include "json_text.hpp"
+#include "printable.hpp"
+#include "read_text_file.hpp"
+
 namespace achd::cli {
 namespace {
 
@@ -63,19 +67,19 @@ std::string shortest(double x) {
 std::string no_joint(const Model& model, const std::string& name) {
   for (const LockedJoint& l : model.locked_joints)
     if (l.name == name)
-      return "joint '" + name + "' is locked at " + shortest(l.value) +
+      return "joint '" + printable(name) + "' is locked at " + shortest(l.value) +
              " (a side joint of the chain; --lock sets its position)";
-  if (model.has_tip()) return "no movable joint '" + name + "' between the root and the tip";
-  return "no movable joint '" + name + "' below the root link '" + model.root_name + "'";
+  if (model.has_tip()) return "no movable joint '" + printable(name) + "' between the root and the tip";
+  return "no movable joint '" + printable(name) + "' below the root link '" + model.root_name + "'";
 }
 
 // Why `name` names no link after the root (the links wrenches and constraint blocks act on).
 std::string no_link(const Model& model, const std::string& name) {
   if (name == model.root_name && model.floating)
-    return "'" + name + "' is the floating root link, which does not take wrenches or constraint blocks yet "
+    return "'" + printable(name) + "' is the floating root link, which does not take wrenches or constraint blocks yet "
            "(use a link fixed to it)";
-  if (name == model.root_name) return "'" + name + "' is the root link, which is fixed (nothing acts on the model through it)";
-  return "no link '" + name + "'" + (model.has_tip() ? " on the chain" : " below the root link '" + model.root_name + "'");
+  if (name == model.root_name) return "'" + printable(name) + "' is the root link, which is fixed (nothing acts on the model through it)";
+  return "no link '" + printable(name) + "'" + (model.has_tip() ? " on the chain" : " below the root link '" + model.root_name + "'");
 }
 
 // A per-joint vector: q (positions = true) or qd, ff_torques: an array in model order
@@ -96,7 +100,7 @@ Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Mode
   for (const auto& item : v.items()) {
     const int i = model.joint_index(item.key());
     if (i < 0) throw Error(field + ": " + no_joint(model, item.key()));
-    const std::string where = field + "['" + item.key() + "']";
+    const std::string where = field + "['" + printable(item.key()) + "']";
     if (model.floating && i == 0) out.head(free) = vector(item.value(), where + " (the floating base)", free);
     else out[i + (free == 7 ? 1 : 0)] = number(item.value(), where);
   }
@@ -175,7 +179,7 @@ void constraint_blocks(const json& cs, const Model& model, Case& c) {
     for (const auto& item : j.items())
       if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point" &&
           item.key() != "w_fext" && item.key() != "w_ff")
-        throw Error(where + ": unknown field '" + item.key() + "'");
+        throw Error(where + ": unknown field '" + printable(item.key()) + "'");
     if (!j.contains("link")) throw Error(where + ": missing required field 'link'");
     if (!j.contains("alpha")) throw Error(where + ": missing required field 'alpha'");
     if (!j["link"].is_string()) throw Error(where + ".link must be a link name");
@@ -200,7 +204,7 @@ void prescribed_joints(const json& v, const Model& model, Case& c) {
     for (const auto& item : v.items()) {
       const int i = model.joint_index(item.key());
       if (i < 0) throw Error("qdd_given: " + no_joint(model, item.key()));
-      const std::string where = "qdd_given['" + item.key() + "']";
+      const std::string where = "qdd_given['" + printable(item.key()) + "']";
       if (model.floating && i == 0) {  // the free joint: [dv/dt; dw/dt], all six prescribed
         c.qdd_given.head<6>() = vector(item.value(), where + " (the floating base)", 6);
         for (int k = 0; k < 6; ++k) c.prescribed[k] = true;
@@ -237,7 +241,7 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
     for (const auto& item : j.items()) {
       bool ok = false;
       for (const char* k : known) ok = ok || item.key() == k;
-      if (!ok) throw Error("unknown field '" + item.key() + "'");
+      if (!ok) throw Error("unknown field '" + printable(item.key()) + "'");
     }
     if (!j.contains("q")) throw Error("missing required field 'q'");
     if (!j.contains("gravity")) throw Error("missing required field 'gravity'");
@@ -262,9 +266,9 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
 Case parse_case(const std::string& text, const Model& model, const std::string& source) {
   json j;
   try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
-    throw Error(source + ": invalid JSON: " + e.what());
+    j = parse_json_text(text);  // duplicate keys refused
+  } catch (const Error& e) {
+    throw Error(source + ": " + e.what());
   }
   return case_from_json(j, model, source);
 }
@@ -331,12 +335,8 @@ std::string locked_joints_json(const Model& model) {
   return s + "]";
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+std::string read_json_file(const std::string& path, const std::string& what, bool allow_stdin) {
+  return read_text_file(path, kMaxJsonFileBytes, what, allow_stdin);
 }
 
 }  // namespace achd::cli

@@ -27,7 +27,10 @@ std::string result_json(const Model& model, const Data& data, const Case& c);
 // Model::locked_joints as a JSON array [{"name", "value"}] (results and `achd info`).
 std::string locked_joints_json(const Model& model);
 
-// Reads a whole file; throws achd::Error("PATH: cannot open file").
-std::string read_file(const std::string& path);
+// Reads a case or scene file whole: a regular file of at most 16 MiB
+// (kMaxJsonFileBytes), or stdin for "-" when `allow_stdin` (`--case -`). Throws
+// achd::Error starting "PATH: " otherwise (read_text_file.hpp); `what` names the file's
+// kind in the size message ("a case file").
+std::string read_json_file(const std::string& path, const std::string& what, bool allow_stdin = false);
 
 }  // namespace achd::cli

@@ -36,7 +36,8 @@ int cmd_accuracy(int argc, char** argv) {
   } catch (const Error& e) {
     throw Error(scene.source + ": " + e.what());
   } catch (const Interrupted& e) {
-    throw Interrupted(e.what() + std::string(args.has("--out") ? "; no file written to " + args.get("--out") : ""));
+    throw Interrupted(e.what() + std::string(args.has("--out") ? "; no file written to " + args.get("--out") : ""),
+                      e.signal());
   }
   const nlohmann::ordered_json json = study_json(study);
   if (args.has("--out")) {

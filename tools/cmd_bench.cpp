@@ -34,7 +34,7 @@ int cmd_bench(int argc, char** argv) {
   const std::string urdf = args.positional()[0];
   const Model model = load_robot(urdf, args);
   const std::string case_path = args.get("--case");
-  const Case c = parse_case(case_path == "-" ? read_file("/dev/stdin") : read_file(case_path), model,
+  const Case c = parse_case(read_json_file(case_path, "a case file", true), model,
                             case_path);
   // Ranges: a round of 1e9 calls already takes minutes; 1e5 rounds keep the samples small.
   const int repeats = static_cast<int>(args.integer("--repeats", 51, 1, 100000));

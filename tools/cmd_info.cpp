@@ -8,6 +8,7 @@
 #include "case_json.hpp"
 #include "commands.hpp"
 #include "model_info.hpp"
+#include "read_text_file.hpp"
 #include "urdf_options.hpp"
 
 namespace achd::cli {
@@ -23,8 +24,10 @@ int cmd_info(int argc, char** argv) {
   const std::string urdf = args.positional()[0];
   const Model model = load_robot(urdf, args);
   const std::string srdf = args.get("--srdf", "");
-  const std::vector<SrdfPose> poses = srdf.empty() ? std::vector<SrdfPose>{} : read_srdf_poses(read_file(srdf), srdf);
-  std::cout << model_info_json(model, read_file(urdf), poses);
+  const std::vector<SrdfPose> poses =
+      srdf.empty() ? std::vector<SrdfPose>{}
+                   : read_srdf_poses(read_text_file(srdf, kMaxUrdfFileBytes, "an SRDF file"), srdf);
+  std::cout << model_info_json(model, read_text_file(urdf, kMaxUrdfFileBytes, "a URDF file"), poses);
   return 0;
 }
 

@@ -85,6 +85,9 @@ int cmd_simulate(int argc, char** argv) {
   Simulator sim(scene.model, scene.options);
   start_scene(scene, sim);
 
+  // Before the output file exists: from here on SIGINT, SIGTERM and SIGHUP unwind the
+  // run, which removes the file's temporary file, instead of ending the process.
+  catch_interrupt();
   std::unique_ptr<OutputFile> csv;
   std::string row;
   if (args.has("--out")) {
@@ -95,7 +98,6 @@ int cmd_simulate(int argc, char** argv) {
   }
   // For a failed or interrupted run: what became of --out.
   const auto no_file = [&] { return csv && !csv->direct() ? "; no file written to " + csv->path() : std::string(); };
-  catch_interrupt();
   Progress progress([&](std::int64_t done) {
     char percent[32];
     std::snprintf(percent, sizeof percent, "%.1f", 100.0 * static_cast<double>(done) / static_cast<double>(steps));
@@ -128,7 +130,7 @@ int cmd_simulate(int argc, char** argv) {
       progress.step();
     }
   } catch (const Interrupted& e) {
-    throw Interrupted(e.what() + no_file());
+    throw Interrupted(e.what() + no_file(), e.signal());
   }
 
   nlohmann::ordered_json out;

@@ -22,7 +22,7 @@ int cmd_solve(int argc, char** argv) {
   const std::string urdf = args.positional()[0];
   const Model model = load_robot(urdf, args);
   const std::string case_path = args.get("--case");
-  const std::string text = case_path == "-" ? read_file("/dev/stdin") : read_file(case_path);
+  const std::string text = read_json_file(case_path, "a case file", true);
   const Case c = parse_case(text, model, case_path);
   Data data(model);
   hybrid_dynamics(model, data, c, options);

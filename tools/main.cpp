@@ -1,7 +1,11 @@
 // The `achd` command line. stdout carries only results; an error is one line
 // "achd: error: ..." on stderr and exit code 2 (also when the result cannot be written
-// to stdout); a run stopped by Ctrl-C is one line "achd: interrupted: ..." and exit
-// code 130.
+// to stdout, a closed pipe included: SIGPIPE is ignored, so the write fails with EPIPE
+// and is reported like a full disk); a run stopped by Ctrl-C is one line
+// "achd: interrupted: ..." and exit code 130, by SIGTERM or SIGHUP one line
+// "achd: interrupted by SIGTERM: ..." and exit code 128 + the signal.
+#include <signal.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,6 +14,7 @@
 
 #include "achd/error.hpp"
 #include "commands.hpp"
+#include "printable.hpp"
 #include "progress.hpp"
 
 namespace {
@@ -90,15 +95,20 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A closed stdout (`achd ... | head -c 10`) is a failed write, reported as one line and
+  // exit 2 as the README says, rather than a silent death by SIGPIPE (exit 141).
+  signal(SIGPIPE, SIG_IGN);
   try {
     const int code = run(argc, argv);
     check_stdout();
     return code;
   } catch (const achd::cli::Interrupted& e) {
-    std::cerr << "achd: interrupted: " << e.what() << "\n";
-    return 130;
+    std::cerr << "achd: interrupted" << (e.signal() == SIGINT ? "" : " by " + e.signal_name()) << ": " << e.what()
+              << "\n";
+    return 128 + e.signal();
   } catch (const std::exception& e) {
-    std::cerr << "achd: error: " << e.what() << "\n";
+    // printable(): a newline inside a name the message quotes stays in the one line.
+    std::cerr << "achd: error: " << achd::cli::printable(e.what()) << "\n";
     return 2;
   }
 }

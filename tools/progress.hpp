@@ -1,10 +1,13 @@
 #pragma once
 // Long CLI runs (achd simulate, achd accuracy): a progress line on stderr at most once a
 // second, starting after the first second (short runs stay silent), and Ctrl-C.
-// Ctrl-C (SIGINT) only sets a flag, which Progress::step() checks between steps: it then
-// throws Interrupted, which main() reports as one line "achd: interrupted: ..." on
-// stderr with exit code 130 (128 + SIGINT, the shell's convention). The handler is
-// installed for one Ctrl-C; a second one ends the process at once.
+// Ctrl-C (SIGINT), SIGTERM (kill, a service manager) and SIGHUP (the terminal closed)
+// only set a flag, which Progress::step() checks between steps: it then throws
+// Interrupted, which main() reports as one line "achd: interrupted: ..." (SIGINT) or
+// "achd: interrupted by SIGTERM: ..." on stderr with exit code 128 + the signal (130,
+// 143, 129: the shell's convention); the stack unwinds, so an output file's temporary
+// file is removed. The handler is installed for one signal of each kind; a second one
+// ends the process at once.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -13,13 +16,19 @@
 
 namespace achd::cli {
 
-// A run stopped by Ctrl-C; what() says what it had done.
+// A run stopped by a signal; what() says what it had done.
 class Interrupted : public std::runtime_error {
  public:
-  explicit Interrupted(const std::string& what) : std::runtime_error(what) {}
+  Interrupted(const std::string& what, int signal) : std::runtime_error(what), signal_(signal) {}
+  int signal() const { return signal_; }
+  std::string signal_name() const;  // "SIGINT", "SIGTERM", "SIGHUP"
+
+ private:
+  int signal_;
 };
 
-// Installs the SIGINT handler (see above).
+// Installs the SIGINT, SIGTERM and SIGHUP handler (see above). Call it before creating
+// an output file, so that no signal can end the process with the temporary file left.
 void catch_interrupt();
 
 class Progress {

@@ -6,6 +6,9 @@
 #include "achd/names.hpp"
 #include "achd/srdf.hpp"
 #include "case_json.hpp"
+#include "json_text.hpp"
+#include "printable.hpp"
+#include "read_text_file.hpp"
 
 namespace achd::cli {
 namespace {
@@ -36,7 +39,7 @@ void only_known(const json& j, const std::string& where, std::initializer_list<c
   for (const auto& item : j.items()) {
     bool ok = false;
     for (const char* k : known) ok = ok || item.key() == k;
-    if (!ok) throw Error("unknown field '" + where + item.key() + "'");
+    if (!ok) throw Error("unknown field '" + where + printable(item.key()) + "'");
   }
 }
 
@@ -47,8 +50,8 @@ std::uint32_t effects(const json& j) {
     const EffectName* e = nullptr;
     for (const EffectName& k : kEffectNames)
       if (item.key() == k.name) e = &k;
-    if (!e) throw Error("unknown field 'effects." + item.key() + "'");
-    if (!item.value().is_boolean()) throw Error("effects." + item.key() + " must be true or false");
+    if (!e) throw Error("unknown field 'effects." + printable(item.key()) + "'");
+    if (!item.value().is_boolean()) throw Error("effects." + printable(item.key()) + " must be true or false");
     if (item.value().get<bool>()) bits |= e->bit;
     else bits &= ~e->bit;
   }
@@ -61,14 +64,23 @@ SingularityPolicy policy(const json& v) {
   const std::string s = text(v, "policy");
   for (int k = 0; k < 3; ++k)
     if (s == kSingularityPolicyNames[k]) return static_cast<SingularityPolicy>(k);
-  throw Error("policy: expected 'truncate', 'damped' or 'variable_damping', got '" + s + "'");
+  throw Error("policy: expected 'truncate', 'damped' or 'variable_damping', got '" + printable(s) + "'");
 }
 
 LimitPolicy limits(const json& v) {
   const std::string s = text(v, "limits");
   for (int k = 0; k < 3; ++k)
     if (s == kLimitPolicyNames[k]) return static_cast<LimitPolicy>(k);
-  throw Error("limits: expected 'report', 'clamp' or 'ignore', got '" + s + "'");
+  throw Error("limits: expected 'report', 'clamp' or 'ignore', got '" + printable(s) + "'");
+}
+
+// The start pose q0 of a floating base: its orientation quaternion
+// q[3..6] must not be zero (the numbers are finite already). Named here, since a zero
+// quaternion would otherwise surface later as a NaN blamed on whatever used it first
+// (a held direction of a foot).
+void check_quaternion(const Eigen::VectorXd& q, const Model& model, const std::string& field) {
+  if (model.floating && !(q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0))
+    throw Error(field + "[3..6]: the floating base's orientation quaternion (qx, qy, qz, qw) is zero");
 }
 
 const json& required(const json& j, const char* field) {
@@ -88,7 +100,7 @@ void directions(const json& j, const std::string& prefix, std::array<DirectionMo
   if (!j.is_object()) throw Error(prefix + "directions must be an object (x y z rx ry rz)");
   for (const auto& item : j.items()) {
     const int k = index_of_direction(item.key());
-    const std::string field = prefix + "directions." + item.key();
+    const std::string field = prefix + "directions." + printable(item.key());
     if (k < 0) throw Error("unknown field '" + field + "' (directions are x y z rx ry rz)");
     const json& v = item.value();
     if (v.is_number()) {
@@ -109,13 +121,13 @@ void direction_weights(const json& j, const std::string& prefix, std::array<doub
   if (!j.is_object()) throw Error(prefix + "direction_weights must be an object (x y z rx ry rz)");
   for (const auto& item : j.items()) {
     const int k = index_of_direction(item.key());
-    const std::string field = prefix + "direction_weights." + item.key();
+    const std::string field = prefix + "direction_weights." + printable(item.key());
     if (k < 0) throw Error("unknown field '" + field + "' (directions are x y z rx ry rz)");
     if (!item.value().is_object()) throw Error(field + " must be an object {\"w_fext\": w, \"w_ff\": w}");
     for (const auto& w : item.value().items()) {
-      if (w.key() != "w_fext" && w.key() != "w_ff") throw Error("unknown field '" + field + "." + w.key() + "'");
+      if (w.key() != "w_fext" && w.key() != "w_ff") throw Error("unknown field '" + field + "." + printable(w.key()) + "'");
       const double value = number(w.value(), field + "." + w.key());
-      if (!(value >= 0 && value <= 1)) throw Error(field + "." + w.key() + " must be in [0, 1]");
+      if (!(value >= 0 && value <= 1)) throw Error(field + "." + printable(w.key()) + " must be in [0, 1]");
       (w.key() == "w_fext" ? w_fext : w_ff)[k] = value;
     }
   }
@@ -134,9 +146,9 @@ void link_directions(const json& j, Scene& s) {
     Scene::LinkSet set;
     set.link = s.model.link_index(name);
     if (set.link < 0)
-      throw Error(where + ".link: no link '" + name + "' after the root link '" + s.model.root_name + "'");
+      throw Error(where + ".link: no link '" + printable(name) + "' after the root link '" + s.model.root_name + "'");
     for (const Scene::LinkSet& other : s.link_directions)
-      if (other.link == set.link) throw Error(where + ".link: link '" + name + "' is listed twice");
+      if (other.link == set.link) throw Error(where + ".link: link '" + printable(name) + "' is listed twice");
     if (item.contains("point")) set.point = vector(item["point"], where + ".point", 3);
     if (item.contains("directions")) directions(item["directions"], where + ".", set.modes, set.setpoints);
     if (item.contains("direction_weights"))
@@ -191,15 +203,15 @@ void prescribed(const json& j, Scene& s) {
     only_known(item, where + ".", {"joint", "motion", "position", "velocity", "amplitude", "frequency", "phase"});
     const std::string name = text(required_in(item, "joint", where), where + ".joint");
     const int i = s.model.joint_index(name);
-    if (i < 0) throw Error(where + ".joint: no movable joint '" + name + "' between the root and the tip");
+    if (i < 0) throw Error(where + ".joint: no movable joint '" + printable(name) + "' between the root and the tip");
     for (const auto& [other, motion] : s.prescribed)
-      if (other == i) throw Error(where + ".joint: joint '" + name + "' is prescribed twice");
+      if (other == i) throw Error(where + ".joint: joint '" + printable(name) + "' is prescribed twice");
     const std::string kind = text(required_in(item, "motion", where), where + ".motion");
     JointMotion m;
     int found = -1;
     for (int c = 0; c < 3; ++c)
       if (kind == kMotionKindNames[c]) found = c;
-    if (found < 0) throw Error(where + ".motion: expected 'constant', 'ramp' or 'sine', got '" + kind + "'");
+    if (found < 0) throw Error(where + ".motion: expected 'constant', 'ramp' or 'sine', got '" + printable(kind) + "'");
     m.kind = static_cast<MotionKind>(found);
     for (auto [field, out] : {std::pair<const char*, double*>{"position", &m.position}, {"velocity", &m.velocity},
                               {"amplitude", &m.amplitude}, {"frequency", &m.frequency}, {"phase", &m.phase}})
@@ -214,7 +226,7 @@ void f_ext(const json& j, Scene& s) {
   s.f_ext.assign(s.model.num_links(), Vector6::Zero());
   for (const auto& item : j.items()) {
     const int l = s.model.link_index(item.key());
-    if (l < 0) throw Error("f_ext." + item.key() + ": no link of that name after the root");
+    if (l < 0) throw Error("f_ext." + printable(item.key()) + ": no link of that name after the root");
     s.f_ext[l] = vector(item.value(), "f_ext." + item.key(), 6);
   }
 }
@@ -234,7 +246,7 @@ Integrator integrator_from_name(const std::string& name, const std::string& fiel
     if (name == integrator_name(i)) return i;
   std::string names;
   for (Integrator i : kIntegrators) names += std::string(names.empty() ? "'" : ", '") + integrator_name(i) + "'";
-  throw Error(field + ": expected one of " + names + ", got '" + name + "'");
+  throw Error(field + ": expected one of " + names + ", got '" + printable(name) + "'");
 }
 
 std::int64_t Scene::steps() const { return steps_for_duration(duration, dt); }
@@ -270,19 +282,14 @@ std::string resolve_scene_path(const std::string& path, const std::string& scene
     if (fs::exists(dir / p)) return (dir / p).lexically_normal().string();
     if (dir == dir.root_path() || dir.empty()) break;
   }
-  throw Error(field + ": '" + path + "' not found from the scene's directory or any parent");
+  throw Error(field + ": '" + printable(path) + "' not found from the scene's directory or any parent");
 }
 
 Scene parse_scene(const std::string& text_in, const std::string& source) {
   Scene s;
   s.source = source;
   try {
-    json j;
-    try {
-      j = json::parse(text_in);
-    } catch (const json::parse_error& e) {
-      throw Error(std::string("invalid JSON: ") + e.what());
-    }
+    const json j = parse_json_text(text_in);  // duplicate keys refused
     if (!j.is_object()) throw Error("the scene must be a JSON object");
     only_known(j, "", {"description", "urdf", "root", "tip", "q0", "qd0", "effects", "directions", "direction_weights",
                        "integrator", "dt", "duration", "gravity", "limits", "friction_velocity",
@@ -310,9 +317,11 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     if (j.contains("srdf") && j.contains("q0")) throw Error("give q0 or srdf and pose, not both");
     if (j.contains("srdf")) {
       const std::string srdf = resolve_scene_path(text(j["srdf"], "srdf"), source, "srdf");
-      s.q0 = srdf_pose_q(s.model, find_srdf_pose(read_srdf_poses(read_file(srdf), srdf), text(j["pose"], "pose"), srdf));
+      const std::string text_of = read_text_file(srdf, kMaxUrdfFileBytes, "an SRDF file");
+      s.q0 = srdf_pose_q(s.model, find_srdf_pose(read_srdf_poses(text_of, srdf), text(j["pose"], "pose"), srdf));
     } else {
       s.q0 = j.contains("q0") ? vector(j["q0"], "q0", s.model.num_positions()) : default_pose(s.model);
+      check_quaternion(s.q0, s.model, "q0");
     }
     s.qd0 = j.contains("qd0") ? vector(j["qd0"], "qd0", n) : Eigen::VectorXd::Zero(n);
     s.ff_torques = j.contains("ff_torques") ? vector(j["ff_torques"], "ff_torques", n)
@@ -361,7 +370,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
   return s;
 }
 
-Scene load_scene(const std::string& path) { return parse_scene(read_file(path), path); }
+Scene load_scene(const std::string& path) { return parse_scene(read_json_file(path, "a scene file"), path); }
 
 void start_scene(const Scene& scene, Simulator& sim) {
   sim.reset(scene.q0, scene.qd0);

@@ -9,6 +9,14 @@
 // way, relative to the mesh's folder. The files a robot's looks were read from are what a
 // share link keeps of them (web/mesh_share.js).
 
+// Largest mesh file read, in bytes: a robot's meshes are kilobytes to a few megabytes; a
+// larger file is refused (its link keeps the stick figure) rather than read whole.
+export const MESH_LIMIT_BYTES = 64 * 1024 * 1024;
+
+function tooLarge(bytes) {
+  return new Error(`${bytes} bytes, larger than the ${MESH_LIMIT_BYTES / (1024 * 1024)} MiB limit of a mesh file`);
+}
+
 // files: [{path: 'robot/meshes/a.stl' (folder-relative, '/'-separated), file: File}];
 // urdfPath: the URDF's own path among them.
 export class PickedFiles {
@@ -49,6 +57,7 @@ export class PickedFiles {
   async read(filename) {
     const hit = this.match(meshParts(filename, this.urdfFolder));
     if (!hit) return null;
+    if (hit.file.size > MESH_LIMIT_BYTES) throw tooLarge(hit.file.size);
     this.used.add(hit);
     return hit.file.arrayBuffer();
   }
@@ -75,7 +84,10 @@ export class ServedFiles {
   async read(filename) {
     if (/^[a-z]+:\/\//i.test(filename)) return null;  // package:// or file://: not on this server
     const response = await fetch(new URL(filename, this.urdfUrl));
-    return response.ok ? response.arrayBuffer() : null;
+    if (!response.ok) return null;
+    const bytes = await response.arrayBuffer();
+    if (bytes.byteLength > MESH_LIMIT_BYTES) throw tooLarge(bytes.byteLength);
+    return bytes;
   }
 
   // A texture next to the mesh on this server.

@@ -5,9 +5,15 @@
 // reopens it in this browser only. Its mesh files are never in the link: they are kept in
 // this browser's IndexedDB under the same key (web/mesh_share.js).
 
+import { inflatedSize } from './deflate_size.js';
+
 // Longest compressed URDF, in base64url characters, that a link carries: links of a few
 // kilobytes pass through mail and chat programs intact.
 export const LINK_CHARACTERS = 8000;
+// Largest URDF text a link may carry once decompressed: the command line's limit on a URDF
+// file (64 MiB). A link of a few hundred KB can expand to gigabytes; decompression stops
+// as soon as the text passes this, instead of filling the tab's memory.
+export const URDF_LIMIT_BYTES = 64 * 1024 * 1024;
 const STORAGE_PREFIX = 'achd:urdf:';
 const CARRIED = 'deflate:';
 const KEPT = 'local:';
@@ -39,8 +45,19 @@ export async function openSharedUrdf(ref) {
   if (ref.startsWith(CARRIED)) {
     let bytes;
     try {
-      bytes = await transform(fromBase64url(ref.slice(CARRIED.length)), new DecompressionStream('deflate-raw'));
+      const packed = fromBase64url(ref.slice(CARRIED.length));
+      // Measured first without expanding (milliseconds, web/deflate_size.js); a stream the
+      // count cannot read is left to the decompressor, which says what is wrong with it.
+      let size = 0;
+      try {
+        size = inflatedSize(packed, URDF_LIMIT_BYTES);
+      } catch {
+        size = 0;
+      }
+      if (size > URDF_LIMIT_BYTES) throw new TooLarge(tooLargeMessage(URDF_LIMIT_BYTES));
+      bytes = await inflateBounded(packed, URDF_LIMIT_BYTES);
     } catch (err) {
+      if (err instanceof TooLarge) throw new Error(err.message);
       throw new Error(`the URDF carried in the link is damaged (${err.message}); was the link cut short?`);
     }
     return new TextDecoder().decode(bytes);
@@ -55,6 +72,41 @@ export async function openSharedUrdf(ref) {
     return text;
   }
   throw new Error(`urdf= must start with ${CARRIED} or ${KEPT}, got "${ref.slice(0, 20)}"`);
+}
+
+class TooLarge extends Error {}
+
+function tooLargeMessage(limit) {
+  return `the URDF carried in the link expands past the ${limit / (1024 * 1024)} MiB limit of a URDF file; ` +
+    'it was not opened';
+}
+
+// The deflate-raw `bytes` decompressed, read chunk by chunk: past `limit` bytes the stream
+// is cancelled (which stops the decompressor) and TooLarge says so, the chunks read so far
+// left to the garbage collector. (inflatedSize has refused such a link before; this bound
+// holds whatever the count made of the stream.)
+async function inflateBounded(bytes, limit) {
+  const reader = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw')).getReader();
+  const chunks = [];
+  let total = 0;
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    total += value.length;
+    if (total > limit) {
+      chunks.length = 0;
+      await reader.cancel().catch(() => {});
+      throw new TooLarge(tooLargeMessage(limit));
+    }
+    chunks.push(value);
+  }
+  const out = new Uint8Array(total);
+  let at = 0;
+  for (const chunk of chunks) {
+    out.set(chunk, at);
+    at += chunk.length;
+  }
+  return out;
 }
 
 async function transform(bytes, stream) {

@@ -5,6 +5,7 @@
 // being the PickedFiles its meshes are looked up in (web/mesh_files.js).
 import { PickedFiles, droppedFiles, pickedFiles } from './mesh_files.js';
 import { chainLinks, longestChain, urdfTree } from './urdf_tree.js';
+import { URDF_LIMIT_BYTES } from './urdf_share.js';
 
 const URDF_NAME = /\.urdf$/i;
 const XML_NAME = /\.xml$/i;
@@ -67,6 +68,11 @@ export class UrdfUpload {
       return;
     }
     try {
+      // The command line's limit on a URDF file: a larger one is not read into the tab.
+      if (urdf.file.size > URDF_LIMIT_BYTES) {
+        throw new Error(`${urdf.file.size} bytes, larger than the ${URDF_LIMIT_BYTES / (1024 * 1024)} MiB limit ` +
+          'of a URDF file');
+      }
       this.text = await urdf.file.text();
       this.fileName = urdf.path;
       this.tree = urdfTree(this.text);

@@ -12,6 +12,12 @@ const LOADERS = {
   obj: async () => (await import('three/addons/loaders/OBJLoader.js')).OBJLoader,
 };
 
+// Farthest a mesh's vertex may lie from its visual's origin once scaled, in metres: a
+// robot's part spans centimetres to metres; a vertex kilometres away (or NaN, or
+// infinite) is a broken file, and drawing it would throw the camera's framing off (to NaN
+// matrices). Such a mesh is refused: its link keeps the stick figure and the note says why.
+export const MAX_VERTEX_METRES = 1000;
+
 const DEFAULT_COLOR = [0.72, 0.75, 0.79, 1];
 // What a texture that was not found is drawn with: one white pixel (PNG), so the mesh
 // keeps its material colour and the browser fetches nothing.
@@ -53,14 +59,56 @@ export function visualObject(visual) {
       result.texturesMissing.push(url);
       return BLANK_TEXTURE;
     });
+    let mesh;
     try {
-      object.add(parseMesh(new Loader(manager), format, bytes, visual.color));
+      mesh = parseMesh(new Loader(manager), format, bytes, visual.color);
     } catch (err) {
       return { ...result, status: 'failed', message: `not a readable ${format.toUpperCase()} file (${err.message})` };
     }
+    const bad = badVertex(mesh, g.scale);
+    if (bad) {
+      dispose(mesh);
+      return { ...result, status: 'failed', message: bad };
+    }
+    object.add(mesh);
     return result;
   };
   return { object, load };
+}
+
+// Why the vertices of a parsed mesh cannot be drawn, or null when they can: the first
+// one that is not finite, or one farther than MAX_VERTEX_METRES from the visual's origin
+// once the mesh's own transforms (a COLLADA unit) and the URDF's scale apply.
+function badVertex(mesh, scale) {
+  let why = null;
+  mesh.traverse((o) => {
+    const position = o.isMesh ? o.geometry.getAttribute('position') : null;
+    if (why || !position) return;
+    const a = position.array;
+    for (let i = 0; i < a.length; i++) {
+      if (!Number.isFinite(a[i])) {
+        why = `vertex ${Math.floor(i / 3) + 1} has a coordinate that is not a finite number (${a[i]})`;
+        return;
+      }
+    }
+  });
+  if (why) return why;
+  mesh.updateMatrixWorld(true);
+  const box = new THREE.Box3().setFromObject(mesh);
+  const factor = Math.max(...scale.map(Math.abs));
+  const far = factor * Math.max(...[box.min, box.max].flatMap((v) => [Math.abs(v.x), Math.abs(v.y), Math.abs(v.z)]));
+  if (!(far <= MAX_VERTEX_METRES)) {
+    return `a vertex lies ${far.toPrecision(3)} m from the visual's origin, more than the ${MAX_VERTEX_METRES} m ` +
+      'a robot\'s mesh may span';
+  }
+  return null;
+}
+
+function dispose(object) {
+  object.traverse((o) => {
+    o.geometry?.dispose();
+    for (const m of [o.material ?? []].flat()) m.dispose();
+  });
 }
 
 function primitiveGeometry(g) {

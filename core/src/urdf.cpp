@@ -23,6 +23,7 @@
 #include "console_capture.hpp"
 #include "free_motions.hpp"
 #include "link_inertia.hpp"
+#include "read_text_file.hpp"
 #include "sin_cos.hpp"
 #include "xml_depth.hpp"
 
@@ -603,11 +604,8 @@ Model load_urdf_string(const std::string& xml, const std::string& root, const st
 
 Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip,
                      const UrdfOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load(text.str(), root, tip, options, path);
+  // A regular file only, at most kMaxUrdfFileBytes (read_text_file.hpp).
+  return load(read_text_file(path, kMaxUrdfFileBytes, "a URDF file"), root, tip, options, path);
 }
 
 }  // namespace achd
