@@ -19,7 +19,7 @@ export function installAchd(Module) {
   Module['loadURDF'] = function loadURDF(text, options) {
     if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating']);
+    options = achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating']);
     if (options.floating !== undefined && typeof options.floating !== 'boolean')
       throw new Error('loadURDF: options.floating must be true or false');
     for (const key of ['root', 'tip'])
@@ -27,8 +27,7 @@ export function installAchd(Module) {
         throw new Error(`loadURDF: options.${key} must be a link name`);
     const mimic = achdChoice(options.mimic, ['error', 'independent'], 'error', 'loadURDF: options.mimic');
     const sides = achdChoice(options.sideBranches, ['merge', 'ignore'], 'merge', 'loadURDF: options.sideBranches');
-    const locked = options.locked === undefined ? {} : options.locked;
-    achdCheckObject(locked, 'loadURDF: options.locked', Object.keys(locked));
+    const locked = options.locked === undefined ? {} : achdCheckObject(options.locked, 'loadURDF: options.locked', null);
     const names = Object.keys(locked), values = names.map((name) => locked[name]);
     values.forEach((x, k) => {
       if (typeof x !== 'number' || !Number.isFinite(x))
