@@ -6,7 +6,7 @@
 // w_ff} packed for achd_solver_set_blocks. `robot` supplies the
 // names: root, tip (null for a tree), jointNames, linkNames (after the root),
 // lockedJoints.
-import { achdCheckObject, achdDescribe, achdFiniteNumber, achdIsArrayLike, achdIsPlainObject, achdReadArray, achdReadNumbers } from './validation.mjs';
+import { achdCheckObject, achdFiniteNumber, achdIsArrayLike, achdIsPlainObject, achdReadArray, achdReadNumbers, achdUnlikeJson } from './validation.mjs';
 
 const ACHD_BLOCK_KEYS = ['link', 'alpha', 'beta', 'point', 'w_fext', 'w_ff'];
 
@@ -50,7 +50,7 @@ export function achdJointValues(value, field, robot, positions = false) {
   const n = positions ? robot.numPositions : robot.numJoints;
   if (!achdIsPlainObject(value)) {
     if (!achdIsArrayLike(value))
-      throw new Error(`${field} must be an array of ${n} numbers or an object {joint name: value}, got ${achdDescribe(value)}`);
+      throw new Error(`${field} must be an array of ${n} numbers or an object {joint name: value}${achdUnlikeJson(value)}`);
     return achdReadNumbers(value, field, n);
   }
   const given = achdCheckObject(value, field, null);
@@ -121,7 +121,7 @@ export function achdPrescribedJoints(value, robot) {
 // message the CLI gives too).
 export function achdDriverWeights(value, field, nc) {
   if (value === undefined) return new Float64Array(nc).fill(1);
-  return achdReadNumbers(value, field, nc, `${nc} values (one per alpha column)`);
+  return achdReadNumbers(value, field, nc, `${nc} values (one per alpha column)`, 'an array of numbers in [0, 1], one per alpha column');
 }
 
 // Columns alpha (up to `max` 6-vectors) and beta (one per column, absent: zeros) of a
@@ -133,7 +133,7 @@ export function achdColumns(alphaValue, betaValue, prefix, max) {
   const k = columns.length, alpha = new Float64Array(6 * k);
   columns.forEach((col, j) => alpha.set(achdReadNumbers(col, `${prefix}alpha[${j}]`, 6), 6 * j));
   const beta = betaValue === undefined ? new Float64Array(k)
-    : achdReadNumbers(betaValue, `${prefix}beta`, k, `${k} values (one per alpha column)`);
+    : achdReadNumbers(betaValue, `${prefix}beta`, k, `${k} values (one per alpha column)`, 'an array of numbers');
   return { count: k, alpha, beta };
 }
 
@@ -147,11 +147,11 @@ export function achdPackBlocks(blocks, robot, max) {
   let columns = 0;
   list.forEach((value, b) => {
     const where = `constraints[${b}]`;
-    if (!achdIsPlainObject(value)) throw new Error(`${where} must be an object {link, alpha, beta, point}, got ${achdDescribe(value)}`);
+    if (!achdIsPlainObject(value)) throw new Error(`${where} must be an object {link, alpha, beta, point}${achdUnlikeJson(value)}`);
     const block = achdCheckObject(value, where, ACHD_BLOCK_KEYS);
     if (!('link' in block)) throw new Error(`${where}: missing required field 'link'`);
     if (!('alpha' in block)) throw new Error(`${where}: missing required field 'alpha'`);
-    if (typeof block.link !== 'string') throw new Error(`${where}.link must be a link name, got ${achdDescribe(block.link)}`);
+    if (typeof block.link !== 'string') throw new Error(`${where}.link must be a link name${achdUnlikeJson(block.link)}`);
     const link = robot.linkNames.indexOf(block.link);
     if (link < 0) throw new Error(`${where}.link: ${achdNoLink(robot, block.link)}`);
     const c = achdColumns(block.alpha, block.beta, `${where}.`, max);

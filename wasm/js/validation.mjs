@@ -56,17 +56,25 @@ export function achdDescribe(x) {
   return achdIsPlainObject(x) ? 'an object' : 'a class instance (not a plain object)';
 }
 
+// ", got a Map" for the kinds of values JSON cannot hold (Map, DataView, class instance,
+// symbol...), nothing for the others: for those the message is the CLI's word for word.
+export function achdUnlikeJson(x) {
+  if (x === null || x === undefined || Array.isArray(x) || achdIsPlainObject(x)) return '';
+  if (typeof x === 'string' || typeof x === 'number' || typeof x === 'boolean') return '';
+  return `, got ${achdDescribe(x)}`;
+}
+
 // An array input read once (see the top): a plain Array of its elements as given, or for
 // a typed array a Float64Array copy. `expected` completes "FIELD must be ...";
 // checkLength(length) throws when the length is wrong, before any element is read.
 export function achdReadArray(value, field, expected, checkLength) {
   if (ArrayBuffer.isView(value) && !(value instanceof DataView)) {
     if (!ACHD_TYPED_ARRAYS.some((T) => value instanceof T))
-      throw new Error(`${field} must be ${expected}, got ${achdDescribe(value)}`);
+      throw new Error(`${field} must be ${expected}${achdUnlikeJson(value)}`);
     if (checkLength) checkLength(value.length);
     return new Float64Array(value);  // the typed array's own elements, not its properties
   }
-  if (!Array.isArray(value)) throw new Error(`${field} must be ${expected}, got ${achdDescribe(value)}`);
+  if (!Array.isArray(value)) throw new Error(`${field} must be ${expected}${achdUnlikeJson(value)}`);
   const lengthProperty = Object.getOwnPropertyDescriptor(value, 'length');
   const n = lengthProperty === undefined ? undefined : lengthProperty.value;
   if (!Number.isSafeInteger(n) || n < 0) throw new Error(`${field} must be ${expected}, got an array of length ${achdDescribe(n)}`);
@@ -82,16 +90,16 @@ export function achdReadArray(value, field, expected, checkLength) {
 }
 
 export function achdFiniteNumber(x, where) {
-  if (typeof x !== 'number') throw new Error(`${where} must be a number, got ${achdDescribe(x)}`);
+  if (typeof x !== 'number') throw new Error(`${where} must be a number${achdUnlikeJson(x)}`);
   if (!Number.isFinite(x)) throw new Error(`${where} is not finite`);
   return x;
 }
 
 // n finite numbers read once into a Float64Array, with the messages of tools/case_json.cpp:
 // "q: expected 7 values, got 6", "q[3] is not finite". `count` words the expected count
-// in the length message (default "N values").
-export function achdReadNumbers(value, field, n, count = `${n} values`) {
-  const a = achdReadArray(value, field, `an array of ${n} numbers`, (length) => {
+// in the length message (default "N values"), `expected` what the input must be.
+export function achdReadNumbers(value, field, n, count = `${n} values`, expected = `an array of ${n} numbers`) {
+  const a = achdReadArray(value, field, expected, (length) => {
     if (length !== n) throw new Error(`${field}: expected ${count}, got ${length}`);
   });
   const out = new Float64Array(n);
@@ -113,7 +121,7 @@ export function achdReadSpatialList(value, field, count, what) {
 // enumerable properties (so a key '__proto__' is a key like any other). It must be a
 // plain object; a key not in `known` (null: any key) or a getter is an error.
 export function achdCheckObject(value, name, known) {
-  if (!achdIsPlainObject(value)) throw new Error(`${name} must be an object, got ${achdDescribe(value)}`);
+  if (!achdIsPlainObject(value)) throw new Error(`${name} must be an object${achdUnlikeJson(value)}`);
   const out = Object.create(null);
   for (const key of Reflect.ownKeys(value)) {
     if (typeof key !== 'string') continue;  // symbol keys name nothing
