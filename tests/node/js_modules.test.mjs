@@ -23,7 +23,7 @@ test('the checks of user values work without wasm', async () => {
   const v = await import(join(jsDir, 'validation.mjs'));
   assert.throws(() => v.achdReadNumbers([1, 2], 'q', 3), /^Error: q: expected 3 values, got 2$/);
   assert.throws(() => v.achdReadNumbers([1, NaN, 3], 'q', 3), /^Error: q\[1\] is not finite$/);
-  assert.throws(() => v.achdReadNumbers([1, '2', 3], 'q', 3), /^Error: q\[1\] must be a number, got '2'$/);
+  assert.throws(() => v.achdReadNumbers([1, '2', 3], 'q', 3), /^Error: q\[1\] must be a number$/);
   assert.throws(() => v.achdReadNumbers(new Map(), 'q', 3), /^Error: q must be an array of 3 numbers, got a Map$/);
   assert.deepEqual(v.achdReadNumbers(new Int32Array([1, 2, 3]), 'q', 3), new Float64Array([1, 2, 3]));
   assert.throws(() => v.achdCheckObject({ q: 1, x: 2 }, 'the case', ['q']), /the case: unknown field 'x'/);
