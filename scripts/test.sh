@@ -12,7 +12,8 @@
 #   node      Node tests, wasm against the native CLI (builds build/achd and the module)
 #   browser   the page in Chromium (builds the module)
 #   sanitize  native build under ASan + UBSan (build-asan/) and its ctest suites
-#   fuzz      the libFuzzer targets, ACHD_FUZZ_SECONDS (default 30) each
+#   fuzz      the libFuzzer targets and the JS boundary's property test (builds the
+#             module), ACHD_FUZZ_SECONDS (default 30) each
 # Environment: ACHD_JOBS (parallel jobs, default 2), ACHD_FUZZ_SECONDS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -85,6 +86,10 @@ fuzz() {
   once fuzz || return 0
   stage "fuzzing (${fuzz_seconds} s per target)"
   bash fuzz/run.sh "$fuzz_seconds"
+  # The JS boundary (views, callbacks, inputs read once) for the same time; the Node
+  # stage runs it for its default few seconds.
+  wasm
+  ACHD_FUZZ_SECONDS="$fuzz_seconds" node --test tests/node/boundary_property.test.mjs
 }
 
 # One stage asked for by name, after what it needs.

@@ -2,9 +2,15 @@
 // Units SI; spatial vectors linear first [x, y, z, rx, ry, rz]; gravity is the physical
 // vector. Plain arrays and objects returned are copies; Float64Array properties of
 // Solver and Simulator are views on wasm memory (re-created automatically when memory
-// grows, so read the property again rather than keeping a view across a loadURDF/malloc).
-// Every object owning wasm memory has delete(); afterwards each call throws
-// Error('<Kind> has been deleted'). Bad input throws an Error naming the field and index.
+// grows, so read the property again rather than keeping a view across a loadURDF,
+// create* or delete()). Every object owning wasm memory has delete(); afterwards each
+// call throws Error('<Kind> has been deleted'), and views cannot outlive it: delete() of
+// an object whose views were read detaches every view on the current memory (they become
+// zero-length: element writes are dropped, fill and set throw a TypeError), so a kept
+// view never writes into memory another object or the allocator uses. Inputs (Vec: an array or typed array; by-name
+// inputs and options: plain objects) are read once into a checked copy; a Map, DataView,
+// class instance, getter, a number given as a string or null options are named Errors.
+// Bad input throws an Error naming the field and index.
 // Names: option values are the scene files' words (explicit_euler, velocity_products),
 // option keys the same words in camelCase (velocityProducts), result fields snake_case.
 
@@ -324,7 +330,10 @@ export interface StepOptions {
   /**
    * Called after every `progressInterval` steps and after the last one, with the steps run
    * so far by this call and its n. Returning false stops the run there; step() then
-   * returns stepsDone. Any other return value (or none) continues.
+   * returns stepsDone. Any other return value (or none) continues. It may change the
+   * simulator's directions, controls and wrenches (the rest of the run uses them) and
+   * create or delete other objects; deleting or resetting this simulator stops the run
+   * with an Error saying so, and calling its step() again is refused (an Error).
    */
   onProgress?: (stepsDone: number, total: number) => boolean | void;
   /** steps between onProgress calls, an integer >= 1; default 10000 (about 0.1 s of RK4 on the 7-DoF arm). */
@@ -374,7 +383,7 @@ export interface Simulator {
   /** Driver priorities of a direction, each in [0, 1] (default 1): below 1 the direction
    *  yields to external wrenches (wFext) or feed-forward torques (wFf) and is re-anchored
    *  where its point is after every step. */
-  setDirectionWeights(name: Direction, weights: { wFext?: number; wFf?: number }, link?: LinkRef): void;
+  setDirectionWeights(name: Direction, weights?: { wFext?: number; wFf?: number }, link?: LinkRef): void;
   /** where the link's directions act, [x, y, z] in its frame (default its origin). */
   setDirectionPoint(link: LinkRef, point: Vec): void;
   /** links with directions, in the order of their blocks in nu, and their active directions. */

@@ -21,10 +21,11 @@ test('every module of the wrapper imports on its own', async () => {
 
 test('the checks of user values work without wasm', async () => {
   const v = await import(join(jsDir, 'validation.mjs'));
-  assert.throws(() => v.achdCheckVector([1, 2], 'q', 3), /^Error: q: expected 3 values, got 2$/);
-  assert.throws(() => v.achdCheckVector([1, NaN, 3], 'q', 3), /^Error: q\[1\] is not finite$/);
-  assert.throws(() => v.achdCheckVector([1, '2', 3], 'q', 3), /^Error: q\[1\] must be a number$/);
-  v.achdCheckVector(new Float64Array(3), 'q', 3);
+  assert.throws(() => v.achdReadNumbers([1, 2], 'q', 3), /^Error: q: expected 3 values, got 2$/);
+  assert.throws(() => v.achdReadNumbers([1, NaN, 3], 'q', 3), /^Error: q\[1\] is not finite$/);
+  assert.throws(() => v.achdReadNumbers([1, '2', 3], 'q', 3), /^Error: q\[1\] must be a number$/);
+  assert.throws(() => v.achdReadNumbers(new Map(), 'q', 3), /^Error: q must be an array of 3 numbers, got a Map$/);
+  assert.deepEqual(v.achdReadNumbers(new Int32Array([1, 2, 3]), 'q', 3), new Float64Array([1, 2, 3]));
   assert.throws(() => v.achdCheckObject({ q: 1, x: 2 }, 'the case', ['q']), /the case: unknown field 'x'/);
   assert.equal(v.achdChoice(undefined, ['a', 'b'], 'b', 'o'), 1);
   assert.throws(() => v.achdChoice('c', ['a', 'b'], 'a', 'options.x'), /options.x: expected 'a' or 'b', got 'c'/);

@@ -183,7 +183,7 @@ test('bad input throws an Error naming the problem; the simulator keeps working 
   const sim = kuka.createSimulator();
   sim.reset(kukaEntry.q0);
   throws(() => sim.setDirection('w', 'hold'), /unknown direction 'w'/);
-  throws(() => sim.setDirection('z', 'stick'), /mode must be 'hold', 'free' or a finite number, got stick/);
+  throws(() => sim.setDirection('z', 'stick'), /mode must be 'hold', 'free' or a finite number, got 'stick'$/);
   throws(() => sim.setDirection('z', NaN), /mode must be/);
   throws(() => sim.reset([1, 2, 3]), /^q: expected 7 values, got 3$/);
   throws(() => sim.reset(kukaEntry.q0, new Float64Array(8)), /^qd: expected 7 values, got 8$/);

@@ -6,19 +6,9 @@
 // w_ff} packed for achd_solver_set_blocks. `robot` supplies the
 // names: root, tip (null for a tree), jointNames, linkNames (after the root),
 // lockedJoints.
-import { achdCheckVector, achdIsArrayLike } from './validation.mjs';
+import { achdCheckObject, achdFiniteNumber, achdIsArrayLike, achdIsPlainObject, achdReadArray, achdReadNumbers, achdUnlikeJson } from './validation.mjs';
 
 const ACHD_BLOCK_KEYS = ['link', 'alpha', 'beta', 'point', 'w_fext', 'w_ff'];
-
-function achdIsPlainObject(v) {
-  return v !== null && typeof v === 'object' && !achdIsArrayLike(v);
-}
-
-function achdNumber(x, where) {
-  if (typeof x !== 'number') throw new Error(`${where} must be a number`);
-  if (!Number.isFinite(x)) throw new Error(`${where} is not finite`);
-  return x;
-}
 
 // Why `name` is not a movable joint of the robot.
 export function achdNoJoint(robot, name) {
@@ -52,48 +42,46 @@ export function achdNoLink(robot, name) {
   return `no link '${name}'${robot.tip !== null ? ' on the chain' : ` below the root link '${robot.root}'`}`;
 }
 
-// q (positions = true), qd, ff_torques: an object by joint name becomes the array in model
-// order (a floating base's free joint: an array of 7 in q, 6 in the others; not named: the
-// identity pose at the origin, at rest); anything else is returned as given
-// (achdWriteVector checks it).
+// q (positions = true), qd, ff_torques: an array of numbers in model order, or an object
+// by joint name (a floating base's free joint: an array of 7 in q, 6 in the others; not
+// named: the identity pose at the origin, at rest); read once (validation.mjs) into a
+// Float64Array of the model's length, checked.
 export function achdJointValues(value, field, robot, positions = false) {
   const n = positions ? robot.numPositions : robot.numJoints;
   if (!achdIsPlainObject(value)) {
-    if (value !== undefined && !achdIsArrayLike(value))
-      throw new Error(`${field} must be an array of ${n} numbers or an object {joint name: value}`);
-    return value;
+    if (!achdIsArrayLike(value))
+      throw new Error(`${field} must be an array of ${n} numbers or an object {joint name: value}${achdUnlikeJson(value)}`);
+    return achdReadNumbers(value, field, n);
   }
-  const out = new Array(n).fill(0);
+  const given = achdCheckObject(value, field, null);
+  const out = new Float64Array(n);
   if (positions && robot.floating) out[6] = 1;  // qw: the identity orientation
   // (no destructuring in for-of: Emscripten's JS optimizer drops it)
-  for (const name of Object.keys(value)) {
-    const x = value[name];
+  for (const name of Object.keys(given)) {
     const slot = achdJointSlot(robot, name, positions);
     if (!slot) throw new Error(`${field}: ${achdNoJoint(robot, name)}`);
-    if (slot.count === 1) {
-      out[slot.start] = achdNumber(x, `${field}['${name}']`);
-      continue;
-    }
-    achdCheckVector(x, `${field}['${name}'] (the floating base)`, slot.count);
-    for (let k = 0; k < slot.count; ++k) out[slot.start + k] = x[k];
+    if (slot.count === 1) out[slot.start] = achdFiniteNumber(given[name], `${field}['${name}']`);
+    else out.set(achdReadNumbers(given[name], `${field}['${name}'] (the floating base)`, slot.count), slot.start);
   }
   return out;
 }
 
-// f_ext, f_virtual (`field`): an object by link name becomes the list of one wrench per
-// link after the root.
+// f_ext, f_virtual (`field`): a list of one wrench per link after the root, or an object
+// by link name (links not named: no wrench); read once into 6 numbers per link, flat.
 export function achdLinkWrenches(value, robot, field = 'f_ext') {
+  const nl = robot.linkNames.length, out = new Float64Array(6 * nl);
   if (!achdIsPlainObject(value)) {
-    if (!Array.isArray(value)) throw new Error(`${field} must be an array of 6-element wrenches or an object {link name: wrench}`);
-    return value;
+    const list = achdReadArray(value, field, 'an array of 6-element wrenches or an object {link name: wrench}', (length) => {
+      if (length !== nl) throw new Error(`${field}: expected ${nl} wrenches (one per link after the root), got ${length}`);
+    });
+    list.forEach((w, l) => out.set(achdReadNumbers(w, `${field}[${l}]`, 6), 6 * l));
+    return out;
   }
-  const out = robot.linkNames.map(() => [0, 0, 0, 0, 0, 0]);
-  for (const name of Object.keys(value)) {
-    const w = value[name];
+  const given = achdCheckObject(value, field, null);
+  for (const name of Object.keys(given)) {
     const l = robot.linkNames.indexOf(name);
     if (l < 0) throw new Error(`${field}: ${achdNoLink(robot, name)}`);
-    achdCheckVector(w, `${field}['${name}']`, 6);
-    out[l] = Array.from(w);
+    out.set(achdReadNumbers(given[name], `${field}['${name}']`, 6), 6 * l);
   }
   return out;
 }
@@ -103,28 +91,26 @@ export function achdLinkWrenches(value, robot, field = 'f_ext') {
 // joint; values 0 where not prescribed).
 export function achdPrescribedJoints(value, robot) {
   const nj = robot.numJoints;
-  const mask = new Array(nj).fill(false), values = new Array(nj).fill(0);
+  const mask = new Array(nj).fill(false), values = new Float64Array(nj);
   if (achdIsPlainObject(value)) {
-    for (const name of Object.keys(value)) {
+    const given = achdCheckObject(value, 'qdd_given', null);
+    for (const name of Object.keys(given)) {
       const slot = achdJointSlot(robot, name, false);
       if (!slot) throw new Error(`qdd_given: ${achdNoJoint(robot, name)}`);
-      if (slot.count === 1) {
-        values[slot.start] = achdNumber(value[name], `qdd_given['${name}']`);
-      } else {  // the free joint: [dv/dt; dw/dt], all six prescribed
-        achdCheckVector(value[name], `qdd_given['${name}'] (the floating base)`, slot.count);
-        for (let k = 0; k < slot.count; ++k) values[slot.start + k] = value[name][k];
-      }
+      if (slot.count === 1) values[slot.start] = achdFiniteNumber(given[name], `qdd_given['${name}']`);
+      else  // the free joint: [dv/dt; dw/dt], all six prescribed
+        values.set(achdReadNumbers(given[name], `qdd_given['${name}'] (the floating base)`, slot.count), slot.start);
       mask.fill(true, slot.start, slot.start + slot.count);
     }
     return { mask, values };
   }
-  if (!achdIsArrayLike(value))
-    throw new Error(`qdd_given must be an object {joint name: acceleration} or an array of ${nj} numbers or nulls (null: the joint is not prescribed)`);
-  if (value.length !== nj)
-    throw new Error(`qdd_given: expected ${nj} values (one per joint, null where not prescribed), got ${value.length}`);
+  const list = achdReadArray(value, 'qdd_given',
+    `an object {joint name: acceleration} or an array of ${nj} numbers or nulls (null: the joint is not prescribed)`, (length) => {
+      if (length !== nj) throw new Error(`qdd_given: expected ${nj} values (one per joint, null where not prescribed), got ${length}`);
+    });
   for (let i = 0; i < nj; ++i) {
-    if (value[i] === null) continue;
-    values[i] = achdNumber(value[i], `qdd_given[${i}] (joint '${achdJointAtRate(robot, i)}')`);
+    if (list[i] === null) continue;
+    values[i] = achdFiniteNumber(list[i], `qdd_given[${i}] (joint '${achdJointAtRate(robot, i)}')`);
     mask[i] = true;
   }
   return { mask, values };
@@ -134,59 +120,48 @@ export function achdPrescribedJoints(value, robot) {
 // alpha column, absent: 1 (the range [0, 1] is checked by the C++ validate, whose
 // message the CLI gives too).
 export function achdDriverWeights(value, field, nc) {
-  if (value === undefined) return new Array(nc).fill(1);
-  if (!achdIsArrayLike(value)) throw new Error(`${field} must be an array of numbers in [0, 1], one per alpha column`);
-  if (value.length !== nc)
-    throw new Error(`${field}: expected ${nc} values (one per alpha column), got ${value.length}`);
-  return Array.from(value, (x, k) => achdNumber(x, `${field}[${k}]`));
+  if (value === undefined) return new Float64Array(nc).fill(1);
+  return achdReadNumbers(value, field, nc, `${nc} values (one per alpha column)`, 'an array of numbers in [0, 1], one per alpha column');
 }
 
 // Columns alpha (up to `max` 6-vectors) and beta (one per column, absent: zeros) of a
-// block; `prefix` "constraints[b]." names them.
-function achdColumns(block, prefix, max) {
-  const alpha = block.alpha;
-  if (!Array.isArray(alpha)) throw new Error(`${prefix}alpha must be an array of 6-element columns`);
-  if (alpha.length > max) throw new Error(`${prefix}alpha: at most ${max} constraints, got ${alpha.length}`);
-  alpha.forEach((col, k) => achdCheckVector(col, `${prefix}alpha[${k}]`, 6));
-  const k = alpha.length;
-  let beta = new Array(k).fill(0);
-  if (block.beta !== undefined) {
-    if (!achdIsArrayLike(block.beta)) throw new Error(`${prefix}beta must be an array of numbers`);
-    if (block.beta.length !== k)
-      throw new Error(`${prefix}beta: expected ${k} values (one per alpha column), got ${block.beta.length}`);
-    beta = Array.from(block.beta, (x, j) => achdNumber(x, `${prefix}beta[${j}]`));
-  }
-  return { alpha: alpha, beta: beta };
+// block, read once; `prefix` "constraints[b]." names them. alpha: the columns, flat.
+export function achdColumns(alphaValue, betaValue, prefix, max) {
+  const columns = achdReadArray(alphaValue, `${prefix}alpha`, 'an array of 6-element columns', (length) => {
+    if (length > max) throw new Error(`${prefix}alpha: at most ${max} constraints, got ${length}`);
+  });
+  const k = columns.length, alpha = new Float64Array(6 * k);
+  columns.forEach((col, j) => alpha.set(achdReadNumbers(col, `${prefix}alpha[${j}]`, 6), 6 * j));
+  const beta = betaValue === undefined ? new Float64Array(k)
+    : achdReadNumbers(betaValue, `${prefix}beta`, k, `${k} values (one per alpha column)`, 'an array of numbers');
+  return { count: k, alpha, beta };
 }
 
-// "constraints": the blocks checked and packed as achd_solver_set_blocks reads them: per
-// block [link index, columns k, point (3), alpha (6 k), beta (k), w_fext (k), w_ff (k)].
-// `max`: columns per block.
+// "constraints": the blocks read once, checked and packed as achd_solver_set_blocks reads
+// them: per block [link index, columns k, point (3), alpha (6 k), beta (k), w_fext (k),
+// w_ff (k)]. `max`: columns per block. Returns {packed, count (blocks), columns (all
+// blocks')}.
 export function achdPackBlocks(blocks, robot, max) {
-  if (!Array.isArray(blocks)) throw new Error('constraints must be an array of blocks {link, alpha, beta, point}');
+  const list = achdReadArray(blocks, 'constraints', 'an array of blocks {link, alpha, beta, point}');
   const packed = [];
-  blocks.forEach((block, b) => {
+  let columns = 0;
+  const owners = [];  // per column: 'link NAME' (nu_owners with coupled joints)
+  list.forEach((value, b) => {
     const where = `constraints[${b}]`;
-    if (!achdIsPlainObject(block)) throw new Error(`${where} must be an object {link, alpha, beta, point}`);
-    for (const key of Object.keys(block))
-      if (!ACHD_BLOCK_KEYS.includes(key)) throw new Error(`${where}: unknown field '${key}'`);
+    if (!achdIsPlainObject(value)) throw new Error(`${where} must be an object {link, alpha, beta, point}${achdUnlikeJson(value)}`);
+    const block = achdCheckObject(value, where, ACHD_BLOCK_KEYS);
     if (!('link' in block)) throw new Error(`${where}: missing required field 'link'`);
     if (!('alpha' in block)) throw new Error(`${where}: missing required field 'alpha'`);
-    if (typeof block.link !== 'string') throw new Error(`${where}.link must be a link name`);
+    if (typeof block.link !== 'string') throw new Error(`${where}.link must be a link name${achdUnlikeJson(block.link)}`);
     const link = robot.linkNames.indexOf(block.link);
     if (link < 0) throw new Error(`${where}.link: ${achdNoLink(robot, block.link)}`);
-    const columns = achdColumns(block, `${where}.`, max), alpha = columns.alpha;
-    const w_fext = achdDriverWeights(block.w_fext, `${where}.w_fext`, alpha.length);
-    const w_ff = achdDriverWeights(block.w_ff, `${where}.w_ff`, alpha.length);
-    let point = [0, 0, 0];
-    if (block.point !== undefined) {
-      achdCheckVector(block.point, `${where}.point`, 3);
-      point = Array.from(block.point);
-    }
-    packed.push(link, alpha.length, ...point);
-    for (const col of alpha) packed.push(...Array.from(col));
-    packed.push(...columns.beta);
-    packed.push(...w_fext, ...w_ff);
+    const c = achdColumns(block.alpha, block.beta, `${where}.`, max);
+    const w_fext = achdDriverWeights(block.w_fext, `${where}.w_fext`, c.count);
+    const w_ff = achdDriverWeights(block.w_ff, `${where}.w_ff`, c.count);
+    const point = block.point === undefined ? [0, 0, 0] : achdReadNumbers(block.point, `${where}.point`, 3);
+    packed.push(link, c.count, ...point, ...c.alpha, ...c.beta, ...w_fext, ...w_ff);
+    columns += c.count;
+    for (let k = 0; k < c.count; ++k) owners.push(`link ${block.link}`);
   });
-  return packed;
+  return { packed, count: list.length, columns, owners };
 }

@@ -25,7 +25,7 @@ export function installAchd(Module) {
   Module['loadURDF'] = function loadURDF(text, options) {
     if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating', 'inertia', 'srdf', 'pose']);
+    options = achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating', 'inertia', 'srdf', 'pose']);
     if (options.srdf !== undefined && typeof options.srdf !== 'string') throw new Error('loadURDF: options.srdf must be SRDF text (a string)');
     if (options.pose !== undefined && (typeof options.pose !== 'string' || options.srdf === undefined))
       throw new Error('loadURDF: options.pose must name a group_state of options.srdf');
@@ -37,8 +37,7 @@ export function installAchd(Module) {
     const mimic = achdChoice(options.mimic, ['error', 'independent', 'couple'], 'couple', 'loadURDF: options.mimic');
     const inertia = achdChoice(options.inertia, ['accept', 'strict', 'repair'], 'accept', 'loadURDF: options.inertia');
     const sides = achdChoice(options.sideBranches, ['merge', 'ignore'], 'merge', 'loadURDF: options.sideBranches');
-    const locked = options.locked === undefined ? {} : options.locked;
-    achdCheckObject(locked, 'loadURDF: options.locked', Object.keys(locked));
+    const locked = options.locked === undefined ? {} : achdCheckObject(options.locked, 'loadURDF: options.locked', null);
     const names = Object.keys(locked), values = names.map((name) => locked[name]);
     values.forEach((x, k) => {
       if (typeof x !== 'number' || !Number.isFinite(x))

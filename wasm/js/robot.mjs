@@ -1,8 +1,8 @@
 // A loaded robot (achd.loadURDF): its description, solves and algorithms.
 import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeprecated } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
-import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdEffectBits, achdIsArrayLike, achdPositive, achdSolverOptions, achdWriteSpatialList, achdWriteVector } from './validation.mjs';
-import { achdDriverWeights, achdJointValues, achdLinkWrenches, achdPrescribedJoints } from './case_names.mjs';
+import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdDescribe, achdEffectBits, achdOptionalObject, achdPositive, achdReadNumbers, achdSolverOptions } from './validation.mjs';
+import { achdColumns, achdDriverWeights, achdJointValues, achdLinkWrenches, achdPackBlocks, achdPrescribedJoints } from './case_names.mjs';
 import { achdChunks, achdWithScratch, achdWithString } from './memory.mjs';
 import { AchdHandle } from './handle.mjs';
 import { Solver } from './solver.mjs';
@@ -62,15 +62,15 @@ export class Robot extends AchdHandle {
     super.delete();
   }
   createSolver(options) {
-    const ptr = this._live();
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
+    const o = achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
     const max = achdConstants().max_constraints;
-    const mc = options.maxConstraints === undefined ? max : options.maxConstraints;
-    if (!Number.isInteger(mc))
-      throw new Error(`options.maxConstraints must be an integer in [0, ${max}], got ${mc}`);
-    const args = achdSolverOptions(options);
-    const s = achdWasm.module._achd_solver_create(ptr, mc);
+    const mc = o.maxConstraints === undefined ? max : o.maxConstraints;
+    // (checked here: C++ takes an int, which would print 2**31 as -2147483648)
+    if (!Number.isInteger(mc) || mc < 0 || mc > max)
+      throw new Error(`options.maxConstraints must be an integer in [0, ${max}], got ${achdDescribe(mc)}`);
+    const args = achdSolverOptions(o);
+    const s = achdWasm.module._achd_solver_create(this._live(), mc);
     if (!s) throw achdLastError();
     achdWasm.module._achd_solver_set_options(s, ...args);
     return new Solver(this, s, mc);  // gravity: the C++ Case's default
@@ -79,66 +79,65 @@ export class Robot extends AchdHandle {
   // copies). q, qd, ff_torques by joint name and f_ext, f_virtual by link name as in the
   // CLI; qdd_given by joint name or in model order (null: the torque is given); w_fext,
   // w_ff per tip column; constraints: blocks {link (a name), alpha, beta, point, w_fext, w_ff}.
+  // Every input is read (once) and checked before anything is written to the solver.
   solve(c, options) {
     this._live();
-    achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques', 'constraints',
+    c = achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques', 'constraints',
       'qdd_given', 'w_fext', 'w_ff', 'f_virtual']);
     if (!('q' in c)) throw new Error("missing required field 'q'");
     if (!('gravity' in c)) throw new Error("missing required field 'gravity'");
     const args = achdSolverOptions(options);
-    if (!this._solver) this._solver = this.createSolver();
-    const s = this._solver, ptr = s._ptr, nj = this.numJoints, nl = this.numLinks;
-    const names = s._bufferNames(), max = achdConstants().max_constraints;
-    const at = (name) => achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)) >> 3;
-    achdWriteVector(achdJointValues(c.q, 'q', this, true), 'q', this.numPositions, at('q'));
-    achdWriteVector(c.gravity, 'gravity', 3, at('gravity'));
-    if (c.qd === undefined) achdWasm.module.HEAPF64.fill(0, at('qd'), at('qd') + nj);
-    else achdWriteVector(achdJointValues(c.qd, 'qd', this), 'qd', nj, at('qd'));
-    if (c.ff_torques === undefined) achdWasm.module.HEAPF64.fill(0, at('ff_torques'), at('ff_torques') + nj);
-    else achdWriteVector(achdJointValues(c.ff_torques, 'ff_torques', this), 'ff_torques', nj, at('ff_torques'));
-    let nc = 0;
-    if (c.alpha !== undefined) {
-      if (!Array.isArray(c.alpha)) throw new Error('alpha must be an array of 6-element columns');
-      if (c.alpha.length > max) throw new Error(`alpha: at most ${max} constraints, got ${c.alpha.length}`);
-      nc = c.alpha.length;
-      achdWriteSpatialList(c.alpha, 'alpha', nc, at('alpha'), 'columns');
-    }
-    if (c.beta !== undefined) {
-      if (!achdIsArrayLike(c.beta)) throw new Error('beta must be an array of numbers');
-      if (c.beta.length !== nc)
-        throw new Error(`beta: expected ${nc} values (one per alpha column), got ${c.beta.length}`);
-      achdWriteVector(c.beta, 'beta', nc, at('beta'));
-    } else {
-      achdWasm.module.HEAPF64.fill(0, at('beta'), at('beta') + nc);
-    }
-    for (const field of ['w_fext', 'w_ff'])
-      achdWasm.module.HEAPF64.set(achdDriverWeights(c[field], field, nc), at(field));
-    s.setConstraints(c.constraints === undefined ? [] : c.constraints);
-    for (const field of ['f_ext', 'f_virtual']) {
-      const on = c[field] !== undefined;
-      if (on) {
-        const wrenches = achdLinkWrenches(c[field], this, field);
-        if (wrenches.length !== nl)
-          throw new Error(`${field}: expected ${nl} wrenches (one per link after the root), got ${wrenches.length}`);
-        achdWriteSpatialList(wrenches, field, nl, at(field), 'wrenches');
-      }
-      if (field === 'f_ext') s.useExternalWrenches = on;
-      else s.useVirtualWrenches = on;
-    }
+    const nj = this.numJoints, max = achdConstants().max_constraints;
+    const q = achdJointValues(c.q, 'q', this, true);
+    const gravity = achdReadNumbers(c.gravity, 'gravity', 3);
+    const qd = c.qd === undefined ? new Float64Array(nj) : achdJointValues(c.qd, 'qd', this);
+    const ff = c.ff_torques === undefined ? new Float64Array(nj) : achdJointValues(c.ff_torques, 'ff_torques', this);
+    const tip = c.alpha === undefined ? achdColumns([], c.beta, '', max) : achdColumns(c.alpha, c.beta, '', max);
+    const nc = tip.count;
+    const w_fext = achdDriverWeights(c.w_fext, 'w_fext', nc), w_ff = achdDriverWeights(c.w_ff, 'w_ff', nc);
+    const blocks = achdPackBlocks(c.constraints === undefined ? [] : c.constraints, this, max);
+    const f_ext = c.f_ext === undefined ? null : achdLinkWrenches(c.f_ext, this, 'f_ext');
+    const f_virtual = c.f_virtual === undefined ? null : achdLinkWrenches(c.f_virtual, this, 'f_virtual');
     const given = c.qdd_given === undefined ? null : achdPrescribedJoints(c.qdd_given, this);
+    // Read and checked: now the robot must still be there (a Proxy's trap may have deleted it).
+    this._live();
+    if (!this._solver) this._solver = this.createSolver();
+    const s = this._solver, ptr = s._ptr, names = s._bufferNames(), heap = achdWasm.module.HEAPF64;
+    const at = (name) => achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)) >> 3;
+    heap.set(q, at('q'));
+    heap.set(gravity, at('gravity'));
+    heap.set(qd, at('qd'));
+    heap.set(ff, at('ff_torques'));
+    heap.set(tip.alpha, at('alpha'));
+    heap.set(tip.beta, at('beta'));
+    heap.set(w_fext, at('w_fext'));
+    heap.set(w_ff, at('w_ff'));
+    s._setBlocks(blocks);  // (its scratch may grow the memory: HEAPF64 is read again below)
+    if (f_ext) achdWasm.module.HEAPF64.set(f_ext, at('f_ext'));
+    s.useExternalWrenches = f_ext !== null;
+    if (f_virtual) achdWasm.module.HEAPF64.set(f_virtual, at('f_virtual'));
+    s.useVirtualWrenches = f_virtual !== null;
     if (given) achdWasm.module.HEAPF64.set(given.values, at('qdd_given'));
-    s.setPrescribed(given ? given.mask : []);
+    s._setPrescribedMask(given ? given.mask : new Array(nj).fill(false));
     s.numConstraints = nc;
     achdWasm.module._achd_solver_set_options(ptr, ...args);
     s.solve();
     return s.result();
   }
-  _q(q, p) { achdWriteVector(achdJointValues(q, 'q', this, true), 'q', this.numPositions, p); }
+  // Runs fn(p, ...) with q read (once) and written at p, the double index of scratch
+  // doubles: nq for q, then `extra`.
+  _withQ(q, extra, fn) {
+    const values = achdJointValues(q, 'q', this, true);
+    const ptr = this._live();
+    return achdWithScratch(values.length + extra, (p) => {
+      achdWasm.module.HEAPF64.set(values, p);
+      return fn(ptr, p);
+    });
+  }
   // [{name, position: [x, y, z], rotation: [9, row-major]}] per link after the root.
   forwardKinematics(q) {
-    const ptr = this._live(), nq = this.numPositions, nl = this.numLinks;
-    return achdWithScratch(nq + 12 * nl, (p) => {
-      this._q(q, p);
+    const nq = this.numPositions, nl = this.numLinks;
+    return this._withQ(q, 12 * nl, (ptr, p) => {
       if (achdWasm.module._achd_robot_forward_kinematics(ptr, 8 * p, 8 * (p + nq))) throw achdLastError();
       return this.linkNames.map((name, l) => {
         const o = p + nq + 12 * l;
@@ -149,23 +148,19 @@ export class Robot extends AchdHandle {
   }
   // 6 rows (linear first) of nj numbers: [v; w] of the tip link's origin = J qd.
   tipJacobian(q) {
-    const ptr = this._live(), nj = this.numJoints, nq = this.numPositions;
-    return achdWithScratch(nq + 6 * nj, (p) => {
-      this._q(q, p);
+    const nj = this.numJoints, nq = this.numPositions;
+    return this._withQ(q, 6 * nj, (ptr, p) => {
       if (achdWasm.module._achd_robot_tip_jacobian(ptr, 8 * p, 8 * (p + nq))) throw achdLastError();
       return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nq, p + nq + 6 * nj)), nj);
     });
   }
   // M(q) as nj rows, rotor inertia included unless {rotorInertia: false}.
   massMatrix(q, options) {
-    const ptr = this._live(), nj = this.numJoints;
-    if (options === undefined) options = {};
-    achdCheckObject(options, 'options', ['rotorInertia']);
-    const rotor = options.rotorInertia === undefined ? true : options.rotorInertia;
+    const nj = this.numJoints, nq = this.numPositions;
+    const o = achdOptionalObject(options, 'options', ['rotorInertia']);
+    const rotor = o.rotorInertia === undefined ? true : o.rotorInertia;
     if (typeof rotor !== 'boolean') throw new Error('options.rotorInertia must be true or false');
-    const nq = this.numPositions;
-    return achdWithScratch(nq + nj * nj, (p) => {
-      this._q(q, p);
+    return this._withQ(q, nj * nj, (ptr, p) => {
       if (achdWasm.module._achd_robot_mass_matrix(ptr, 8 * p, rotor ? 1 : 0, 8 * (p + nq))) throw achdLastError();
       return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nq, p + nq + nj * nj)), Math.max(nj, 1));
     });
@@ -173,34 +168,29 @@ export class Robot extends AchdHandle {
   // Inverse dynamics: the joint torques for (q, qd, qdd) under gravity and f_ext (each by
   // name or in model order, as in solve()).
   rnea(q, qd, qdd, options) {
-    const ptr = this._live(), nj = this.numJoints, nl = this.numLinks;
-    if (options === undefined) options = {};
-    achdCheckObject(options, 'options', ['gravity', 'f_ext', 'effects', 'frictionVelocity']);
+    const nj = this.numJoints, nl = this.numLinks;
+    const o = achdOptionalObject(options, 'options', ['gravity', 'f_ext', 'effects', 'frictionVelocity']);
     const k = achdConstants();
-    const effects = achdEffectBits(options.effects, k.options.effects, 'options.effects');
-    const fv = achdPositive(options.frictionVelocity, k.options.friction_velocity, 'options.frictionVelocity');
+    const effects = achdEffectBits(o.effects, k.options.effects, 'options.effects');
+    const fv = achdPositive(o.frictionVelocity, k.options.friction_velocity, 'options.frictionVelocity');
+    const qdValues = achdJointValues(qd, 'qd', this), qddValues = achdJointValues(qdd, 'qdd', this);
+    const gravity = achdReadNumbers(o.gravity === undefined ? k.case_gravity : o.gravity, 'gravity', 3);
+    const f_ext = o.f_ext === undefined ? null : achdLinkWrenches(o.f_ext, this);
     const nq = this.numPositions;  // q first, then qd, qdd and the torques (nj each)
-    return achdWithScratch(nq + 3 * nj + 3 + 6 * nl, (p) => {
-      const v = p + nq, g = v + 3 * nj, f = g + 3;
-      this._q(q, p);
-      achdWriteVector(achdJointValues(qd, 'qd', this), 'qd', nj, v);
-      achdWriteVector(achdJointValues(qdd, 'qdd', this), 'qdd', nj, v + nj);
-      achdWriteVector(options.gravity === undefined ? k.case_gravity : options.gravity, 'gravity', 3, g);
-      if (options.f_ext !== undefined) {
-        const f_ext = achdLinkWrenches(options.f_ext, this);
-        if (f_ext.length !== nl)
-          throw new Error(`f_ext: expected ${nl} wrenches (one per link after the root), got ${f_ext.length}`);
-        achdWriteSpatialList(f_ext, 'f_ext', nl, f, 'wrenches');
-      }
+    return this._withQ(q, 3 * nj + 3 + 6 * nl, (ptr, p) => {
+      const v = p + nq, g = v + 3 * nj, f = g + 3, heap = achdWasm.module.HEAPF64;
+      heap.set(qdValues, v);
+      heap.set(qddValues, v + nj);
+      heap.set(gravity, g);
+      if (f_ext) heap.set(f_ext, f);
       if (achdWasm.module._achd_robot_rnea(ptr, 8 * p, 8 * v, 8 * (v + nj), 8 * g,
-        options.f_ext === undefined ? 0 : 8 * f, effects, fv, 8 * (v + 2 * nj))) throw achdLastError();
+        f_ext === null ? 0 : 8 * f, effects, fv, 8 * (v + 2 * nj))) throw achdLastError();
       return Array.from(achdWasm.module.HEAPF64.subarray(v + 2 * nj, v + 3 * nj));
     });
   }
   createSimulator(options) {
-    const ptr = this._live();
     if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
+    options = achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
       'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping', 'rtol', 'atol', 'policy',
       'singularRegion', 'maxDamping', 'jointControl']);
     // Defaults are achd::SimulatorOptions' (core/include/achd/simulator.hpp).
@@ -221,22 +211,26 @@ export class Robot extends AchdHandle {
     const policy = achdChoice(options.policy, k.singularity_policies, d.solver.policy, 'options.policy');
     const singularRegion = achdPositive(options.singularRegion, d.solver.singular_region, 'options.singularRegion');
     const maxDamping = achdPositive(options.maxDamping, d.solver.max_damping, 'options.maxDamping');
-    const create = (gravity) => achdWasm.module._achd_sim_create(ptr, integrator, effects, gravity, limits, frictionVelocity,
+    const gravity = options.gravity === undefined ? null : achdReadNumbers(options.gravity, 'gravity', 3);
+    const jointControl = options.jointControl === undefined ? undefined
+      : achdCheckObject(options.jointControl, 'options.jointControl', ['target', 'kp', 'kd', 'frequency', 'dampingRatio', 'feedforward']);
+    // (the simulator starts at the zero pose: a target by default would be that)
+    if (jointControl !== undefined && jointControl.target === undefined)
+      throw new Error('options.jointControl.target is required (a pose as q)');
+    const ptr = this._live();
+    const create = (g) => achdWasm.module._achd_sim_create(ptr, integrator, effects, g, limits, frictionVelocity,
       frequency, damping, rtol, atol, policy, singularRegion, maxDamping);
-    const sim = options.gravity === undefined ? create(0) : achdWithScratch(3, (p) => {
-      achdWriteVector(options.gravity, 'gravity', 3, p);
+    const sim = gravity === null ? create(0) : achdWithScratch(3, (p) => {
+      achdWasm.module.HEAPF64.set(gravity, p);
       return create(8 * p);
     });
     if (!sim) throw achdLastError();
     const simulator = new Simulator(this, sim);
     // jointControl: as Simulator.setJointControl ({target, kp, kd} or {target, frequency,
     // dampingRatio, feedforward}), target required
-    if (options.jointControl !== undefined) {
+    if (jointControl !== undefined) {
       try {
-        achdCheckObject(options.jointControl, 'options.jointControl', ['target', 'kp', 'kd', 'frequency', 'dampingRatio', 'feedforward']);
-        // (the simulator starts at the zero pose: a target by default would be that)
-        if (options.jointControl.target === undefined) throw new Error('options.jointControl.target is required (a pose as q)');
-        simulator.setJointControl(options.jointControl);
+        simulator.setJointControl(jointControl);
       } catch (e) {
         simulator.delete();
         throw e;

@@ -1,13 +1,19 @@
 // The simulator (robot.createSimulator).
 import { achdConstants, achdDeprecated } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
-import { achdCheckObject, achdCheckVector, achdWriteVector } from './validation.mjs';
+import { achdCheckObject, achdDescribe, achdOptionalObject, achdReadNumbers } from './validation.mjs';
 import { achdCopy, achdWithScratch } from './memory.mjs';
 import { AchdHandle } from './handle.mjs';
 
 // by default (about 0.1 s of the 7-DoF arm with RK4).
 export const ACHD_MAX_RUN_CHUNK = 2 ** 30;
 export const ACHD_PROGRESS_INTERVAL = 10000;
+
+// A link or joint reference for a message: a name in double quotes, anything else by
+// achdDescribe (no toJSON or toString of the caller's runs).
+function achdShowRef(x) {
+  return typeof x === 'string' ? JSON.stringify(x) : achdDescribe(x);
+}
 
 // Time stepping; q, qd, ff_torques, f_ext are views on the simulator's state.
 export class Simulator extends AchdHandle {
@@ -19,6 +25,8 @@ export class Simulator extends AchdHandle {
     this._robot = robot;
     this._linkNames = robot.linkNames;
     this._jointNames = robot.jointNames;
+    this._resets = 0;         // reset() calls, for step() to see one made by its onProgress
+    this._stepping = false;   // inside step() (its onProgress may call back)
   }
   _bufferOf(ptr, index) { return achdWasm.module._achd_sim_buffer(ptr, index); }
   _bufferNames() { return achdConstants().simulator_buffers; }
@@ -30,32 +38,50 @@ export class Simulator extends AchdHandle {
   get qd() { return this._view('qd'); }
   get ff_torques() { return this._view('ff_torques'); }
   get f_ext() { return this._view('f_ext'); }
-  get t() { return this._view('t')[0]; }
+  get t() { return this._ownView('t')[0]; }
   // n steps of dt (n up to 2^53 - 1), given to wasm in chunks (its run() takes an int);
   // with options.onProgress, chunks of options.progressInterval steps, after each of
   // which onProgress(stepsDone, n) is called: returning false stops the run. Returns the
   // number of steps run. A failed step throws (the state stays at the last good step).
+  // onProgress may change directions, controls and wrenches (the next chunk uses them);
+  // if it deletes or resets this simulator the run stops with an Error saying so, and a
+  // step() inside it is refused.
   step(n = 1, dt = 1e-3, options = undefined) {
-    const ptr = this._live();
+    this._live();
+    if (this._stepping) throw new Error('Simulator.step: called from its own onProgress callback (step() does not nest)');
     if (!Number.isSafeInteger(n) || n < 0)
-      throw new Error(`step: n must be an integer >= 0 and <= 2^53 - 1, got ${n}`);
+      throw new Error(`step: n must be an integer >= 0 and <= 2^53 - 1, got ${achdDescribe(n)}`);
     if (typeof dt !== 'number' || !Number.isFinite(dt) || dt <= 0)
-      throw new Error(`step: dt must be a finite number > 0, got ${dt}`);
-    if (options === undefined || options === null) options = {};
-    achdCheckObject(options, 'step options', ['onProgress', 'progressInterval']);
-    const onProgress = options.onProgress;
+      throw new Error(`step: dt must be a finite number > 0, got ${achdDescribe(dt)}`);
+    if (options === null) options = undefined;
+    const o = achdOptionalObject(options, 'step options', ['onProgress', 'progressInterval']);
+    const onProgress = o.onProgress;
     if (onProgress !== undefined && typeof onProgress !== 'function')
       throw new Error('step options.onProgress must be a function (stepsDone, total) => boolean');
-    const interval = options.progressInterval === undefined ? ACHD_PROGRESS_INTERVAL : options.progressInterval;
+    const interval = o.progressInterval === undefined ? ACHD_PROGRESS_INTERVAL : o.progressInterval;
     if (!Number.isSafeInteger(interval) || interval < 1)
-      throw new Error(`step options.progressInterval must be an integer >= 1, got ${interval}`);
+      throw new Error(`step options.progressInterval must be an integer >= 1, got ${achdDescribe(interval)}`);
     const chunk = Math.min(onProgress ? interval : ACHD_MAX_RUN_CHUNK, ACHD_MAX_RUN_CHUNK);
+    const ptr = this._live(), resets = this._resets;
     let done = 0;
-    while (done < n) {
-      const k = Math.min(chunk, n - done);
-      if (achdWasm.module._achd_sim_run(ptr, k, dt)) throw achdLastError();
-      done += k;
-      if (onProgress && onProgress(done, n) === false) break;
+    this._stepping = true;
+    try {
+      while (done < n) {
+        const k = Math.min(chunk, n - done);
+        if (achdWasm.module._achd_sim_run(ptr, k, dt)) throw achdLastError();
+        done += k;
+        if (!onProgress) continue;
+        const more = onProgress(done, n);
+        // The callback ran the caller's code: the pointer is used again only if it is
+        // still this simulator's, in the state this run left it.
+        if (this._ptr !== ptr)
+          throw new Error(`Simulator.step: the onProgress callback deleted the simulator (after ${done} of ${n} steps)`);
+        if (this._resets !== resets)
+          throw new Error(`Simulator.step: the onProgress callback reset the simulator (after ${done} of ${n} steps); the run stops there`);
+        if (more === false) break;
+      }
+    } finally {
+      this._stepping = false;
     }
     return done;
   }
@@ -66,13 +92,15 @@ export class Simulator extends AchdHandle {
   get substeps() { return achdWasm.module._achd_sim_substeps(this._live()); }
   get rejectedSubsteps() { return achdWasm.module._achd_sim_rejected_substeps(this._live()); }
   reset(q, qd) {
-    const ptr = this._live(), n = this.numJoints, nq = this.numPositions;
+    const n = this.numJoints, nq = this.numPositions;
+    const q0 = achdReadNumbers(q, 'q', nq), qd0 = qd === undefined ? new Float64Array(n) : achdReadNumbers(qd, 'qd', n);
+    const ptr = this._live();
     achdWithScratch(nq + n, (p) => {
-      achdWriteVector(q, 'q', nq, p);
-      if (qd === undefined) achdWasm.module.HEAPF64.fill(0, p + nq, p + nq + n);
-      else achdWriteVector(qd, 'qd', n, p + nq);
+      achdWasm.module.HEAPF64.set(q0, p);
+      achdWasm.module.HEAPF64.set(qd0, p + nq);
       if (achdWasm.module._achd_sim_reset(ptr, 8 * p, 8 * (p + nq))) throw achdLastError();
     });
+    ++this._resets;
     this._buffer = null;  // reset() may have given q and qd new buffers
   }
   // The directions act on a link: `link` a link name or index (linkNames), or omitted
@@ -82,7 +110,7 @@ export class Simulator extends AchdHandle {
     if (link === undefined || link === null) return -1;
     const index = typeof link === 'string' ? this._linkNames.indexOf(link) : link;
     if (!Number.isInteger(index) || index < 0 || index >= this.numLinks)
-      throw new Error(`${what}: unknown link ${JSON.stringify(link)} (index 0..${this.numLinks - 1} or a link name)`);
+      throw new Error(`${what}: unknown link ${achdShowRef(link)} (index 0..${this.numLinks - 1} or a link name)`);
     return index;
   }
   _directionIndex(name, what) {
@@ -97,7 +125,7 @@ export class Simulator extends AchdHandle {
     let code, setpoint = 0;
     if (mode === 'free' || mode === 'hold') code = modes.indexOf(mode);
     else if (typeof mode === 'number' && Number.isFinite(mode)) { code = modes.indexOf('accelerate'); setpoint = mode; }
-    else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${mode}`);
+    else throw new Error(`setDirection: mode must be 'hold', 'free' or a finite number, got ${achdDescribe(mode)}`);
     if (achdWasm.module._achd_sim_set_direction(ptr, l, index, code, setpoint)) throw achdLastError();
   }
   // The mode of a direction: 'free', 'hold' or 'accelerate'.
@@ -110,19 +138,28 @@ export class Simulator extends AchdHandle {
   // Driver priorities of a direction, each in [0, 1] (default 1): how far it resists the
   // external wrenches (wFext) and the feed-forward torques (wFf). A held direction with a
   // weight below 1 yields to that driver and is re-anchored where its point is every step.
-  setDirectionWeights(name, { wFext = 1, wFf = 1 } = {}, link = undefined) {
+  // weights: {wFext, wFf} (each omitted: 1).
+  setDirectionWeights(name, weights, link = undefined) {
+    const w = achdOptionalObject(weights, 'setDirectionWeights: weights {wFext, wFf}', ['wFext', 'wFf']);
+    const weight = (key) => {
+      const x = w[key] === undefined ? 1 : w[key];
+      if (typeof x !== 'number') throw new Error(`setDirectionWeights: ${key} must be a number in [0, 1], got ${achdDescribe(x)}`);
+      return x;  // (the range and NaN: the C++ check's message)
+    };
+    const wFext = weight('wFext'), wFf = weight('wFf');
     const ptr = this._live(), index = this._directionIndex(name, 'setDirectionWeights');
     const l = this._linkIndex(link, 'setDirectionWeights');
-    if (achdWasm.module._achd_sim_set_direction_weights(ptr, l, index, Number(wFext), Number(wFf))) throw achdLastError();
+    if (achdWasm.module._achd_sim_set_direction_weights(ptr, l, index, wFext, wFf)) throw achdLastError();
   }
   // Where a link's directions act: [x, y, z] in the link's frame (default its origin); its
   // held directions are re-anchored there.
   setDirectionPoint(link, point) {
-    const ptr = this._live(), l = this._linkIndex(link, 'setDirectionPoint');
+    const l = this._linkIndex(link, 'setDirectionPoint');
     if (l < 0) throw new Error('setDirectionPoint: name the link');
-    achdCheckVector(point, 'point', 3);
+    const at = achdReadNumbers(point, 'point', 3);
+    const ptr = this._live();
     achdWithScratch(3, (p) => {
-      achdWriteVector(point, 'point', 3, p);
+      achdWasm.module.HEAPF64.set(at, p);
       if (achdWasm.module._achd_sim_set_direction_point(ptr, l, 8 * p)) throw achdLastError();
     });
   }
@@ -139,36 +176,42 @@ export class Simulator extends AchdHandle {
   // The joint PD controller: every solve adds kp (target - q) - kd qd to ff_torques.
   // target: a pose as q (numPositions numbers, default the current q); kp, kd: one number
   // for every joint (0 on a floating base's free joint) or numJoints numbers.
-  setJointControl(control = {}) {
-    const ptr = this._live(), n = this.numJoints, nq = this.numPositions;
-    achdCheckObject(control, 'setJointControl', ['target', 'kp', 'kd', 'frequency', 'dampingRatio', 'feedforward']);
-    const { target, kp, kd = 0, frequency, dampingRatio = 1, feedforward = 'none' } = control;
-    const byFrequency = frequency !== undefined;
-    if (byFrequency && (kp !== undefined || control.kd !== undefined))
+  // Or gains from frequency (Hz) and dampingRatio (default 1), and feedforward 'hold'
+  // (JointControl in C++).
+  setJointControl(control) {
+    const c = achdOptionalObject(control, 'setJointControl: the control {target, kp, kd} or {target, frequency, dampingRatio, feedforward}',
+      ['target', 'kp', 'kd', 'frequency', 'dampingRatio', 'feedforward']);
+    const n = this.numJoints, nq = this.numPositions;
+    const byFrequency = c.frequency !== undefined;
+    if (byFrequency && (c.kp !== undefined || c.kd !== undefined))
       throw new Error('setJointControl: give kp and kd, or frequency and dampingRatio, not both');
-    if (!byFrequency && kp === undefined) throw new Error('setJointControl: kp (or frequency) is required');
-    for (const [x, name] of [[frequency, 'frequency'], [dampingRatio, 'dampingRatio']])
-      if (byFrequency && typeof x !== 'number') throw new Error(`setJointControl: ${name} must be a number, got ${typeof x}`);
+    if (!byFrequency && c.kp === undefined) throw new Error('setJointControl: kp (or frequency) is required');
+    const dampingRatio = c.dampingRatio === undefined ? 1 : c.dampingRatio;
+    for (const [x, name] of [[c.frequency, 'frequency'], [dampingRatio, 'dampingRatio']])
+      if (byFrequency && typeof x !== 'number') throw new Error(`setJointControl: ${name} must be a number, got ${achdDescribe(x)}`);
+    const feedforward = c.feedforward === undefined ? 'none' : c.feedforward;
     if (feedforward !== 'hold' && feedforward !== 'none')
-      throw new Error(`setJointControl: feedforward: expected 'hold' or 'none', got '${feedforward}'`);
+      throw new Error(`setJointControl: feedforward: expected 'hold' or 'none', got ${achdDescribe(feedforward)}`);
     const gains = (g, name) => {
       if (typeof g === 'number') {
         const out = new Float64Array(n).fill(g);
         if (this._robot.floating) out.fill(0, 0, 6);
         return out;
       }
-      achdCheckVector(g, `setJointControl: ${name}`, n);
-      return g;
+      return achdReadNumbers(g, `setJointControl: ${name}`, n);
     };
-    const kpv = byFrequency ? null : gains(kp, 'kp'), kdv = byFrequency ? null : gains(kd, 'kd');
+    const kpv = byFrequency ? null : gains(c.kp, 'kp'), kdv = byFrequency ? null : gains(c.kd === undefined ? 0 : c.kd, 'kd');
+    const target = c.target === undefined ? null : achdReadNumbers(c.target, 'setJointControl: target', nq);
+    const ptr = this._live();
     achdWithScratch(nq + 2 * n, (p) => {
-      achdWriteVector(target === undefined ? this.q : target, 'setJointControl: target', nq, p);
+      const heap = achdWasm.module.HEAPF64;
+      heap.set(target === null ? this._ownView('q') : target, p);
       if (!byFrequency) {
-        achdWriteVector(kpv, 'setJointControl: kp', n, p + nq);
-        achdWriteVector(kdv, 'setJointControl: kd', n, p + nq + n);
+        heap.set(kpv, p + nq);
+        heap.set(kdv, p + nq + n);
       }
       const kpPtr = byFrequency ? 0 : 8 * (p + nq), kdPtr = byFrequency ? 0 : 8 * (p + nq + n);
-      if (achdWasm.module._achd_sim_set_joint_control(ptr, 8 * p, kpPtr, kdPtr, byFrequency ? frequency : 0,
+      if (achdWasm.module._achd_sim_set_joint_control(ptr, 8 * p, kpPtr, kdPtr, byFrequency ? c.frequency : 0,
         byFrequency ? dampingRatio : 0, feedforward === 'hold' ? 1 : 0)) throw achdLastError();
     });
   }
@@ -179,18 +222,20 @@ export class Simulator extends AchdHandle {
   // kind does not read: absent) in the simulated time, put on it at once; release(joint)
   // drives it by its torques again. reset() releases every joint.
   prescribe(joint, motion) {
-    const ptr = this._live(), index = this._jointIndex(joint, 'prescribe');
-    achdCheckObject(motion, 'prescribe: motion', ['motion', 'position', 'velocity', 'amplitude', 'frequency', 'phase']);
+    const index = this._jointIndex(joint, 'prescribe');
+    motion = achdCheckObject(motion, 'prescribe: motion', ['motion', 'position', 'velocity', 'amplitude', 'frequency', 'phase']);
     const kinds = achdConstants().motion_kinds, kind = kinds.indexOf(motion.motion);
     if (kind < 0)
       throw new Error(`prescribe: motion.motion: expected ${kinds.map((k) => `'${k}'`).join(', ')}, got '${motion.motion}'`);
     const value = (key) => {
       const x = motion[key] === undefined ? 0 : motion[key];
-      if (typeof x !== 'number') throw new Error(`prescribe: motion.${key} must be a number`);
+      if (typeof x !== 'number') throw new Error(`prescribe: motion.${key} must be a number, got ${achdDescribe(x)}`);
       return x;
     };
-    if (achdWasm.module._achd_sim_prescribe(ptr, index, kind, value('position'), value('velocity'),
-      value('amplitude'), value('frequency'), value('phase'))) throw achdLastError();
+    const position = value('position'), velocity = value('velocity'), amplitude = value('amplitude');
+    const frequency = value('frequency'), phase = value('phase');
+    if (achdWasm.module._achd_sim_prescribe(this._live(), index, kind, position, velocity, amplitude, frequency, phase))
+      throw achdLastError();
   }
   release(joint) {
     const ptr = this._live(), index = this._jointIndex(joint, 'release');
@@ -207,7 +252,7 @@ export class Simulator extends AchdHandle {
   _jointIndex(joint, what) {
     const index = typeof joint === 'string' ? this._rateIndex(this._jointNames.indexOf(joint)) : joint;
     if (!Number.isInteger(index) || index < 0 || index >= this.numJoints)
-      throw new Error(`${what}: unknown joint ${JSON.stringify(joint)} (index 0..${this.numJoints - 1} or a joint name)`);
+      throw new Error(`${what}: unknown joint ${achdShowRef(joint)} (index 0..${this.numJoints - 1} or a joint name)`);
     return index;
   }
   // Held-direction residuals (m or rad) of a link (omitted: the tip); null for directions
@@ -233,7 +278,11 @@ export class Simulator extends AchdHandle {
     return achdWithScratch(6 * n, (p) => {
       achdWasm.module._achd_sim_constraint_wrenches(ptr, 8 * p);
       const out = {};
-      for (let b = 0; b < n; ++b) out[links[b].link] = Array.from(achdWasm.module.HEAPF64.subarray(p + 6 * b, p + 6 * b + 6));
+      // defineProperty: a link named '__proto__' is a key like the others, not the prototype
+      for (let b = 0; b < n; ++b) {
+        Object.defineProperty(out, links[b].link, { value: Array.from(achdWasm.module.HEAPF64.subarray(p + 6 * b, p + 6 * b + 6)),
+          enumerable: true, writable: true, configurable: true });
+      }
       return out;
     });
   }
@@ -285,8 +334,8 @@ export class Simulator extends AchdHandle {
     this._live();
     const index = typeof link === 'string' ? this._linkNames.indexOf(link) : link;
     if (!Number.isInteger(index) || index < 0 || index >= this.numLinks)
-      throw new Error(`setExternalWrench: unknown link ${JSON.stringify(link)} (index 0..${this.numLinks - 1} or a link name)`);
-    achdCheckVector(wrench, 'wrench', 6);
-    this.f_ext.set(wrench, 6 * index);
+      throw new Error(`setExternalWrench: unknown link ${achdShowRef(link)} (index 0..${this.numLinks - 1} or a link name)`);
+    const w = achdReadNumbers(wrench, 'wrench', 6);
+    this._ownView('f_ext').set(w, 6 * index);
   }
 }

@@ -1,7 +1,7 @@
 // The zero-copy solver (robot.createSolver).
 import { achdConstants } from './constants.mjs';
 import { achdLastError, achdSigmaMin, achdWasm } from './runtime.mjs';
-import { achdSolverOptions } from './validation.mjs';
+import { achdDescribe, achdReadArray, achdSolverOptions } from './validation.mjs';
 import { achdChunks, achdCopy, achdWithScratch } from './memory.mjs';
 import { achdJointSlot, achdNoJoint, achdPackBlocks } from './case_names.mjs';
 import { AchdHandle } from './handle.mjs';
@@ -51,7 +51,7 @@ export class Solver extends AchdHandle {
   get link_accelerations() { return this._view('link_accelerations'); }
   get constraint_wrench() { return this._view('constraint_wrench'); }
   get constraint_wrenches() { return this._view('constraint_wrenches'); }
-  // Issue 16's drivers: the prescribed joints' accelerations (read for the joints
+  // The drivers: the prescribed joints' accelerations (read for the joints
   // setPrescribed names), the tip columns' driver weights (1 until written; the first
   // numConstraints are used), the virtual wrenches (read while useVirtualWrenches), and
   // their results.
@@ -65,7 +65,9 @@ export class Solver extends AchdHandle {
   get sigma_min() { return achdSigmaMin(this._live()); }
   get numConstraints() { this._live(); return this._nc; }
   set numConstraints(nc) {
-    if (!Number.isInteger(nc)) throw new Error(`numConstraints must be an integer, got ${nc}`);
+    // (the range is checked here too: C++ takes an int, which would wrap 2**31)
+    if (!Number.isInteger(nc) || nc < 0 || nc > this.maxConstraints)
+      throw new Error(`numConstraints must be an integer in [0, ${this.maxConstraints}] (maxConstraints), got ${achdDescribe(nc)}`);
     if (achdWasm.module._achd_solver_set_num_constraints(this._live(), nc)) throw achdLastError();
     this._nc = nc;
     this._buffer = null;  // the nu view's length changed
@@ -74,16 +76,18 @@ export class Solver extends AchdHandle {
   // solves that follow, after the tip's numConstraints columns in nu (copied in; within
   // the solver's storage, so a solve never allocates).
   setConstraints(blocks) {
+    this._setBlocks(achdPackBlocks(blocks, this._names, achdConstants().max_constraints));
+  }
+  // Blocks packed by achdPackBlocks ({packed, count, columns}) into the solver.
+  _setBlocks(blocks) {
     const ptr = this._live();
-    const packed = achdPackBlocks(blocks, this._names, achdConstants().max_constraints);
-    achdWithScratch(packed.length, (p) => {
-      achdWasm.module.HEAPF64.set(packed, p);
-      if (achdWasm.module._achd_solver_set_blocks(ptr, blocks.length, 8 * p)) throw achdLastError();
+    achdWithScratch(blocks.packed.length, (p) => {
+      achdWasm.module.HEAPF64.set(blocks.packed, p);
+      if (achdWasm.module._achd_solver_set_blocks(ptr, blocks.count, 8 * p)) throw achdLastError();
     });
-    this._blocks = blocks.length;
-    this._blockColumns = blocks.reduce((n, b) => n + b.alpha.length, 0);
-    // who owns each block column of nu: 'link NAME' (blocks name their link)
-    this._blockOwners = blocks.flatMap((b) => b.alpha.map(() => `link ${b.link}`));
+    this._blocks = blocks.count;
+    this._blockColumns = blocks.columns;
+    this._blockOwners = blocks.owners;  // who owns each block column of nu: 'link NAME'
     this._buffer = null;  // the nu and constraint_wrenches views' lengths changed
   }
   get numBlocks() { this._live(); return this._blocks; }
@@ -103,23 +107,29 @@ export class Solver extends AchdHandle {
   // joint names (a floating base's free joint: its six rates), or one boolean per joint
   // rate in model order; [] for none.
   setPrescribed(joints) {
-    const ptr = this._live(), names = this._names, nj = names.numJoints;
-    if (!Array.isArray(joints)) throw new Error('setPrescribed: expected an array of joint names or of booleans');
+    const names = this._names, nj = names.numJoints;
+    const list = achdReadArray(joints, 'setPrescribed', 'an array of joint names or of booleans');
     const mask = new Array(nj).fill(false);
-    if (joints.length && typeof joints[0] === 'boolean') {
-      if (joints.length !== nj) throw new Error(`setPrescribed: expected ${nj} booleans (one per joint), got ${joints.length}`);
-      joints.forEach((on, i) => {
-        if (typeof on !== 'boolean') throw new Error(`setPrescribed: entry ${i} must be true or false`);
+    if (list.length && typeof list[0] === 'boolean') {
+      if (list.length !== nj) throw new Error(`setPrescribed: expected ${nj} booleans (one per joint), got ${list.length}`);
+      list.forEach((on, i) => {
+        if (typeof on !== 'boolean') throw new Error(`setPrescribed: entry ${i} must be true or false, got ${achdDescribe(on)}`);
         mask[i] = on;
       });
     } else {
-      for (const name of joints) {
+      list.forEach((name, i) => {
+        if (typeof name !== 'string') throw new Error(`setPrescribed: entry ${i} must be a joint name, got ${achdDescribe(name)}`);
         const slot = achdJointSlot(names, name, false);
         if (!slot) throw new Error(`setPrescribed: ${achdNoJoint(names, name)}`);
         mask.fill(true, slot.start, slot.start + slot.count);
-      }
+      });
     }
-    achdWithScratch(Math.max(nj, 1), (p) => {
+    this._setPrescribedMask(mask);
+  }
+  // One boolean per joint rate (checked) into the solver.
+  _setPrescribedMask(mask) {
+    const ptr = this._live();
+    achdWithScratch(Math.max(mask.length, 1), (p) => {
       achdWasm.module.HEAPF64.set(mask.map((on) => (on ? 1 : 0)), p);
       achdWasm.module._achd_solver_set_prescribed(ptr, 8 * p);
     });
@@ -127,8 +137,8 @@ export class Solver extends AchdHandle {
   }
   get prescribed() { this._live(); return this._prescribed.slice(); }
   setOptions(options) {
-    const ptr = this._live();
-    achdWasm.module._achd_solver_set_options(ptr, ...achdSolverOptions(options));
+    const args = achdSolverOptions(options);
+    achdWasm.module._achd_solver_set_options(this._live(), ...args);
   }
   // hybrid_dynamics on the views, in place: no allocation, no copy.
   solve() {
