@@ -126,6 +126,9 @@ export interface Result {
   /** KDL's D qdd. */
   total_torques: number[];
   nu: number[];
+  /** with coupled joints (Robot.couplings): who owns each entry of nu ('tip', 'link NAME',
+   * 'coupling JOINT'); the couplings' forces come last. */
+  nu_owners?: string[];
   /** ff - J^T alpha nu = RNEA(q, qd, qdd): what a controller must command. */
   joint_torques: number[];
   /** alpha nu: the wrench the tip exerts on the constraint. */
@@ -229,6 +232,8 @@ export interface Solver {
   readonly prescribed_torques: Float64Array;
   /** one per joint: J^T f_virtual (0 while useVirtualWrenches is false). */
   readonly virtual_torques: Float64Array;
+  /** coupled joints' forces (Robot.couplings), one per coupling, after a solve. */
+  readonly coupling_forces: Float64Array;
   readonly rank: number;
   /** smallest singular value of K of the last solve, computed when read (not by solve());
    * throws if that K is beyond the range of a double (columns of length ~1e154). */

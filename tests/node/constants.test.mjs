@@ -130,7 +130,7 @@ test('every view and result covers the C++ buffer of its name', () => {
   solver.solve();
   const views = ['q', 'qd', 'ff_torques', 'gravity', 'alpha', 'beta', 'f_ext', 'qdd', 'nu', 'joint_torques',
     'constraint_torques', 'total_torques', 'link_accelerations', 'constraint_wrench', 'constraint_wrenches',
-    'qdd_given', 'w_fext', 'w_ff', 'f_virtual', 'prescribed_torques', 'virtual_torques'];
+    'qdd_given', 'w_fext', 'w_ff', 'f_virtual', 'prescribed_torques', 'virtual_torques', 'coupling_forces'];
   assert.deepEqual(c.solver_buffers.filter((name) => name !== 'dropped'), views, 'a view per C++ buffer');
   for (const name of views)
     assert.equal(solver[name].byteOffset, achd._achd_solver_buffer(solver._ptr, c.solver_buffers.indexOf(name)), name);

@@ -106,7 +106,7 @@ export function randomTreeFiles() {
 export function assertSameResult(wasm, native, what) {
   assert.deepEqual(Object.keys(wasm).sort(), Object.keys(native).sort(), `${what}: field names`);
   for (const key of Object.keys(native)) {
-    if (key === 'joints' || key === 'links' || key === 'locked_joints') {
+    if (key === 'joints' || key === 'links' || key === 'locked_joints' || key === 'nu_owners') {
       assert.deepEqual(wasm[key], native[key], `${what}: ${key}`);
     } else if (Array.isArray(native[key])) {
       const w = wasm[key].flat(), n = native[key].flat();
@@ -128,6 +128,7 @@ export function loadFlags(load = {}) {
   for (const [name, value] of Object.entries(load.locked || {})) flags.push('--lock', `${name}=${value}`);
   if (load.sideBranches === 'ignore') flags.push('--convention', 'kdl');
   if (load.floating) flags.push('--floating');
+  if (load.inertia !== undefined) flags.push('--inertia', load.inertia);
   return flags;
 }
 

@@ -135,7 +135,7 @@ test('Map, DataView, Set, class instances and BigInt arrays are named errors, no
   throwsMessage(() => robot.solve({ q: CASE.q, gravity: [0, 0, -9.81], f_ext: new Map() }), /^f_ext must be an array.*got a Map$/);
   const sim = robot.createSimulator();
   throwsMessage(() => sim.reset(new DataView(new ArrayBuffer(56))), /^q must be an array of 7 numbers, got a DataView$/);
-  throwsMessage(() => sim.setJointControl(new Map()), /setJointControl: the control \{target, kp, kd\} must be an object, got a Map/);
+  throwsMessage(() => sim.setJointControl(new Map()), /setJointControl: the control \{target, kp, kd\} or \{target, frequency, dampingRatio, feedforward\} must be an object, got a Map/);
   sim.delete();
 });
 
@@ -166,7 +166,7 @@ test('numbers must be numbers: a string weight, gain or position is an error', (
 test('null where an options object goes is a named error', () => {
   const sim = robot.createSimulator();
   throwsMessage(() => sim.setDirectionWeights('z', null), /^setDirectionWeights: weights \{wFext, wFf\} must be an object$/);
-  throwsMessage(() => sim.setJointControl(null), /^setJointControl: the control \{target, kp, kd\} must be an object$/);
+  throwsMessage(() => sim.setJointControl(null), /^setJointControl: the control \{target, kp, kd\} or \{target, frequency, dampingRatio, feedforward\} must be an object$/);
   throwsMessage(() => sim.prescribe(1, null), /^prescribe: motion must be an object$/);
   throwsMessage(() => robot.massMatrix(CASE.q, null), /^options must be an object$/);
   throwsMessage(() => robot.rnea(CASE.q, CASE.qd, CASE.ff_torques, null), /^options must be an object$/);

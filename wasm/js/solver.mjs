@@ -34,7 +34,8 @@ export class Solver extends AchdHandle {
       ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc + this._blockColumns], ['joint_torques', nj], ['constraint_torques', nj],
       ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6],
       ['constraint_wrenches', 6 * this._blocks], ['qdd_given', nj], ['w_fext', mc], ['w_ff', mc],
-      ['f_virtual', 6 * nl], ['prescribed_torques', nj], ['virtual_torques', nj]];
+      ['f_virtual', 6 * nl], ['prescribed_torques', nj], ['virtual_torques', nj],
+      ['coupling_forces', this._names.couplings.length]];
   }
   get q() { return this._view('q'); }
   get qd() { return this._view('qd'); }
@@ -61,6 +62,8 @@ export class Solver extends AchdHandle {
   get f_virtual() { return this._view('f_virtual'); }
   get prescribed_torques() { return this._view('prescribed_torques'); }
   get virtual_torques() { return this._view('virtual_torques'); }
+  // Coupled joints (robot.couplings): their forces nu_c, one per coupling, after a solve.
+  get coupling_forces() { return this._view('coupling_forces'); }
   get rank() { return achdWasm.module._achd_solver_rank(this._live()); }
   get sigma_min() { return achdSigmaMin(this._live()); }
   get numConstraints() { this._live(); return this._nc; }

@@ -93,8 +93,9 @@ export async function usage(): Promise<void> {
   const wrenches: Record<string, number[]> = sim.constraintWrenches();
   sim.setJointControl({ target: q, kp: 30, kd: [0.5, 0.5] });
   robot.createSimulator({ jointControl: { target: q, kp: 30 } });
-  // @ts-expect-error kp is required
-  sim.setJointControl({ target: q });
+  sim.setJointControl({ frequency: 5, dampingRatio: 1, feedforward: 'hold' });
+  // @ts-expect-error feedforward is 'hold' or 'none'
+  sim.setJointControl({ frequency: 5, feedforward: 'gravity' });
   const pd: boolean = sim.jointControlOn;
   sim.clearJointControl();
   sim.prescribe('shoulder', { motion: 'sine', position: 0, amplitude: 0.3, frequency: 0.5 });
