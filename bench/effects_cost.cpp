@@ -4,7 +4,7 @@
 // directions' kinematics), in one run: every row's solve and step are timed in each of 31
 // interleaved rounds (thread CPU time, tools/timing.hpp), so that the shared machine's
 // speed changes hit all rows alike. Prints the medians as a markdown table with the
-// increment of each row over the previous one. The last rows add issue 16's drivers to
+// increment of each row over the previous one. The last rows add the drivers (prescribed joints, driver weights, virtual wrenches) to
 // the 3-constraint row, each measured against that row: one prescribed joint (the solve:
 // a given qdd; the step: a sine), driver weights below 1 (w_fext = w_ff = 0.5 on z), and
 // virtual wrenches on every link (the solve only: the simulator takes none).

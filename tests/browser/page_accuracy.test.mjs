@@ -1,4 +1,4 @@
-// The accuracy panel studies an own URDF (issue 17), in Chromium: a three-joint arm
+// The accuracy panel studies an own URDF, in Chromium: a three-joint arm
 // written here, picked with the file input, is studied by the panel: every run has a
 // finite cost (positive for a stable run: its timing is not lost below the timer's
 // resolution, where a cost of 0 once sent the plot's log axis looping from -Infinity),

@@ -1,4 +1,4 @@
-// The page's drivers (issue 16), through its controls in Debian's Chromium: a joint
+// The page's drivers, through its controls in Debian's Chromium: a joint
 // switched to a prescribed sine follows it (started where it was, the trajectory the page
 // computes in its own time), and a held direction's "yield" switch lets a push move the
 // tip along it, where without the switch the push does not.

@@ -1,4 +1,4 @@
-// Seeing forces on the page (issue 17), in Chromium: the arrow at the tip is the constraint
+// Seeing forces on the page, in Chromium: the arrow at the tip is the constraint
 // wrench alpha nu of the simulator's last solve (checked against the identity
 // joint_torques = ff - J^T alpha nu with the module's tip Jacobian, ff = 0 and no damping
 // or friction), drawn from the tip at the robot's scale (reach / 2 per weight, reach and

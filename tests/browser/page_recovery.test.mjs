@@ -1,4 +1,4 @@
-// The demo page recovers from what a person does to it (issue 14): a failed step is
+// The demo page recovers from what a person does to it: a failed step is
 // shown and Reset runs again from the start pose with clean plots; a newly loaded robot
 // plays with every direction free and no trace of the previous one; an own URDF starts
 // away from a singularity; the controls offer what the module has; and a direction

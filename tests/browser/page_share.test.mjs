@@ -1,4 +1,4 @@
-// Own URDFs first class (issue 17), in Chromium: an own URDF picked with the file input
+// Own URDFs first class, in Chromium: an own URDF picked with the file input
 // travels in the page's link compressed and reopens, with the link's held direction, in
 // a browser profile that never saw it, and in an open page whose address is set to it; one too long for a link (the 200-joint chain) is
 // kept in the browser's storage under its SHA-256, and its link reopens it in a new page

@@ -1,4 +1,4 @@
-// The workspace-boundary suite (issue 14): each robot's tip pushed along one linear
+// The workspace-boundary suite: each robot's tip pushed along one linear
 // direction by a constant setpoint (0.5 m/s^2) into the edge of its workspace while
 // other directions are held, 60 s with the simulator's defaults (SimulatorOptions{}). The
 // run must reach its duration with a finite state and no error, and (LWR, UR5) report the

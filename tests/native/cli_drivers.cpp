@@ -1,4 +1,4 @@
-// The drivers of issue 16 through `achd solve`: driver weights (w_fext, w_ff on the tip's
+// The drivers (prescribed joints, driver weights, virtual wrenches) through `achd solve`: driver weights (w_fext, w_ff on the tip's
 // columns and on a block's) and virtual wrenches (f_virtual by link name) read from the
 // case file give the library's solve of the same Case, with virtual_torques in the
 // result; weights outside [0, 1], of the wrong count, and wrenches on unknown links are

@@ -1,4 +1,4 @@
-// The command line on whole robots (issue 15), through the real `achd` binary: inputs by
+// The command line on whole robots, through the real `achd` binary: inputs by
 // name (q, qd, ff_torques by joint, f_ext by link) give the results of the arrays; results
 // name their joints and links; constraint blocks are read by link name, with errors naming
 // the field and index; without --tip the whole tree loads; --lock and locked side joints
@@ -345,7 +345,7 @@ TEST_F(CliTrees, WholeTreeSolves) {
 }
 
 // --root without --tip on a robot that is a chain: the tree below it is that chain, and
-// solves as the chain does (issue 15: <= 1e-12). (Before: "missing option --tip".)
+// solves as the chain does (<= 1e-12). (Before: "missing option --tip".)
 TEST_F(CliTrees, ChainLoadedAsATreeSolvesAsTheChain) {
   json c = kuka_case();
   c["qd"] = {0.1, -0.2, 0.3, 0, 0.5, 0, 0.7};

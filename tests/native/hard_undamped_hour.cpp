@@ -1,6 +1,6 @@
 // An hour of the undamped KUKA LWR 4 holding z and rx with the simulator's defaults
 // (robots/scenes/kuka_lwr4_undamped_hold_z_rx.json: damping and friction off, the wrist
-// turning at up to about 100 rad/s). Issue 14: RK4 at the page's 1 ms lost 6e-2 J in 10 s,
+// turning at up to about 100 rad/s). Before the adaptive default, RK4 at the page's 1 ms lost 6e-2 J in 10 s,
 // drifted 1.6 mm by 600 s and failed at 612.5 s. With the defaults (Dormand-Prince, rtol
 // 1e-9, atol 1e-11) the run completes, the energy stays within 1e-6 of the largest kinetic
 // energy and every held residual within 1e-6 at every output step (measured: energy drift

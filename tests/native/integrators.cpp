@@ -93,7 +93,7 @@ TEST(StepIndependentPhysics, NonPositiveStabilisationAndTolerancesAreNamedErrors
 
 // The simulator's answer at 1 ms and at 10 ms output steps equals its answer at 0.1 ms:
 // one set of equations, integrated to the tolerance whatever the output step (the old
-// RK4 at 1 ms differed from its own 0.1 ms answer by 5.9e-2 rad over 2 s, issue 14).
+// RK4 at 1 ms differed from its own 0.1 ms answer by 5.9e-2 rad over 2 s).
 TEST(DormandPrince, TheAnswerDoesNotDependOnTheOutputStep) {
   const SimulatorOptions o = hold_scene_options();
   ASSERT_EQ(o.integrator, Integrator::DormandPrince);

@@ -1,4 +1,4 @@
-// Prescribed joint motion in the simulator (issue 16; Simulator::prescribe): the joint
+// Prescribed joint motion in the simulator (Simulator::prescribe): the joint
 // starts on its trajectory and stays on it, its acceleration in each step's solve is the
 // trajectory's exactly, held directions still hold around it, the torque it takes moves
 // the free robot the same way, limit stops leave it alone, steps allocate nothing, and

@@ -1,4 +1,4 @@
-// Issue 16's drivers in JS (prescribed joints qdd_given, driver weights w_fext / w_ff on the
+// The drivers in JS (prescribed joints qdd_given, driver weights w_fext / w_ff on the
 // tip's columns and per block, virtual wrenches f_virtual; results prescribed_torques,
 // virtual_torques): robot.solve equals the native `achd solve` (ACHD_CLI, the Release
 // build) to the bit on chains and trees, by name and in model order; bad inputs get the

@@ -1,4 +1,4 @@
-// Floating bases in JS (issue 15), against the native CLI (ACHD_CLI, `--floating`):
+// Floating bases in JS, against the native CLI (ACHD_CLI, `--floating`):
 // loadURDF({floating: true}) describes the free joint as `achd info` does; its q takes the
 // root's position and quaternion and qd its [v; w], by name or in model order; and wasm
 // equals native to the bit on the tree robots of robots/index.json holding their default

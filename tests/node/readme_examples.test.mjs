@@ -54,7 +54,7 @@ test('README.md\'s JavaScript example runs as written and simulates 60 s', async
   console.log(`# ${stdout.trim()}`);
 });
 
-// The drivers (issue 16): a prescribed joint, a yielding column, a virtual wrench; the
+// The drivers: a prescribed joint, a yielding column, a virtual wrench; the
 // simulator's prescribed sine with z held.
 test('README.md\'s drivers example (JavaScript) runs as written', async () => {
   const block = codeBlocks('README.md', 'js')[2];
@@ -165,7 +165,7 @@ test('wasm/README.md\'s example runs as written with the npm package installed',
 });
 
 // The UR5 link (z and rx held, y accelerated at 0.5 m/s²) runs on the simulator's
-// variable_damping policy and fixed physics defaults (issue 14): before them it stopped
+// variable_damping policy and fixed physics defaults: before them it stopped
 // at t = 2.183 s, "the acceleration to enforce along direction y is not finite".
 test(`every page link in README.md runs ${LINK_SECONDS} simulated seconds as the page runs it`, async () => {
   const text = readFileSync(join(repo, 'README.md'), 'utf8');

@@ -1,4 +1,4 @@
-// Whole robots in JS (issue 15), against the native CLI (ACHD_CLI, the Release build): the
+// Whole robots in JS, against the native CLI (ACHD_CLI, the Release build): the
 // inputs by name give the results of the arrays; results name their joints and links as
 // the CLI's do; bad blocks and names get the CLI's message word for word; loadURDF loads
 // whole trees, locks side joints and ignores side branches as `achd info` reports; and

@@ -48,7 +48,7 @@ export async function usage(): Promise<void> {
   const blockWrenches: Float64Array = solver.constraint_wrenches;
   solver.solve();
   const qdd: Float64Array = solver.qdd;
-  // Issue 16's drivers: prescribed joints, driver weights, virtual wrenches.
+  // The drivers: prescribed joints, driver weights, virtual wrenches.
   const driven: Result = robot.solve({ q, gravity: [0, 0, -9.81], alpha: [[0, 0, 1, 0, 0, 0]], w_fext: [0], w_ff: [1],
     qdd_given: [null, 0.5], f_virtual: { tool: [0, 0, 1, 0, 0, 0] },
     constraints: [{ link: 'foot', alpha: [[1, 0, 0, 0, 0, 0]], w_fext: [0.5] }] });

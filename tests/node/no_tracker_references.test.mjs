@@ -1,0 +1,39 @@
+// The repository speaks of the project alone: no file tracked by git (the vendored robot
+// descriptions aside) cites a tracker entry by number ("issue 12", "issues 14/15",
+// "#12" after the word). The pattern is built at run time, so that this file holds no
+// match itself; the test's own cases show that it finds one.
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { test } from 'node:test';
+
+import { repo } from './helpers.mjs';
+
+const word = ['is', 'sue'].join('');
+const reference = new RegExp(`\\b${word}s?\\s*(#\\s*)?\\d+`, 'i');
+
+test('the pattern finds a tracker reference and passes plain prose', () => {
+  for (const text of [`see ${word} 12`, `(${word} 16's drivers)`, `${word.toUpperCase()}S 14/15`, `${word} #3`])
+    assert.ok(reference.test(text), text);
+  for (const text of [`an ${word} of the solver`, `${word}s with 2 robots`.replace('with 2', 'with two'), 'tissue 12'])
+    assert.ok(!reference.test(text), text);
+});
+
+test('no tracked file cites a tracker entry by number', () => {
+  const files = execFileSync('git', ['ls-files'], { cwd: repo, encoding: 'utf8' }).split('\n')
+    .filter((f) => f && !f.startsWith('robots/example-robot-data/') && !/\.(png|wasm|ico)$/.test(f));
+  const found = [];
+  for (const file of files) {
+    let text;
+    try {
+      text = readFileSync(join(repo, file), 'utf8');
+    } catch {
+      continue;  // a file git tracks but the checkout lacks
+    }
+    text.split('\n').forEach((line, k) => {
+      if (reference.test(line)) found.push(`${file}:${k + 1}: ${line.trim()}`);
+    });
+  }
+  assert.deepEqual(found, []);
+});
