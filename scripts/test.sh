@@ -86,10 +86,11 @@ fuzz() {
   once fuzz || return 0
   stage "fuzzing (${fuzz_seconds} s per target)"
   bash fuzz/run.sh "$fuzz_seconds"
-  # The JS boundary (views, callbacks, inputs read once) for the same time; the Node
-  # stage runs it for its default few seconds.
+  # The JS boundary (views, callbacks, inputs read once) for twice that time (60 s by
+  # default: random create/delete/view/step sequences need the length); the Node stage
+  # runs it for its default few seconds.
   wasm
-  ACHD_FUZZ_SECONDS="$fuzz_seconds" node --test tests/node/boundary_property.test.mjs
+  ACHD_FUZZ_SECONDS="$((2 * fuzz_seconds))" node --test tests/node/boundary_property.test.mjs
 }
 
 # One stage asked for by name, after what it needs.

@@ -101,7 +101,15 @@ void coupled_dynamics(const Model& model, Data& d, const Case& c, const Options&
     }
   const SmallVector solved = m ? SmallVector(ldlt.solve(rhs)) : SmallVector(0);
   SmallVector nu_c = SmallVector::Zero(p);
-  for (int a = 0; a < m; ++a) nu_c[active[a]] = solved[a];
+  for (int a = 0; a < m; ++a) {
+    nu_c[active[a]] = solved[a];
+    if (!std::isfinite(solved[a])) {
+      const JointCoupling& ci = model.couplings[active[a]];
+      throw Error("joint '" + model.bodies[ci.follower].joint_name + "' coupled to joint '" +
+                  model.bodies[ci.leader].joint_name + "': the coupling force overflows (nu_c = " +
+                  std::to_string(solved[a]) + ")");
+    }
+  }
   // The final solve: ff - C^T nu_c.
   h.q = c.q;
   h.qd = c.qd;

@@ -34,8 +34,9 @@ double written_roundoff(const char* text) {
   if (point)
     for (const char* c = point + 1; c < (exponent ? exponent : end) && std::isdigit(static_cast<unsigned char>(*c)); ++c)
       ++decimals;
-  const int power = exponent ? std::atoi(exponent + 1) : 0;
-  return 0.5 * std::pow(10.0, power - decimals);
+  // (clamped: an exponent past any double's says nothing more, and atoi would overflow)
+  const long power = exponent ? std::max(-400L, std::min(400L, std::strtol(exponent + 1, nullptr, 10))) : 0;
+  return 0.5 * std::pow(10.0, static_cast<double>(power - decimals));
 }
 
 namespace {
