@@ -20,7 +20,7 @@ import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
 import { DIRECTIONS, GRAVITY, checkDirection, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, parseHash } from './settings.js';
-import { Simulation } from './simulation.js';
+import { Simulation, jointControlOf } from './simulation.js';
 import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
 import { LINK_CHARACTERS, openSharedUrdf, shareUrdf, urdfKey } from './urdf_share.js';
@@ -100,6 +100,8 @@ window.achdDemo = {
       plots: readouts.plotRanges(),
       look: { meshes: page.look.meshes?.map((m) => ({ ...m })) ?? null, problems: [...page.look.problems] },
       share: page.share && { ...page.share },
+      warnings: [...page.sim.robot.warnings],
+      floating: page.sim.robot.floating,
     };
   },
   // The robot shown as it was loaded: {name, text (its URDF), root, tip, q0 (start pose)}.
@@ -199,9 +201,12 @@ window.achdDemo = {
     if (!page.sim) throw new Error('achdDemo.setPose: no robot loaded yet (await achdDemo.ready)');
     setPose(Array.from(q));
   },
-  async loadURDF(text, root, tip) {
+  // An own URDF as the load form loads it: tip null (or left out) for the whole robot;
+  // options {floating, mimic, inertia, srdf (text), pose}.
+  async loadURDF(text, root, tip, options = {}) {
     await ready;
-    loadRobot({ name: CUSTOM, text: String(text), root, tip });
+    const { floating, mimic, inertia, srdf, pose } = options;
+    loadRobot({ name: CUSTOM, text: String(text), root, tip: tip ?? null, floating, mimic, inertia, srdf, pose });
   },
 };
 
@@ -282,12 +287,12 @@ const sliders = new JointSliders(document.getElementById('joint-sliders'), docum
   startPose: () => page.sim?.q0,
 });
 const upload = new UrdfUpload({
-  onLoad: (text, root, tip, fileName, files) => {
+  onLoad: (choice) => {
     try {
-      loadRobot({ name: CUSTOM, text, root, tip, fileName, files });
+      loadRobot({ name: CUSTOM, ...choice });
       upload.hide();
     } catch (err) {
-      showError(`${fileName}: ${err.message}`);
+      showError(`${choice.fileName}: ${err.message}`);
     }
   },
   onError: (err) => showError(err.message),
@@ -469,6 +474,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   }
   robotSelect.value = source.name;
   errorBox.hidden = true;
+  showWarnings(sim.robot.warnings);
   if (source.name === CUSTOM) {
     page.ownSource = source;
     shareOwn(sim, source, looked);
@@ -478,6 +484,14 @@ function loadRobot(source, { keepDirections = false } = {}) {
     showShareNote(source);
   }
   writeHash();
+}
+
+// What the loader found odd in the URDF but loaded (robot.warnings), under the robot list.
+function showWarnings(warnings) {
+  const note = document.getElementById('robot-warnings');
+  note.hidden = !warnings.length;
+  note.textContent = warnings.length ? `Loaded with ${warnings.length} warning${warnings.length > 1 ? 's' : ''}:\n` +
+    warnings.join('\n') : '';
 }
 
 // Puts the own URDF in the page's link (in it, or kept in this browser's storage and named
@@ -493,7 +507,7 @@ function shareOwn(sim, source, looked) {
     if (page.sim !== sim || !meshes) return;
     share.meshes = await keepOwnMeshes(share.key, source, meshes);
     if (page.sim !== sim) return;
-    page.settings.own = { ref: share.ref, root: sim.robot.root, tip: sim.robot.tip };
+    page.settings.own = { ref: share.ref, root: sim.robot.root, tip: sim.robot.tip, floating: sim.robot.floating };
     page.share = share;
     writeHash();
     showShareNote(source);
@@ -749,7 +763,8 @@ window.addEventListener('hashchange', () => {
 // cannot be had; storage that cannot be read leaves the meshes out (meshesUnread says why).
 async function linkedSource(own) {
   const text = await openSharedUrdf(own.ref);
-  const source = { name: CUSTOM, text, root: own.root, tip: own.tip, fileName: LINKED_NAME, files: null };
+  const source = { name: CUSTOM, text, root: own.root, tip: own.tip, floating: own.floating, fileName: LINKED_NAME,
+    files: null };
   try {
     source.files = await openKeptMeshes(await urdfKey(text));
   } catch (err) {
@@ -787,7 +802,7 @@ async function readIndexAndRobot() {
   if (robot === CUSTOM) {
     const own = hashOwn(location.hash);
     try {
-      if (!own) throw new Error(`robot=${CUSTOM} needs urdf=, root= and tip=`);
+      if (!own) throw new Error(`robot=${CUSTOM} needs urdf= and root=`);
       const { text, ...entry } = await linkedSource(own);
       return { index, problems, entry, text };
     } catch (err) {
@@ -806,7 +821,8 @@ async function readIndexAndRobot() {
 // The source of an index robot, its meshes read from this server.
 function indexSource(entry, text) {
   return { name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry),
-    floating: entry.floating, constraints: entry.constraints, jointControl: entry.joint_control };
+    floating: entry.floating, mimic: entry.mimic, constraints: entry.constraints, held: entry.held,
+    jointControl: jointControlOf(entry.joint_control) };
 }
 
 async function start() {

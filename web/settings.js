@@ -6,7 +6,8 @@
 // (prescribed joints belong to the robot's run and are not in the hash). `dirs` and
 // `yield` are the selected link's: a chain's tip, or the link `link=` names (a tree's
 // other default links are held as the robot list holds them). An own URDF is
-// robot=custom&urdf=<deflate:… or local:…, web/urdf_share.js>&root=<link>&tip=<link>.
+// robot=custom&urdf=<deflate:… or local:…, web/urdf_share.js>&root=<link>&tip=<link> (no
+// tip: the whole robot; base=floating: on a floating base, standing on its feet).
 // Values are the scene files' words (achd.constants); the simulator's option keys are
 // the same words in camelCase. Which integrators and policies exist, and the defaults,
 // are the module's (`offer`, web/module_offer.js): this file keeps no list of its own.
@@ -54,7 +55,8 @@ export function defaultSettings(robot, offer) {
     yielding: Object.fromEntries(DIRECTIONS.map((d) => [d, false])),
     // joint name -> {motion, position, velocity, amplitude, frequency, phase} in page time
     prescribed: {},
-    // an own URDF's place in the link: {ref (urdf=), root, tip}, or null
+    // an own URDF's place in the link: {ref (urdf=), root, tip (null: the whole robot),
+    // floating}, or null
     own: null,
   };
 }
@@ -120,7 +122,8 @@ export function formatHash(s) {
   if (s.own) {
     params.set('urdf', s.own.ref);
     params.set('root', s.own.root);
-    params.set('tip', s.own.tip);
+    if (s.own.tip) params.set('tip', s.own.tip);
+    if (s.own.floating) params.set('base', 'floating');
   }
   params.set('integrator', s.integrator);
   if (isAdaptive(s.integrator)) params.set('rtol', String(s.rtol));
@@ -142,11 +145,12 @@ export function hashRobot(hash, fallback) {
   return new URLSearchParams(hash.replace(/^#/, '')).get('robot') ?? fallback;
 }
 
-// The own URDF a hash names, {ref, root, tip} (all three given), or null.
+// The own URDF a hash names, {ref, root, tip (null: the whole robot), floating} (urdf= and
+// root= given), or null.
 export function hashOwn(hash) {
   const params = new URLSearchParams(hash.replace(/^#/, ''));
   const [ref, root, tip] = ['urdf', 'root', 'tip'].map((k) => params.get(k));
-  return ref !== null && root !== null && tip !== null ? { ref, root, tip } : null;
+  return ref !== null && root !== null ? { ref, root, tip, floating: params.get('base') === 'floating' } : null;
 }
 
 // Reads a hash over the defaults, taking only names the module offers; returns the
@@ -159,7 +163,7 @@ export function parseHash(hash, defaults, offer) {
   if (params.has('robot')) s.robot = params.get('robot');
   if (params.has('urdf')) {
     s.own = hashOwn(hash);
-    if (!s.own) problems.push('urdf= needs root= and tip= (the chain of the own URDF)');
+    if (!s.own) problems.push('urdf= needs root= (the own URDF\'s root link; tip= for a chain)');
   }
   if (params.has('integrator')) {
     const v = current('integrator', params.get('integrator'));

@@ -9,12 +9,27 @@
 // set, the selected link's (settings.directions and settings.yielding are that set); the
 // others are kept here (`sets`). A chain starts with its tip selected; a tree from the
 // robot list starts with its default links (robots/index.json "constraints") held in x, y,
-// z, the first one selected. A floating base (index "floating") stands with those links
-// on the ground (z = 0) under the joint PD controller of its "joint_control", toward the
-// start pose (and toward any pose the sliders set).
+// z (or the index's "held" directions), the first one selected. A floating base
+// (index "floating") stands with those links on the ground (z = 0) under the joint PD
+// controller of its "joint_control", toward the start pose (and toward any pose the
+// sliders set). An own floating robot stands the same way on its feet: the leaf links
+// lowest at the start pose (web/robot_feet.js), under the controller of OWN_CONTROL.
 import { DIRECTIONS, GRAVITY, motionInSimulatorTime, simulatorOptions } from './settings.js';
+import { lowestLeaves } from './robot_feet.js';
 import { startPose } from './start_pose.js';
 import { isMovable, urdfTree } from './urdf_tree.js';
+
+// An own floating robot's joint PD: gains from a 5 Hz, critically damped response with
+// the torques that hold it at rest under gravity on its held feet.
+export const OWN_CONTROL = { frequency: 5, dampingRatio: 1, feedforward: 'hold' };
+const HELD_BY_DEFAULT = ['x', 'y', 'z'];
+
+// robots/index.json's joint_control (the scene files' words) as setJointControl takes it.
+export function jointControlOf(words) {
+  if (!words) return null;
+  const { damping_ratio: dampingRatio, ...rest } = words;
+  return dampingRatio === undefined ? { ...rest } : { ...rest, dampingRatio };
+}
 
 // The time per step shown is the mean over at least this much wall time: one frame's
 // worth of steps is below the browser's timer resolution on a fast robot.
@@ -42,15 +57,20 @@ function quaternionRows([x, y, z, w]) {
 }
 
 export class Simulation {
-  // source: {name, text, root, tip (none: the whole tree), floating, q0 (optional:
-  // robots/index.json's pose of the joints; without it, a pose inside the limits away
-  // from a singularity, web/start_pose.js), constraints (a tree's default held links),
-  // jointControl ({kp, kd}: the PD controller toward the start pose)}. Throws an Error
+  // source: {name, text, root, tip (none: the whole tree), floating, mimic, inertia, srdf
+  // (SRDF text), pose (its group_state), q0 (optional: robots/index.json's pose of the
+  // joints; without it the SRDF pose, else for a chain a pose inside the limits away from
+  // a singularity, web/start_pose.js, for a tree robot.startPose), constraints (a tree's
+  // default held links; an own floating robot: its lowest leaf links), held (their held
+  // directions, default x, y, z), jointControl (setJointControl's {kp, kd} or {frequency,
+  // dampingRatio, feedforward}: the PD controller toward the start pose)}. Throws an Error
   // naming the problem and owns nothing in that case.
   constructor(achd, source, settings) {
     this.name = source.name;
     this.source = source;
-    this.robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip, floating: Boolean(source.floating) });
+    const options = { root: source.root, tip: source.tip ?? undefined, floating: Boolean(source.floating) };
+    for (const key of ['mimic', 'inertia', 'srdf', 'pose']) if (source[key]) options[key] = source[key];
+    this.robot = achd.loadURDF(source.text, options);
     try {
       const tree = urdfTree(source.text);
       const names = [this.robot.root, ...this.robot.linkNames];
@@ -70,14 +90,20 @@ export class Simulation {
       };
       this.mass = tree.links.filter((l) => below(l) && (l !== this.robot.root || this.robot.floating))
         .reduce((sum, l) => sum + (tree.mass.get(l) ?? 0), 0);
-      this.defaultLinks = (source.constraints ?? []).filter((l) => this.robot.linkNames.includes(l));
-      const joints = source.q0 ?? startPose(this.robot).q;
+      const free = this.robot.floating ? 7 : 0;
+      const joints = source.q0 ?? (source.pose || !this.robot.tip ? this.robot.startPose.slice(free)
+        : startPose(this.robot).q);
       const movableJoints = this.robot.numJoints - (this.robot.floating ? 6 : 0);
       if (joints.length !== movableJoints) {
         throw new Error(`q0 has ${joints.length} values, the robot ${movableJoints} joints`);
       }
-      this.q0 = this.robot.floating ? this.floatingPose(joints) : [...joints];
-      this.control = source.jointControl ?? null;
+      const base = this.robot.floating && !source.q0 ? this.robot.startPose.slice(0, 7) : [0, 0, 0, 0, 0, 0, 1];
+      const own = this.robot.floating && !source.constraints;
+      this.defaultLinks = own ? lowestLeaves(this.robot, tree, [...base, ...joints])
+        : (source.constraints ?? []).filter((l) => this.robot.linkNames.includes(l));
+      this.held = source.held ?? HELD_BY_DEFAULT;
+      this.q0 = this.robot.floating ? this.floatingPose(base, joints) : [...joints];
+      this.control = source.jointControl ?? (own ? OWN_CONTROL : null);
       this.settings = settings;
       this.sets = new Map();  // link name -> {directions, yielding}, the selected one's in settings
       this.points = new Map();  // link name -> [x, y, z] in its frame, where its directions act (default: origin)
@@ -95,10 +121,11 @@ export class Simulation {
     this.solveMicros = null;
   }
 
-  // A floating base's full q for the joints' q: the root upright, raised so that the
-  // lowest default link stands at z = 0 (the root at z = 0 without default links).
-  floatingPose(joints) {
-    const q = [0, 0, 0, 0, 0, 0, 1, ...joints];
+  // A floating base's full q for the joints' q: the root at base ([x, y, z, qx, qy, qz,
+  // qw]), moved up or down so that the lowest default link stands at z = 0 (the root at
+  // z = 0 without default links).
+  floatingPose(base, joints) {
+    const q = [base[0], base[1], 0, ...base.slice(3, 7), ...joints];
     const fk = this.robot.forwardKinematics(q);
     const feet = fk.filter((l) => this.defaultLinks.includes(l.name)).map((l) => l.position[2]);
     if (feet.length) q[2] = -Math.min(...feet);
@@ -148,13 +175,13 @@ export class Simulation {
     return [0, 1, 2].map((i) => pose.position[i] + R[3 * i] * p[0] + R[3 * i + 1] * p[1] + R[3 * i + 2] * p[2]);
   }
 
-  // A new robot's directions: every link free, the default links held in x, y, z (a tree
-  // of the list); the selected link's set is settings'.
+  // A new robot's directions: every link free, the default links held in x, y, z (or the
+  // source's held directions); the selected link's set is settings'.
   defaultDirections() {
     this.sets.clear();
     for (const link of this.defaultLinks) {
       const set = freeSet();
-      for (const d of ['x', 'y', 'z']) set.directions[d] = 'hold';
+      for (const d of this.held) set.directions[d] = 'hold';
       if (link === this.selected) {
         Object.assign(this.settings.directions, set.directions);
         Object.assign(this.settings.yielding, set.yielding);

@@ -1,14 +1,22 @@
 // Loading the user's own URDF: a file picker (one URDF or several files together), a
 // folder picker and drag-and-drop anywhere on the page (files or folders) read the URDF,
-// then a small form offers root and tip from the file's links (the longest chain
-// preselected) and hands the choice to `onLoad(text, root, tip, fileName, files)`, files
-// being the PickedFiles its meshes are looked up in (web/mesh_files.js).
+// then a small form offers: which URDF (a list when several were given), the whole robot
+// or a chain (root and tip from the file's links, the longest chain preselected), a fixed
+// or floating base, the mimic and inertia options and, when an .srdf file came along, its
+// named poses; it hands the choice to `onLoad({text, fileName, files, root, tip (null: the
+// whole robot), floating, mimic, inertia, srdf (text), pose})`, files being the
+// PickedFiles its meshes are looked up in (web/mesh_files.js). A URDF whose movable
+// joints all lie on one chain is offered as that chain, a branching one whole.
 import { PickedFiles, droppedFiles, pickedFiles } from './mesh_files.js';
-import { chainLinks, longestChain, urdfTree } from './urdf_tree.js';
+import { srdfPoses } from './srdf_poses.js';
+import { chainLinks, isMovable, longestChain, urdfTree } from './urdf_tree.js';
 import { URDF_LIMIT_BYTES } from './urdf_share.js';
 
 const URDF_NAME = /\.urdf$/i;
 const XML_NAME = /\.xml$/i;
+const SRDF_NAME = /\.srdf$/i;
+// The pose option of no SRDF pose: every joint at 0, or the middle of its limits.
+const NO_POSE = '';
 
 export class UrdfUpload {
   constructor({ onLoad, onError }) {
@@ -17,6 +25,12 @@ export class UrdfUpload {
     this.fileLabel = document.getElementById('urdf-chain-file');
     this.root = document.getElementById('urdf-root');
     this.tip = document.getElementById('urdf-tip');
+    this.pick = document.getElementById('urdf-pick');
+    this.whole = document.getElementById('urdf-whole');
+    this.base = document.getElementById('urdf-base');
+    this.mimic = document.getElementById('urdf-mimic');
+    this.inertia = document.getElementById('urdf-inertia');
+    this.pose = document.getElementById('urdf-pose');
     for (const id of ['urdf-file', 'urdf-folder']) {
       const picker = document.getElementById(id);
       picker.addEventListener('change', () => {
@@ -26,12 +40,17 @@ export class UrdfUpload {
     }
     this.form.addEventListener('submit', (e) => {
       e.preventDefault();
-      onLoad(this.text, this.root.value, this.tip.value, this.fileName, this.files);
+      const pose = this.pose.value === NO_POSE ? null : this.poses[Number(this.pose.value)];
+      onLoad({ text: this.text, fileName: this.fileName, files: this.files, root: this.root.value,
+        tip: this.whole.value === 'chain' ? this.tip.value : null, floating: this.base.value === 'floating',
+        mimic: this.mimic.value, inertia: this.inertia.value, srdf: pose?.srdf, pose: pose?.name });
     });
     document.getElementById('urdf-cancel').addEventListener('click', () => {
       this.form.hidden = true;
     });
     this.root.addEventListener('change', () => this.offerTips());
+    this.whole.addEventListener('change', () => this.showTip());
+    this.pick.addEventListener('change', () => this.readUrdf(this.urdfs[Number(this.pick.value)]));
 
     // Drag-and-drop: the overlay shows while a file is over the page.
     const overlay = document.getElementById('drop-overlay');
@@ -58,15 +77,33 @@ export class UrdfUpload {
     });
   }
 
-  // files: [{path, file}] picked or dropped together; the URDF among them is read.
+  // files: [{path, file}] picked or dropped together; their URDFs are offered (in
+  // urdfFiles' order) and the first is read, with the poses of their SRDFs.
   async read(files) {
-    const urdf = chooseUrdf(files);
-    if (!urdf) {
+    this.urdfs = urdfFiles(files);
+    if (!this.urdfs.length) {
       this.form.hidden = true;
       this.onError(new Error(`no .urdf file among the ${files.length} file(s) given ` +
         '(a .xacro file must be expanded with xacro first)'));
       return;
     }
+    this.given = files;
+    this.srdfs = [];
+    for (const f of files.filter((f) => SRDF_NAME.test(f.path))) {
+      try {
+        const text = await f.file.text();
+        this.srdfs.push({ path: f.path, text, ...srdfPoses(text) });
+      } catch (err) {
+        this.onError(new Error(`${f.path}: ${err.message}`));
+      }
+    }
+    this.pick.replaceChildren(...this.urdfs.map((u, i) => new Option(u.path, String(i))));
+    document.getElementById('urdf-pick-label').hidden = this.urdfs.length < 2;
+    await this.readUrdf(this.urdfs[0]);
+  }
+
+  // Reads one URDF of the files given and fills the form for it.
+  async readUrdf(urdf) {
     try {
       // The command line's limit on a URDF file: a larger one is not read into the tab.
       if (urdf.file.size > URDF_LIMIT_BYTES) {
@@ -81,13 +118,34 @@ export class UrdfUpload {
       this.onError(new Error(`${urdf.path}: ${err.message}`));
       return;
     }
-    this.files = new PickedFiles(files, urdf.path);
+    this.files = new PickedFiles(this.given, urdf.path);
     const { root, tip } = longestChain(this.tree);
     this.root.replaceChildren(...this.tree.links.map((l) => new Option(l, l, false, l === root)));
     this.offerTips(tip);
-    const others = files.length - 1;
-    this.fileLabel.textContent = `${urdf.path}${others ? ` (and ${others} more file${others > 1 ? 's' : ''})` : ''}: choose the chain`;
+    const onChain = chainLinks(this.tree, root, tip).filter((l) => isMovable(this.tree, l)).length;
+    const movable = this.tree.links.filter((l) => isMovable(this.tree, l)).length;
+    this.whole.value = onChain === movable ? 'chain' : 'tree';
+    this.showTip();
+    this.offerPoses();
+    const others = this.given.length - 1;
+    this.fileLabel.textContent = `${urdf.path}${others ? ` (and ${others} more file${others > 1 ? 's' : ''})` : ''}:`;
     this.form.hidden = false;
+  }
+
+  // The SRDFs' poses, those of an SRDF of the URDF's robot (<robot name>) first and the
+  // first of them chosen; none when no SRDF came along.
+  offerPoses() {
+    const name = new DOMParser().parseFromString(this.text, 'application/xml').documentElement.getAttribute('name');
+    const srdfs = [...this.srdfs].sort((a, b) => Number(b.robot === name) - Number(a.robot === name));
+    this.poses = srdfs.flatMap((s) => s.poses.map((pose) => ({ srdf: s.text, name: pose, path: s.path })));
+    const several = srdfs.length > 1;
+    this.pose.replaceChildren(new Option('none (joints at 0 or mid-limits)', NO_POSE),
+      ...this.poses.map((p, i) => new Option(several ? `${p.name} (${p.path})` : p.name, String(i), false, i === 0)));
+    document.getElementById('urdf-pose-label').hidden = !this.poses.length;
+  }
+
+  showTip() {
+    this.tip.closest('label').hidden = this.whole.value !== 'chain';
   }
 
   // Tips are the links below the chosen root.
@@ -103,15 +161,15 @@ export class UrdfUpload {
   }
 }
 
-// The URDF among files given together: a .urdf file (else an .xml one), the one nearest
-// the top of the folder, then the first by name.
-function chooseUrdf(files) {
+// The URDFs among files given together: .urdf files (else .xml ones), those nearest the
+// top of the folder first, then by name.
+function urdfFiles(files) {
   for (const pattern of [URDF_NAME, XML_NAME]) {
     const candidates = files.filter((f) => pattern.test(f.path));
     candidates.sort((a, b) => depth(a.path) - depth(b.path) || a.path.localeCompare(b.path));
-    if (candidates.length) return candidates[0];
+    if (candidates.length) return candidates;
   }
-  return null;
+  return [];
 }
 
 function depth(path) {

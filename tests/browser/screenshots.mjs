@@ -16,15 +16,22 @@
 //   docs/screenshots/quadruped.png the floating quadruped standing on its four held feet under its
 //                                 PD controller, pushed sideways at a hip: each foot's
 //                                 constraint force arrow, the torque bars
+//   docs/screenshots/humanoid.png  the floating humanoid standing on its two soles held in 6D under
+//                                 the 5 Hz hold controller, after 3 simulated seconds
+//   docs/screenshots/own_robot.png solo12 loaded whole from example-robot-data's solo_description
+//                                 folder (two URDFs, an SRDF), floating, in the SRDF's standing
+//                                 pose, on its four held feet (no meshes in that copy: stick
+//                                 figure, the note names them)
 // Usage: node tests/browser/screenshots.mjs [name...]   (after the wasm build; names: the
 // files' without .png, all of them when none is given)
 import { mkdir } from 'node:fs/promises';
+import { fileURLToPath } from 'node:url';
 import { openPage } from './launch.mjs';
 
 const out = new URL('../../docs/screenshots/', import.meta.url);
 await mkdir(out, { recursive: true });
 const wanted = process.argv.slice(2);
-const SHOTS = ['default', 'boundary', 'robot', 'sliders', 'forces', 'quadruped'];
+const SHOTS = ['default', 'boundary', 'robot', 'sliders', 'forces', 'quadruped', 'humanoid', 'own_robot'];
 for (const name of wanted) {
   if (!SHOTS.includes(name) && name !== 'held') throw new Error(`no screenshot "${name}" (${[...SHOTS, 'held'].join(', ')})`);
 }
@@ -154,5 +161,47 @@ if (want('quadruped')) {
     if (standing.consoleErrors.length) throw new Error(`console errors: ${standing.consoleErrors.join('\n')}`);
   } finally {
     await standing.close();
+  }
+}
+
+if (want('humanoid')) {
+  const standing = await openPage({ viewport: { width: 1400, height: 1000 }, hash: '#robot=humanoid' });
+  try {
+    const { page } = standing;
+    await page.evaluate(() => {
+      window.achdDemo.pause();
+      window.achdDemo.step(3000);
+      window.achdDemo.play();
+    });
+    await page.waitForTimeout(1000);
+    await page.evaluate(() => window.achdDemo.pause());
+    await page.screenshot({ path: new URL('humanoid.png', out).pathname });
+    if (standing.consoleErrors.length) throw new Error(`console errors: ${standing.consoleErrors.join('\n')}`);
+  } finally {
+    await standing.close();
+  }
+}
+
+if (want('own_robot')) {
+  const own = await openPage({ viewport: { width: 1400, height: 1000 } });
+  try {
+    const { page } = own;
+    const folder = new URL('../../robots/example-robot-data/solo_description/', import.meta.url);
+    await page.locator('#urdf-folder').setInputFiles(fileURLToPath(folder));
+    await page.locator('#urdf-chain').waitFor({ state: 'visible' });
+    const urdfs = await page.locator('#urdf-pick option').allTextContents();
+    await page.locator('#urdf-pick').selectOption({ index: urdfs.findIndex((p) => p.endsWith('solo12.urdf')) });
+    await page.waitForFunction(() => document.getElementById('urdf-chain-file').textContent.includes('solo12.urdf'));
+    await page.locator('#urdf-base').selectOption('floating');
+    // The form as filled in, then the robot standing.
+    await page.screenshot({ path: new URL('own_robot_form.png', out).pathname, clip: { x: 0, y: 0, width: 1400, height: 200 } });
+    await page.locator('#urdf-chain button[type=submit]').click();
+    await page.locator('#urdf-chain').waitFor({ state: 'hidden' });
+    await page.waitForTimeout(2500);
+    await page.evaluate(() => window.achdDemo.pause());
+    await page.screenshot({ path: new URL('own_robot.png', out).pathname });
+    if (own.consoleErrors.length) throw new Error(`console errors: ${own.consoleErrors.join('\n')}`);
+  } finally {
+    await own.close();
   }
 }

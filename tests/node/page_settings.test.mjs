@@ -33,14 +33,23 @@ test('the hash writes the scene names and reads them back', () => {
 
 test('an own URDF\'s place in the link (urdf=, root=, tip=) goes after the robot and comes back', () => {
   const s = defaultSettings('custom', OFFER);
-  s.own = { ref: 'local:0123456789abcdef', root: 'base link', tip: 'tool' };
+  s.own = { ref: 'local:0123456789abcdef', root: 'base link', tip: 'tool', floating: false };
   const hash = formatHash(s);
   assert.ok(hash.startsWith('#robot=custom&urdf=local:0123456789abcdef&root=base+link&tip=tool&integrator='), hash);
   assert.deepEqual(parseHash(hash, defaultSettings('ur5', OFFER), OFFER), { settings: s, problems: [] });
   assert.deepEqual(hashOwn(hash), s.own);
-  assert.equal(hashOwn('#robot=custom&urdf=deflate:AA&root=a'), null);
+  assert.equal(hashOwn('#robot=custom&urdf=deflate:AA'), null);
   assert.deepEqual(parseHash('#robot=custom&urdf=deflate:AA', defaultSettings('ur5', OFFER), OFFER).problems,
-    ['urdf= needs root= and tip= (the chain of the own URDF)']);
+    ['urdf= needs root= (the own URDF\'s root link; tip= for a chain)']);
+});
+
+test('a whole own robot on a floating base is in the link without tip=, with base=floating', () => {
+  const s = defaultSettings('custom', OFFER);
+  s.own = { ref: 'local:0123456789abcdef', root: 'base_link', tip: null, floating: true };
+  const hash = formatHash(s);
+  assert.ok(hash.startsWith('#robot=custom&urdf=local:0123456789abcdef&root=base_link&base=floating&integrator='), hash);
+  assert.deepEqual(hashOwn(hash), s.own);
+  assert.deepEqual(parseHash(hash, defaultSettings('ur5', OFFER), OFFER), { settings: s, problems: [] });
 });
 
 test('directions that yield to pushes are stored in the hash; prescribed joints are not', () => {
