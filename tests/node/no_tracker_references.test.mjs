@@ -1,7 +1,7 @@
 // The repository speaks of the project alone: no file tracked by git (the vendored robot
-// descriptions aside) cites a tracker entry by number ("issue 12", "issues 14/15",
-// "#12" after the word). The pattern is built at run time, so that this file holds no
-// match itself; the test's own cases show that it finds one.
+// descriptions aside) cites a tracker entry by number (the tracker's word for an entry
+// followed by a number, with or without "#"). The pattern is built at run time, so that
+// this file holds no match itself; the test's own cases show that it finds one.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
