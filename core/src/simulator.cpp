@@ -34,6 +34,13 @@ void check_state(const Eigen::VectorXd& v, int n, const char* field) {
     if (!std::isfinite(v[i])) throw Error(std::string(field) + "[" + std::to_string(i) + "] is not finite");
 }
 
+// A floating base's orientation in q (q[3..6]) must not be the zero quaternion, which is
+// no orientation (any other length is normalised).
+void check_orientation(const Model& model, const Eigen::VectorXd& q, const char* field) {
+  if (model.floating && !(q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0))
+    throw Error(std::string(field) + "[3..6]: the floating base's orientation quaternion (qx, qy, qz, qw) is zero");
+}
+
 // The first joint whose q or qd is not finite, as "joint 'elbow': qd = inf"; "" if none
 // (a floating base's free joint: its seven positions and six rates).
 std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
@@ -177,6 +184,7 @@ std::int64_t Simulator::events_not_kept() const { return events_->not_kept(); }
 void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   const int n = model_.num_joints();
   check_state(q0, model_.num_positions(), "q0");
+  check_orientation(model_, q0, "q0");
   if (qd0.size()) check_state(qd0, n, "qd0");
   q = q0;
   if (qd0.size()) qd = qd0;
@@ -303,6 +311,7 @@ void Simulator::step(double dt) {
   if (!std::isfinite(t)) throw Error("step: t is not finite");
   // The state the caller set (the fields q and qd: bad input, not a failed step).
   check_state(q, model_.num_positions(), "q");
+  check_orientation(model_, q, "q");
   check_state(qd, model_.num_joints(), "qd");
   solver_ = options_.solver;
   solver_.effects = options_.effects;

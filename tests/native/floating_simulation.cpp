@@ -35,6 +35,29 @@ const char* kBox = R"(<?xml version="1.0"?>
 <link name="marker"/><joint name="marker_joint" type="fixed"><parent link="box"/><child link="marker"/>
 <origin xyz="0.2 0 0" rpy="0 0 0"/></joint></robot>)";
 
+// A zero quaternion is no orientation: reset() and step() name it as such, in q's terms,
+// instead of failing later on a held direction's non-finite target.
+TEST(FloatingSimulation, AZeroQuaternionIsNamed) {
+  const Model m = load_floating(std::string(ACHD_SOURCE_DIR) + "/robots/quadruped.urdf", false);
+  Simulator sim(m);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.num_positions());
+  try {
+    sim.reset(q, Eigen::VectorXd());
+    ADD_FAILURE() << "reset took a zero quaternion";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "q0[3..6]: the floating base's orientation quaternion (qx, qy, qz, qw) is zero");
+  }
+  q[6] = 1e-300;  // any length but zero is an orientation
+  sim.reset(q, Eigen::VectorXd());
+  sim.q.segment<4>(3).setZero();
+  try {
+    sim.step(1e-3);
+    ADD_FAILURE() << "step took a zero quaternion";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "q[3..6]: the floating base's orientation quaternion (qx, qy, qz, qw) is zero");
+  }
+}
+
 TEST(FloatingSimulation, FreeFallIsOneBodyFalling) {
   const Model m = load_floating(std::string(ACHD_SOURCE_DIR) + "/robots/quadruped.urdf", false);
   for (Integrator integrator : {Integrator::RK4, Integrator::DormandPrince, Integrator::SemiImplicitEuler}) {

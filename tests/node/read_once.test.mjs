@@ -171,6 +171,11 @@ test('null where an options object goes is a named error', () => {
   throwsMessage(() => robot.massMatrix(CASE.q, null), /^options must be an object$/);
   throwsMessage(() => robot.rnea(CASE.q, CASE.qd, CASE.ff_torques, null), /^options must be an object$/);
   throwsMessage(() => robot.createSimulator({ jointControl: null }), /^options\.jointControl must be an object$/);
+  throwsMessage(() => robot.createSimulator(null), /must be an object/);
+  throwsMessage(() => robot.createSolver(null), /must be an object/);
+  throwsMessage(() => robot.solve(CASE, null), /^options must be an object$/);
+  throwsMessage(() => sim.step(1, 1e-3, null), /^step options must be an object$/);
+  throwsMessage(() => achd.loadURDF(entry.text, null), /^loadURDF options must be an object$/);
   sim.setDirectionWeights('z');  // omitted: the defaults
   sim.delete();
 });

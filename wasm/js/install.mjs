@@ -24,7 +24,7 @@ export function installAchd(Module) {
   // options.pose: the one of them robot.startPose is (default: robot.defaultPose).
   Module['loadURDF'] = function loadURDF(text, options) {
     if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
-    if (options === undefined || options === null) options = {};
+    if (options === undefined) options = {};  // (null is not "no options": a named error)
     options = achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating', 'inertia', 'srdf', 'pose']);
     if (options.srdf !== undefined && typeof options.srdf !== 'string') throw new Error('loadURDF: options.srdf must be SRDF text (a string)');
     if (options.pose !== undefined && (typeof options.pose !== 'string' || options.srdf === undefined))

@@ -62,7 +62,7 @@ export class Robot extends AchdHandle {
     super.delete();
   }
   createSolver(options) {
-    if (options === undefined || options === null) options = {};
+    if (options === undefined) options = {};  // (null: a named error)
     const o = achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
     const max = achdConstants().max_constraints;
     const mc = o.maxConstraints === undefined ? max : o.maxConstraints;
@@ -189,7 +189,7 @@ export class Robot extends AchdHandle {
     });
   }
   createSimulator(options) {
-    if (options === undefined || options === null) options = {};
+    if (options === undefined) options = {};  // (null: a named error)
     options = achdCheckObject(options, 'options', ['integrator', 'effects', 'gravity', 'limits',
       'frictionVelocity', 'stabilisationFrequency', 'stabilisationDamping', 'rtol', 'atol', 'policy',
       'singularRegion', 'maxDamping', 'jointControl']);

@@ -53,7 +53,6 @@ export class Simulator extends AchdHandle {
       throw new Error(`step: n must be an integer >= 0 and <= 2^53 - 1, got ${achdDescribe(n)}`);
     if (typeof dt !== 'number' || !Number.isFinite(dt) || dt <= 0)
       throw new Error(`step: dt must be a finite number > 0, got ${achdDescribe(dt)}`);
-    if (options === null) options = undefined;
     const o = achdOptionalObject(options, 'step options', ['onProgress', 'progressInterval']);
     const onProgress = o.onProgress;
     if (onProgress !== undefined && typeof onProgress !== 'function')

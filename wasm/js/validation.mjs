@@ -188,7 +188,7 @@ export const ACHD_SOLVER_OPTION_KEYS = ['convention', 'policy', 'tolerance', 'ab
 // achd_solver_set_options. The bounds are achd::validate(Options)'s, checked here so that
 // the message names the JS option.
 export function achdSolverOptions(options) {
-  if (options === undefined || options === null) options = {};
+  if (options === undefined) options = {};  // (null: a named error)
   const o = achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
   if (o.absoluteTolerance !== undefined && typeof o.absoluteTolerance !== 'boolean')
     throw new Error('options.absoluteTolerance must be true or false');
