@@ -25,7 +25,7 @@ const DIRECTION_TITLES = {
 };
 
 export class Controls {
-  // on: {playPause(), step(), reset(), integrator(v), rtol(v), dt(v), policy(v),
+  // on: {playPause(), step(), reset(), integrator(v), rtol(v), dt(v), policy(v), limits(v),
   //      direction(name, mode), yield(name, on), prescribe(joint, params | null), effect(key, on)}
   constructor(on) {
     this.playButton = document.getElementById('btn-play');
@@ -40,6 +40,8 @@ export class Controls {
     this.dt.addEventListener('change', () => on.dt(Number(this.dt.value)));
     this.policy = document.getElementById('policy');
     this.policy.addEventListener('change', () => on.policy(this.policy.value));
+    this.limits = document.getElementById('limits');
+    this.limits.addEventListener('change', () => on.limits(this.limits.value));
 
     this.rows = {};
     const table = document.getElementById('directions');
@@ -132,10 +134,13 @@ export class Controls {
     }
   }
 
-  // Fills the integrator and policy lists with what the module offers (web/module_offer.js).
+  // Fills the integrator, policy and joint-limit lists with what the module offers
+  // (web/module_offer.js).
   offer(offer) {
     this.integrator.replaceChildren(...offer.integrators.map((n) => new Option(INTEGRATOR_LABELS[n] ?? n, n)));
     this.policy.replaceChildren(...offer.policies.map((n) => new Option(POLICY_LABELS[n] ?? n, n)));
+    this.limits.replaceChildren(...offer.limitPolicies.map((n) => new Option(n, n)));
+    this.defaultLimits = offer.defaults.limits;
     this.rtol.replaceChildren(...RELATIVE_TOLERANCES.map((v) => new Option(v.toExponential(0), String(v))));
   }
 
@@ -169,6 +174,7 @@ export class Controls {
     this.integrator.value = settings.integrator;
     this.dt.value = String(settings.dt);
     this.policy.value = settings.policy;
+    this.limits.value = settings.limits ?? this.defaultLimits;
     // The tolerance is shown only for an adaptive integrator; a tolerance from a hash that
     // the list lacks gets an entry of its own.
     this.rtol.closest('label').hidden = !isAdaptive(settings.integrator);

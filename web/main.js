@@ -246,6 +246,7 @@ const controls = new Controls({
   rtol: (v) => changeSetting(() => (page.settings.rtol = v), true),
   dt: (v) => changeSetting(() => (page.settings.dt = v), false),
   policy: (v) => changeSetting(() => (page.settings.policy = v), true),
+  limits: (v) => changeSetting(() => (page.settings.limits = v), true),
   direction: (name, mode) => setDirection(name, mode),
   yield: (name, on) => setYield(name, on),
   prescribe: (joint, params) => {

@@ -1,5 +1,5 @@
-// What this build of the achd module offers the page: its integrators and singularity
-// policies (achd.constants, in the module's order) and the simulator's defaults, which
+// What this build of the achd module offers the page: its integrators, singularity
+// policies and joint-limit policies (achd.constants, in the module's order) and the simulator's defaults, which
 // the page uses as its own (a page opened without a hash runs what a scene or a JS
 // simulator left at its defaults runs; the simulator's policy is in its solver options).
 
@@ -9,6 +9,7 @@ export function moduleOffer(achd) {
   return {
     integrators: [...k.integrators],
     policies: [...k.singularity_policies],
-    defaults: { integrator: d.integrator, policy: d.solver.policy, rtol: d.rtol },
+    limitPolicies: [...k.limit_policies],
+    defaults: { integrator: d.integrator, policy: d.solver.policy, rtol: d.rtol, limits: d.limits },
   };
 }

@@ -46,6 +46,8 @@ export function defaultSettings(robot, offer) {
     dt: 0.001,
     policy: offer.defaults.policy,
     rtol: offer.defaults.rtol,
+    // the joint-limit policy ('report', 'clamp', 'ignore'); null: the simulator's default
+    limits: null,
     effects: Object.fromEntries(EFFECTS.map((e) => [e.key, true])),
     // the link the directions below are of: null for a chain's tip (a tree: its first
     // default link), else a link name
@@ -103,6 +105,7 @@ export function simulatorOptions(s) {
     policy: s.policy,
   };
   if (isAdaptive(s.integrator)) options.rtol = s.rtol;
+  if (s.limits) options.limits = s.limits;
   return options;
 }
 
@@ -129,6 +132,7 @@ export function formatHash(s) {
   if (isAdaptive(s.integrator)) params.set('rtol', String(s.rtol));
   params.set('dt', String(s.dt));
   params.set('policy', s.policy);
+  if (s.limits) params.set('limits', s.limits);
   params.set('effects', EFFECTS.filter((e) => s.effects[e.key]).map((e) => e.hash).join(','));
   if (s.link) params.set('link', s.link);
   const dirs = DIRECTIONS.filter((d) => s.directions[d] !== 'free').map((d) => `${d}:${s.directions[d]}`);
@@ -184,6 +188,11 @@ export function parseHash(hash, defaults, offer) {
     const v = params.get('policy');
     if (offer.policies.includes(v)) s.policy = v;
     else problems.push(`unknown policy "${v}"`);
+  }
+  if (params.has('limits')) {
+    const v = params.get('limits');
+    if ((offer.limitPolicies ?? []).includes(v)) s.limits = v;
+    else problems.push(`unknown joint-limit policy "${v}"`);
   }
   if (params.has('effects')) {
     const on = new Set(params.get('effects').split(',').filter(Boolean).map((w) => current('effects', w)));

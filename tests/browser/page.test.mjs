@@ -57,8 +57,29 @@ test('the demo page in Chromium', async (t) => {
       assert.equal(Number(await page.locator('#rtol').inputValue()), defaults.rtol);
       assert.equal(await page.locator('#policy').inputValue(), defaults.solver.policy);
       assert.equal(await page.locator('#dt').inputValue(), '0.001');
+      assert.equal(await page.locator('#limits').inputValue(), defaults.limits);
       assert.ok(await page.locator('input[data-effect="damping"]').isChecked());
       assert.deepEqual(consoleErrors, []);
+    });
+
+    await t.test('the joint-limit control: clamp, in the hash, puts a joint set past its limit back on it', async () => {
+      const source = await page.evaluate(() => window.achdDemo.robotSource());
+      const robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip });
+      const j = robot.limits.findIndex((l) => Number.isFinite(l.upper));
+      const upper = robot.limits[j].upper;
+      robot.delete();
+      const past = [...source.q0];
+      past[j] = upper + 0.1;
+      for (const [limits, within] of [['report', false], ['clamp', true]]) {
+        await page.selectOption('#limits', limits);
+        if (limits === 'clamp') assert.match(await page.evaluate(() => location.hash), /[#&]limits=clamp(&|$)/);
+        await page.evaluate((q) => window.achdDemo.setPose(q), past);
+        await page.evaluate(() => window.achdDemo.step(1));
+        const q = (await state(page)).q[j];
+        console.log(`# limits ${limits}: joint ${j} at ${q.toFixed(4)} (upper limit ${upper})`);
+        assert.equal(q <= upper + 1e-9, within, `${limits}: q = ${q}, upper ${upper}`);
+      }
+      await page.selectOption('#limits', achd.constants.simulator_options.limits);
     });
 
     await t.test('pause stops time; holding z and rx keeps them within 1e-6 over 2000 steps', async () => {

@@ -15,8 +15,23 @@ import { loadAchd } from './helpers.mjs';
 const OFFER = {
   integrators: ['explicit_euler', 'semi_implicit_euler', 'rk4', 'dormand_prince', 'implicit_euler'],
   policies: ['truncate', 'damped', 'variable_damping'],
-  defaults: { integrator: 'dormand_prince', policy: 'variable_damping', rtol: 1e-9 },
+  limitPolicies: ['ignore', 'report', 'clamp'],
+  defaults: { integrator: 'dormand_prince', policy: 'variable_damping', rtol: 1e-9, limits: 'report' },
 };
+
+test('the joint-limit policy: the simulator\'s default unless chosen, then in the hash and the options', () => {
+  const s = defaultSettings('panda_fingers', OFFER);
+  assert.equal(s.limits, null);
+  assert.doesNotMatch(formatHash(s), /limits=/);
+  assert.equal(simulatorOptions(s).limits, undefined);
+  s.limits = 'clamp';
+  const hash = formatHash(s);
+  assert.match(hash, /&limits=clamp&/);
+  assert.equal(simulatorOptions(s).limits, 'clamp');
+  assert.deepEqual(parseHash(hash, defaultSettings('ur5', OFFER), OFFER), { settings: s, problems: [] });
+  assert.deepEqual(parseHash('#robot=ur5&limits=soft', defaultSettings('ur5', OFFER), OFFER).problems,
+    ['unknown joint-limit policy "soft"']);
+});
 
 test('the hash writes the scene names and reads them back', () => {
   const s = defaultSettings('ur5', OFFER);
@@ -123,15 +138,16 @@ test('hashes with the previous release\'s words still parse, as the current name
 
 // The real module: what the page offers is what achd.constants lists, with the
 // simulator's defaults, and the page's default settings create a simulator.
-test('the page offers the module\'s integrators, policies and defaults', async () => {
+test('the page offers the module\'s integrators, policies, joint-limit policies and defaults', async () => {
   const achd = await loadAchd();
   const k = achd.constants;
   const offer = moduleOffer(achd);
   assert.deepEqual(offer, {
     integrators: [...k.integrators],
     policies: [...k.singularity_policies],
+    limitPolicies: [...k.limit_policies],
     defaults: { integrator: k.simulator_options.integrator, policy: k.simulator_options.solver.policy,
-      rtol: k.simulator_options.rtol },
+      rtol: k.simulator_options.rtol, limits: k.simulator_options.limits },
   });
   assert.deepEqual(offer, OFFER);
   const robot = achd.loadURDF(`<robot name="r"><link name="a"/><link name="b"><inertial><mass value="1"/>
