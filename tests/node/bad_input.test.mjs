@@ -1,5 +1,5 @@
 // The bad-input list through JS: every kind throws an Error whose message names
-// the problem (the same list as tests/native/bad_input_urdfs.hpp for the C++ API and
+// the problem (the same list as tests/native/support/bad_input_urdfs.hpp for the C++ API and
 // the CLI), massless links load, and NaN/Infinity in every case field name the field.
 // No failed load leaks or breaks the module; the wasm loader reads the same
 // numbers as the native one; mimic joints load only when asked for.

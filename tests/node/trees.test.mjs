@@ -218,7 +218,7 @@ test('the small tree and the tree robots of robots/index.json: wasm == native, t
   console.log(`# trees: ${jobs.length} cases (${trees.length} tree robots in robots/index.json)`);
 });
 
-// The random trees of the C++ suites (tests/native/random_tree.hpp: 1 to 60 bodies,
+// The random trees of the C++ suites (tests/native/support/random_tree.hpp: 1 to 60 bodies,
 // branching at random, every joint type, random inputs and well-conditioned blocks of up to
 // 36 columns), written as files by tests/native/random_tree_files. Needs the loader of
 // trees (a URDF loaded without a tip).

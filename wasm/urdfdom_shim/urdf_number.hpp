@@ -7,7 +7,7 @@
 // sign, digits); the value is strtod's; a value that overflows is refused, one that
 // underflows (to a denormal such as 4e-320, or to 0) is kept. Emscripten's libc++ refuses
 // underflow too (errno ERANGE) and accepts "nan", "inf" and hex floats: the same URDF
-// loaded in one build and not in the other. tests/native/urdf_number.cpp checks this
+// loaded in one build and not in the other. tests/native/io/urdf_number.cpp checks this
 // function against the native urdf::strToDouble.
 #include <cctype>
 #include <cmath>

@@ -84,4 +84,11 @@ Transform joint_transform(const Body& body, double q);
 void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transform>& X0,
                 std::vector<Vector3>& r);
 
+// Checks a model built in code: rotations orthonormal, inertias physical, positions and
+// inertias shifted along the chain finite (no overflow), every joint with something to
+// move (D > 0) at the zero and a generic configuration. Throws achd::Error naming the
+// joint or link. The URDF loader calls it; call it after building a Model by hand. (It
+// moves the model through its configurations, hence its place beside the kinematics.)
+void validate(const Model& model);
+
 }  // namespace achd

@@ -106,10 +106,4 @@ struct Model {
   int link_index(const std::string& link_name) const;    // -1 if absent
 };
 
-// Checks a model built in code: rotations orthonormal, inertias physical, positions and
-// inertias shifted along the chain finite (no overflow), every joint with something to
-// move (D > 0) at the zero and a generic configuration. Throws achd::Error naming the
-// joint or link. The URDF loader calls it; call it after building a Model by hand.
-void validate(const Model& model);
-
 }  // namespace achd

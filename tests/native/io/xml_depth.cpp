@@ -1,8 +1,8 @@
-// The loader's nesting scan (core/src/xml_depth.cpp) against TinyXML itself: on random
+// The loader's nesting scan (xml_depth.cpp) against TinyXML itself: on random
 // texts made of the tokens TinyXML reads specially (tags, quotes, comments, CDATA,
 // declarations, "<!" and "<?" nodes, entities, UTF-8 lead bytes, byte-order marks), the
 // depth at which the scan stops is the deepest element TinyXML builds, exactly.
-#include "../../core/src/xml_depth.hpp"
+#include "xml_depth.hpp"  // achd_internals
 
 #include <random>
 #include <string>

@@ -1,7 +1,7 @@
 // achd::sin_cos against long double sinl/cosl: within 1 ulp over joint-angle ranges up
 // to the reduction limit, exact at the quadrant points' signs, and std::sin/std::cos past
 // it; the two-angle form against the one-angle form, bit for bit.
-#include "../../core/src/sin_cos.hpp"
+#include "sin_cos.hpp"  // achd_internals
 
 #include <cmath>
 #include <cstring>

@@ -82,7 +82,7 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
   std::uniform_real_distribution<double> U(-1, 1);
   int solves = 0;
   for (const auto& r : index["robots"]) {
-    if (!r.contains("tip")) continue;  // the trees: tests/native/tree_identities.cpp
+    if (!r.contains("tip")) continue;  // the trees: tests/native/dynamics/tree_identities.cpp
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
     achd::Data d(m);
@@ -134,7 +134,7 @@ TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
   std::uniform_real_distribution<double> U(-1, 1);
   int solves = 0;
   for (const auto& r : index["robots"]) {
-    if (!r.contains("tip")) continue;  // the trees: tests/native/tree_identities.cpp
+    if (!r.contains("tip")) continue;  // the trees: tests/native/dynamics/tree_identities.cpp
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
     achd::Data d(m);
@@ -236,7 +236,7 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> U(-1, 1);
   for (const auto& r : index["robots"]) {
-    if (!r.contains("tip")) continue;  // the trees: tests/native/tree_identities.cpp
+    if (!r.contains("tip")) continue;  // the trees: tests/native/dynamics/tree_identities.cpp
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
     const int n = m.num_joints();

@@ -1,7 +1,7 @@
 // The numbers the wasm build's urdfdom accepts (wasm/urdfdom_shim/urdf_number.hpp) are
 // those the native urdfdom accepts: achd::parse_urdf_number against Debian's
 // urdf::strToDouble, on hand-picked and random strings, accepted or not and bit for bit.
-#include "../../wasm/urdfdom_shim/urdf_number.hpp"
+#include "../../../wasm/urdfdom_shim/urdf_number.hpp"
 
 #include <cstring>
 #include <random>

@@ -1,4 +1,4 @@
-// Joint limits with LimitPolicy::Clamp (core/src/joint_limits.cpp): a joint that reaches
+// Joint limits with LimitPolicy::Clamp (joint_limits.cpp): a joint that reaches
 // its limit while the tip holds z and rx stops by an inelastic impact that keeps the held
 // directions, rests on the limit with its acceleration prescribed as 0 while the other
 // joints hold the directions, and leaves the limit when the solve pulls it away. The

@@ -9,7 +9,7 @@
 // parts whose products with k are exact; then the Taylor series of sin r and cos r,
 // which on |r| <= pi/4 are truncated past the last ulp: (pi/4)^19 / 19! < 1e-19 for sin
 // (terms to r^17), (pi/4)^20 / 20! < 4e-21 for cos (terms to r^18), with r_lo added to
-// first order. The result is within 1 ulp of the exact value (tests/native/sin_cos.cpp
+// first order. The result is within 1 ulp of the exact value (tests/native/kinematics/sin_cos.cpp
 // checks it against long double). Beyond |x| = 1e5 rad, where k no longer fits the exact
 // products, it falls back to std::sin and std::cos.
 //

@@ -1,0 +1,40 @@
+#include "achd/model.hpp"
+
+#include <cmath>
+
+#include "achd/error.hpp"
+
+namespace achd {
+
+const char* joint_type_name(JointType type) {
+  switch (type) {
+    case JointType::Revolute: return "revolute";
+    case JointType::Continuous: return "continuous";
+    case JointType::Prismatic: return "prismatic";
+  }
+  return "unknown";
+}
+
+void Model::set_rotor_inertia(int joint, double value) {
+  if (joint < 0 || joint >= num_joints())
+    throw Error("set_rotor_inertia: joint index " + std::to_string(joint) + " is out of range [0, " +
+                std::to_string(num_joints()) + ")");
+  if (!std::isfinite(value) || value < 0)
+    throw Error("set_rotor_inertia: joint '" + bodies[joint].joint_name +
+                "': rotor inertia must be finite and >= 0");
+  bodies[joint].rotor_inertia = value;
+}
+
+int Model::joint_index(const std::string& name) const {
+  for (int i = 0; i < num_joints(); ++i)
+    if (bodies[i].joint_name == name) return i;
+  return -1;
+}
+
+int Model::link_index(const std::string& name) const {
+  for (int i = 0; i < num_links(); ++i)
+    if (links[i].name == name) return i;
+  return -1;
+}
+
+}  // namespace achd
