@@ -4,7 +4,7 @@
 // constraint sweep, written in the book's notation with 6x6 matrices in each body's own
 // coordinates, loops over parent[i], scalar Eigen. It is the oracle of the fast path
 // (hybrid_dynamics) in the tests and the place to learn the algorithm; it allocates and is
-// not fast. It solves what hybrid_dynamics solves: q, qd, ff_torques, gravity, f_ext, the
+// not fast. Of what hybrid_dynamics solves it solves q, qd, ff_torques, gravity, f_ext, the
 // tip's alpha/beta and Case::constraints blocks, prescribed joints, damping, friction and
 // rotor inertia per Options::effects, both conventions; the coupling matrix by the
 // truncated pseudo-inverse (Options::tolerance, relative to sigma_max unless
@@ -37,8 +37,10 @@ struct ReferenceSolution {
 };
 
 // Validates the case and the options (achd::Error, as hybrid_dynamics); throws
-// achd::Error unless options.policy is Truncate (the reference has no other policy), and
-// on a model with coupled joints (Model::couplings), which it does not solve.
+// achd::Error unless options.policy is Truncate (the reference has no other policy). What
+// hybrid_dynamics solves and the reference does not is refused by name, never ignored:
+// coupled joints (Model::couplings), driver weights below 1 (w_fext, w_ff: weights of 1
+// are solved, being the plain solve) and nonzero virtual wrenches (f_virtual).
 ReferenceSolution pv_reference(const Model& model, const Case& c, const Options& options = {});
 
 }  // namespace achd

@@ -132,7 +132,7 @@ struct Column {
 
 // The solve of a validated case (a floating base's in the solver's coordinates).
 ReferenceSolution solve(const Model& model, const Case& c, const Options& o) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   const bool gravity = o.effects & kGravity;
   const bool wrenches = (o.effects & kExternalWrenches) && !c.f_ext.empty();
   const bool rotor = o.effects & kRotorInertia;
@@ -379,11 +379,20 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   if (!model.couplings.empty())
     throw Error("pv_reference: coupled joints (Model::couplings) are not implemented; load with the mimic option "
                 "'independent'");
+  // Driver weights of 1 are the plain solve; below 1 they split the right-hand side per
+  // driver (driver_priorities.cpp), which the reference does not.
+  const auto all_ones = [](const ConstraintVector& w) { return (w.array() == 1.0).all(); };
+  bool weighted = !all_ones(c.w_fext) || !all_ones(c.w_ff);
+  for (const ConstraintBlock& b : c.constraints) weighted = weighted || !all_ones(b.w_fext) || !all_ones(b.w_ff);
+  if (weighted)
+    throw Error("pv_reference: driver weights below 1 (w_fext, w_ff) are not implemented");
+  for (const Vector6& f : c.f_virtual)
+    if (!f.isZero(0)) throw Error("pv_reference: virtual wrenches (f_virtual) are not implemented");
   if (!model.floating) return solve(model, c, o);
   // A floating base: solved in the free joint's solver coordinates, results converted back.
   Case s;
   s.q = c.q;
-  s.qd = s.ff_torques = s.qdd_given = Eigen::VectorXd::Zero(model.num_joints());
+  s.qd = s.ff_torques = s.qdd_given = Eigen::VectorXd::Zero(model.num_rates());
   free_joint_case(c, s);
   ReferenceSolution out = solve(model, s, o);
   const Matrix3 R = free_joint_rotation(c.q.data() + 3);

@@ -24,7 +24,7 @@ TEST(VirtualWrenches, VirtualTorquesAreTheJacobiansTransposedTimesTheWrenches) {
     c.f_virtual = random_wrenches(rng, m);
     Data d(m);
     hybrid_dynamics(m, d, c, all_effects());
-    Eigen::VectorXd expected = Eigen::VectorXd::Zero(m.num_joints());
+    Eigen::VectorXd expected = Eigen::VectorXd::Zero(m.num_rates());
     for (int l = 0; l < m.num_links(); ++l)
       expected += link_jacobian(m, c.q, l, Vector3::Zero()).transpose() * c.f_virtual[l];
     const double error = rel_error(d.virtual_torques, expected);
@@ -53,6 +53,39 @@ TEST(VirtualWrenches, ASolveWithThemIsTheSolveWithTheirTorquesAsFeedForward) {
     EXPECT_LE(error, 1e-12);
   });
   std::printf("  max relative difference from the feed-forward solve %.3g\n", worst);
+}
+
+// The reference solver (pv_reference.hpp) does not implement virtual wrenches or driver
+// weights below 1: it names them instead of solving a different problem.
+TEST(VirtualWrenches, TheReferenceRefusesWhatItDoesNotSolve) {
+  std::mt19937 rng(73);
+  int checked = 0;
+  for_tree_cases(73, [&](const Model& m, const Case& given) {
+    if (checked++ >= 5) return;
+    EXPECT_NO_THROW(pv_reference(m, given, {}));
+    Case c = given;
+    c.f_virtual = random_wrenches(rng, m);
+    try {
+      pv_reference(m, c, {});
+      ADD_FAILURE() << "pv_reference solved a case with virtual wrenches";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("f_virtual"), std::string::npos) << e.what();
+    }
+    Case w = given;
+    w.constraints.assign(1, ConstraintBlock{});
+    w.constraints.back().link = m.num_links() - 1;
+    w.constraints.back().alpha = ConstraintMatrix::Zero(6, 1);
+    w.constraints.back().alpha(2, 0) = 1;
+    w.constraints.back().beta = ConstraintVector::Zero(1);
+    w.constraints.back().w_fext = ConstraintVector::Constant(1, 0.5);
+    try {
+      pv_reference(m, w, {});
+      ADD_FAILURE() << "pv_reference solved a case with a driver weight of 0.5";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("w_fext"), std::string::npos) << e.what();
+    }
+  });
+  EXPECT_GE(checked, 5);
 }
 
 }  // namespace
