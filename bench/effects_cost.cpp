@@ -1,4 +1,4 @@
-// What each effect costs (the README's table): KUKA LWR 4 from its default pose, effect
+// What each effect costs (docs/performance.md's table): KUKA LWR 4 from its default pose, effect
 // sets from "gravity only, at rest" to "everything on, 6 constraints", each timed as one
 // hybrid_dynamics solve and as one RK4 step of the Simulator (4 solves + the held
 // directions' kinematics), in one run: every row's solve and step are timed in each of 31

@@ -1,4 +1,4 @@
-// bench_ratios: the ratio table of the README and docs/performance.md, every number
+// bench_ratios: the ratio table of docs/performance.md, every number
 // measured side by side in one run (achd and KDL repeats interleaved, medians). Prints a
 // markdown table, then one JSON line.
 #include <cstdio>

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Regenerates the accuracy-versus-time study that the README embeds: builds the Release
+# Regenerates the accuracy-versus-time study that docs/guide/accuracy-cost.md embeds: builds the Release
 # CLI (build/, or $ACHD_ACCURACY_BUILD; -ffp-contract=off as every measured build) and runs
 # `achd accuracy` on the damped arm and the 50-link chain (2 s) and the undamped arm (0.5 s: its spinning wrist makes later states too sensitive for a converged reference), writing docs/accuracy/<name>/accuracy.{csv,json,svg}.
 #   scripts/accuracy.sh            # from the repository root

@@ -115,7 +115,7 @@ StudyConfig default_config(const Scene& scene, bool quick);
 // scene's dt) and the timing runs. A double: it may be far beyond any integer type.
 double planned_steps(const Scene& scene, const StudyConfig& config);
 
-// The most steps run_study() takes on: about 5 minutes on the 7-DoF arm (the README's
+// The most steps run_study() takes on: about 5 minutes on the 7-DoF arm (docs/guide/accuracy-cost.md's
 // 2 s studies take 8.5e5 steps); a larger study is refused with an achd::Error naming
 // its step count.
 constexpr double kMaxStudySteps = 1e8;

@@ -96,7 +96,7 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   // A closed stdout (`achd ... | head -c 10`) is a failed write, reported as one line and
-  // exit 2 as the README says, rather than a silent death by SIGPIPE (exit 141).
+  // exit 2 as docs/guide/cli.md says, rather than a silent death by SIGPIPE (exit 141).
   signal(SIGPIPE, SIG_IGN);
   try {
     const int code = run(argc, argv);

@@ -3,7 +3,7 @@
 // or floating), its initial state, the effects to simulate, held or accelerated
 // directions (the tip's, and any links'), a joint PD controller, the integrator, time
 // step and duration.
-// Schema in the README; every error names the scene file and the field.
+// Schema in docs/guide/simulation.md; every error names the scene file and the field.
 #include <array>
 #include <cstdint>
 #include <string>

@@ -1,4 +1,4 @@
-// The controls fit their cards, in Chromium: in the window of the README's screenshots
+// The controls fit their cards, in Chromium: in the window of the screenshots (docs/screenshots)
 // (1400 x 1000) and in a narrow one (1024 px wide, still two columns), every element and
 // every text of the tip-directions card lies inside the card's content box (its bounding
 // box against the card's less its border and padding): as the page opens, at README.md's

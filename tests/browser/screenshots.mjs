@@ -1,4 +1,4 @@
-// Writes the README's screenshots of the demo page, from Debian's Chromium:
+// Writes the documents' screenshots of the demo page, from Debian's Chromium:
 //   docs/screenshots/default.png  the default robot as the page opens, swinging under gravity
 //   docs/screenshots/held.png     the same robot with x, z, rx and ry held: the tip keeps its
 //                                 height and tilt while gravity swings it along y

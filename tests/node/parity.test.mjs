@@ -2,7 +2,7 @@
 // every output (the CLI prints 17 significant digits, which parse back to the same
 // double), for every robot in robots/ and for a few hundred random cases on random
 // chains of up to 50 joints with well-conditioned constraints (coupling matrix condition
-// number < 1e4): the README's claim for joint angles below 1e5 rad. Beyond 1e5 rad achd's
+// number < 1e4): the documented claim (docs/design.md) for joint angles below 1e5 rad. Beyond 1e5 rad achd's
 // sin_cos hands over to the C library's sin and cos, which differ between glibc and musl
 // in the last bit: there the two agree to 1e-12. Fixtures are written by the native CLI
 // during the run.

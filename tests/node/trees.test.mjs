@@ -2,7 +2,7 @@
 // inputs by name give the results of the arrays; results name their joints and links as
 // the CLI's do; bad blocks and names get the CLI's message word for word; loadURDF loads
 // whole trees, locks side joints and ignores side branches as `achd info` reports; and
-// wasm equals native to the bit (the README's claim, as tests/node/parity.test.mjs checks
+// wasm equals native to the bit (the documented claim, as tests/node/parity.test.mjs checks
 // it for chains) on the tree robots and on chains with constraint blocks; the zero-copy
 // solver takes blocks without allocating. The small tree is tests/fixtures/small_tree.urdf.
 import assert from 'node:assert/strict';
@@ -253,7 +253,7 @@ test('random chains with constraint blocks on their links: wasm == native, to th
     const urdf = scratch.write(`blocks${seed}.urdf`, chain.text);
     const c = randomCase(r, nj, links.length, seed % 3 === 0 ? 1 : 0);
     // One or two blocks of one or two columns each on random links: few columns against
-    // the joints, so that the coupling is well conditioned (the README's claim).
+    // the joints, so that the coupling is well conditioned (as documented).
     c.constraints = Array.from({ length: 1 + (seed % 2) }, () => ({
       link: links[Math.floor(r() * links.length)],
       alpha: Array.from({ length: 1 + Math.floor(r() * 2) }, () => [0, 0, 0, 0, 0, 0].map(() => 2 * r() - 1)),

@@ -47,7 +47,7 @@ struct Options {
   bool absolute_tolerance = false;  // true: sigma < tolerance (KDL: 1e-14, absolute)
   double damping = 1e-6;            // damped policy: lambda relative to sigma_max
   double singular_region = 5e-3;    // variable_damping: eps relative to sigma_max of K scaled by kind (coupling_solve.cpp)
-  double max_damping = 2e-2;        // variable_damping: lambda_max, the same way (defaults: README)
+  double max_damping = 2e-2;        // variable_damping: lambda_max, the same way (defaults: docs/guide/hard-cases.md)
   double friction_velocity = 0.05;  // friction = F tanh(qd / friction_velocity)
 };
 

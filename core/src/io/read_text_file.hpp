@@ -8,7 +8,7 @@
 
 namespace achd {
 
-// The largest input files read, in bytes (the README's "Input files"): robot
+// The largest input files read, in bytes (docs/guide/cli.md, "Input files"): robot
 // descriptions with inline meshes reach a few MB; cases and scenes are a few KB.
 constexpr std::size_t kMaxUrdfFileBytes = std::size_t{64} << 20;   // 64 MiB
 constexpr std::size_t kMaxJsonFileBytes = std::size_t{16} << 20;   // 16 MiB

@@ -1,7 +1,7 @@
 #pragma once
 // The free joint of a floating base (Model::floating), between the world and the root link.
 //
-// Its public coordinates (the case format, README "Floating base"):
+// Its public coordinates (the case format, docs/guide/trees-and-constraints.md, "Floating base"):
 //   q  = [x, y, z, qx, qy, qz, qw]: the root link's origin p in the world and its orientation
 //        as a unit quaternion (scalar last; normalised before use), R its rotation matrix;
 //   qd = [v; w]: the velocity of the root's origin and its angular velocity, world axes;

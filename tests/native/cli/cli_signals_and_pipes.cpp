@@ -4,7 +4,7 @@
 //     run got, and no file at all, the temporary one included (before: the default
 //     action killed the process and left .F.achd-PID-0.tmp behind);
 //   - a closed stdout is a failed write like a full disk: exit 2 and one line
-//     "achd: error: ... Broken pipe", as the README says (before: killed by SIGPIPE,
+//     "achd: error: ... Broken pipe", as docs/guide/cli.md says (before: killed by SIGPIPE,
 //     exit 141 and no message), for the result JSON and for `--out -`, and through a
 //     real `| head -c 10`.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The README's singularity table: for the stretched-arm sweep (hard_stretched_arm.hpp),
+// docs/guide/hard-cases.md's singularity table: for the stretched-arm sweep (hard_stretched_arm.hpp),
 // |nu| and the largest |joint torque| of KDL's Vereshchagin solver (Debian KDL, the
 // parity reference) and of achd's two policies, printed as markdown. Run:
 //   build-hard/tests/native/hard_singularity_kdl_table --gtest_filter='*PrintsTable*'
