@@ -34,7 +34,7 @@ void register_problem(const std::shared_ptr<Problem>& p) {
       benchmark::DoNotOptimize(d.qdd.data());
     }
     st.counters["ns_per_link"] = benchmark::Counter(
-        static_cast<double>(st.iterations()) * p->model.num_joints(),
+        static_cast<double>(st.iterations()) * p->model.num_rates(),
         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   });
 #ifdef ACHD_HAVE_KDL
@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
     const Model m = load_urdf_string(urdf, r["root"], r["tip"]);
     for (int nc : {0, 1, 3, 6}) {
       Case c = bench::random_case(m, nc, 1);
-      for (int i = 0; i < m.num_joints(); ++i) c.q[i] = r["q0"][i].get<double>();
+      for (int i = 0; i < m.num_rates(); ++i) c.q[i] = r["q0"][i].get<double>();
       register_problem(std::make_shared<Problem>(Problem{r["name"], urdf, r["root"], r["tip"], m, c}));
     }
   }

@@ -41,7 +41,7 @@ std::string random_chain_urdf(int links, unsigned seed) {
 Case random_case(const Model& model, int nc, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   Case c = Case::zeros(model);
   c.q = Eigen::VectorXd::NullaryExpr(n, [&] { return u(rng); });
   c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return u(rng); });

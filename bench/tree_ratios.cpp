@@ -50,7 +50,7 @@ Ratio side_by_side(const Model& ma, const Case& ca, const Model& mb, const Case&
 Case robot_case(const Model& m, const nlohmann::json& entry, std::mt19937& rng) {
   Case c = test::random_tree_inputs(rng, m);
   c.gravity = Vector3(0, 0, -9.81);
-  for (int i = 0; i < m.num_joints(); ++i) c.q[i] = entry["q0"][i].get<double>();  // model order
+  for (int i = 0; i < m.num_rates(); ++i) c.q[i] = entry["q0"][i].get<double>();  // model order
   return c;
 }
 
@@ -129,8 +129,8 @@ int main() {
       if (attempt == 20) throw std::runtime_error("no well-conditioned blocks on 20 random trees of " + std::to_string(n));
       test::RandomTree t = test::random_tree(rng, n);
       const Model& m = t.model;
-      std::vector<int> depth(m.num_joints());
-      for (int i = 0; i < m.num_joints(); ++i) depth[i] = m.bodies[i].parent < 0 ? 1 : depth[m.bodies[i].parent] + 1;
+      std::vector<int> depth(m.num_rates());
+      for (int i = 0; i < m.num_rates(); ++i) depth[i] = m.bodies[i].parent < 0 ? 1 : depth[m.bodies[i].parent] + 1;
       std::vector<int> order(m.num_links());
       for (int l = 0; l < m.num_links(); ++l) order[l] = l;
       auto link_depth = [&](int l) { return m.links[l].body < 0 ? 0 : depth[m.links[l].body]; };

@@ -51,7 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   achd::Data data(model);
   achd::Case c = achd::Case::zeros(model);
   solve(model, data, c);
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const achd::JointLimits& l = model.bodies[i].limits;
     c.q[i] = std::max(l.lower, std::min(l.upper, 0.5));
   }

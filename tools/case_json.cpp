@@ -83,12 +83,12 @@ std::string no_link(const Model& model, const std::string& name) {
 }
 
 // A per-joint vector: q (positions = true) or qd, ff_torques: an array in model order
-// (num_positions() or num_joints() numbers), or an object keyed by joint name (joints not
+// (num_positions() or num_rates() numbers), or an object keyed by joint name (joints not
 // named: 0). A floating base's free joint, named after the root link, comes first with 7
 // numbers in q ([x, y, z, qx, qy, qz, qw]) and 6 in the others; keyed by name it is an
 // array of those, and when it is not named, the identity pose at the origin and rest.
 Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Model& model, bool positions = false) {
-  const int n = positions ? model.num_positions() : model.num_joints();
+  const int n = positions ? model.num_positions() : model.num_rates();
   const int free = model.floating ? (positions ? 7 : 6) : 0;  // the free joint's numbers
   if (!v.is_object()) {
     if (!v.is_array())
@@ -197,7 +197,7 @@ void constraint_blocks(const json& cs, const Model& model, Case& c) {
 // "qdd_given": the prescribed joints' accelerations, as an object keyed by joint name or
 // an array in model order with null for a joint that is not prescribed.
 void prescribed_joints(const json& v, const Model& model, Case& c) {
-  const int nj = model.num_joints();
+  const int nj = model.num_rates();
   c.qdd_given = Eigen::VectorXd::Zero(nj);
   c.prescribed.assign(nj, false);
   if (v.is_object()) {
@@ -276,7 +276,7 @@ Case parse_case(const std::string& text, const Model& model, const std::string& 
 std::string result_json(const Model& model, const Data& d, const Case& c) {
   std::string s = "{\n";
   s += "  \"joints\": [";  // a floating base's free joint once (its six entries in qdd)
-  for (int i = 0; i < model.num_joints(); ++i)
+  for (int i = 0; i < model.num_rates(); ++i)
     if (!model.floating || i == 0 || i >= 6) s += (i ? ", " : "") + quoted(model.bodies[i].joint_name);
   s += "],\n  \"links\": [" + quoted(model.root_name);
   for (const Link& l : model.links) s += ", " + quoted(l.name);
@@ -305,7 +305,7 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
   if (!c.f_virtual.empty()) s += "  \"virtual_torques\": " + array(d.virtual_torques) + ",\n";
   if (c.any_prescribed()) {  // null where the joint is not prescribed, as in qdd_given
     s += "  \"prescribed_torques\": [";
-    for (int i = 0; i < model.num_joints(); ++i)
+    for (int i = 0; i < model.num_rates(); ++i)
       s += (i ? ", " : "") + (c.prescribed[i] ? fmt(d.prescribed_torques[i]) : std::string("null"));
     s += "],\n";
   }

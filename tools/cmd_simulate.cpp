@@ -27,13 +27,13 @@ namespace {
 
 std::string csv_header(const Model& model) {
   std::string out = "t";
-  const int first = model.floating ? 6 : 0;  // the free joint's bodies: named below
+  const int first = model.free_joint_rates();  // the free joint's bodies: named below
   if (model.floating)
     for (const char* c : {"x", "y", "z", "qx", "qy", "qz", "qw"}) out += ",q_" + model.root_name + "_" + c;
-  for (int i = first; i < model.num_joints(); ++i) out += ",q_" + model.bodies[i].joint_name;
+  for (int i = first; i < model.num_rates(); ++i) out += ",q_" + model.bodies[i].joint_name;
   if (model.floating)
     for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz"}) out += ",qd_" + model.root_name + "_" + c;
-  for (int i = first; i < model.num_joints(); ++i) out += ",qd_" + model.bodies[i].joint_name;
+  for (int i = first; i < model.num_rates(); ++i) out += ",qd_" + model.bodies[i].joint_name;
   return out + (model.has_tip() ? ",x,y,z,qx,qy,qz,qw\n" : "\n");
 }
 
@@ -108,7 +108,7 @@ int cmd_simulate(int argc, char** argv) {
   const bool conserves = scene.conserves_energy();
   const double E0 = sim.energy();
   double max_kinetic = sim.kinetic_energy(), max_energy_error = 0;
-  std::vector<std::int64_t> hits(scene.model.num_joints(), 0);
+  std::vector<std::int64_t> hits(scene.model.num_rates(), 0);
   double step_ns = 0;
   try {
     for (std::int64_t s = 0; s < steps; ++s) {
@@ -161,7 +161,7 @@ int cmd_simulate(int argc, char** argv) {
   out["held_drift"] = drift;
   out["link_held_drift"] = link_drift;
   nlohmann::ordered_json limit = nlohmann::ordered_json::object();
-  for (int i = 0; i < scene.model.num_joints(); ++i)
+  for (int i = 0; i < scene.model.num_rates(); ++i)
     if (hits[i]) limit[scene.model.bodies[i].joint_name] = hits[i];
   out["limit_hits"] = limit;  // joint -> number of steps that ended at or past a limit
   nlohmann::ordered_json events = nlohmann::ordered_json::array();

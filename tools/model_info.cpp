@@ -26,8 +26,8 @@ ordered_json body_name(const Model& model, int body) {
 // q by joint name (a floating base's free joint: its seven numbers under the root's name).
 ordered_json pose_by_name(const Model& model, const Eigen::VectorXd& q) {
   ordered_json out = ordered_json::object();
-  if (model.floating) out[model.root_name] = std::vector<double>(q.data(), q.data() + 7);
-  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i)
+  if (model.floating) out[model.root_name] = std::vector<double>(q.data(), q.data() + model.free_joint_positions());
+  for (int i = model.free_joint_rates(); i < model.num_rates(); ++i)
     out[model.bodies[i].joint_name] = q[model.position_index(i)];
   return out;
 }
@@ -54,7 +54,7 @@ std::string model_info_json(const Model& model, const std::string& urdf_text, co
   if (model.floating)
     info["joints"].push_back({{"name", model.root_name}, {"type", "floating"}, {"parent", nullptr},
                               {"link", model.root_name}, {"limits", nullptr}});
-  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
+  for (int i = model.free_joint_rates(); i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     info["joints"].push_back({{"name", b.joint_name},
                               {"type", joint_type_name(b.type)},

@@ -159,7 +159,7 @@ void link_directions(const json& j, Scene& s) {
 
 // Gains: one number for every joint (a floating base's free joint: 0), or one per joint.
 Eigen::VectorXd gains(const json& j, const std::string& field, const Model& model) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   Eigen::VectorXd g = j.is_number() ? Eigen::VectorXd::Constant(n, number(j, field)) : vector(j, field, n);
   if (j.is_number() && model.floating) g.head(6).setZero();
   return g;
@@ -182,7 +182,7 @@ void joint_control(const json& j, Scene& s) {
   } else {
     s.control.kp = gains(required_in(j, "kp", "joint_control"), "joint_control.kp", s.model);
     s.control.kd = j.contains("kd") ? gains(j["kd"], "joint_control.kd", s.model)
-                                    : Eigen::VectorXd::Zero(s.model.num_joints());
+                                    : Eigen::VectorXd::Zero(s.model.num_rates());
   }
   if (j.contains("feedforward")) {
     const std::string ff = text(j["feedforward"], "joint_control.feedforward");
@@ -310,7 +310,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     if (j.contains("inertia"))
       urdf_options.inertia = inertia_policy_from_name(text(j["inertia"], "inertia"), "inertia");
     s.model = load_urdf_file(s.urdf, s.root, s.tip, urdf_options);
-    const int n = s.model.num_joints();
+    const int n = s.model.num_rates();
     // q0: given, or the SRDF's pose ("srdf": a path resolved as urdf is, "pose": a
     // group_state name), or the default pose (every joint at 0 or mid-limits).
     if (j.contains("srdf") != j.contains("pose")) throw Error("srdf and pose go together: the file and the state's name");

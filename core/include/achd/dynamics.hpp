@@ -22,7 +22,7 @@ Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::
                      const Eigen::VectorXd& qdd, const Vector3& gravity,
                      const std::vector<Vector6>& f_ext = {},
                      std::uint32_t effects = kDefaultEffects, double friction_velocity = 0.05);
-// The same into `tau`, which is resized to num_joints() if it is not that size already.
+// The same into `tau`, which is resized to num_rates() if it is not that size already.
 void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
           const Eigen::VectorXd& qdd, const Vector3& gravity, const std::vector<Vector6>& f_ext,
           std::uint32_t effects, double friction_velocity, ChainWorkspace& ws, Eigen::VectorXd& tau);

@@ -79,7 +79,7 @@ Transform joint_transform(const Body& body, double q);
 // kinematics share (so that they see the same rounded geometry): X0_i = X0_parent Xup_i,
 // the pose in the base, with R_i = (R_parent R_tree) Rz(q_i) for a revolute joint, and
 // r_i = p_i - p_parent in base axes, computed as R_parent p_tree (+ q_i z_i, prismatic)
-// rather than as a difference. The vectors must hold num_joints() entries; nothing is
+// rather than as a difference. The vectors must hold num_rates() entries; nothing is
 // allocated.
 void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transform>& X0,
                 std::vector<Vector3>& r);

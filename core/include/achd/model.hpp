@@ -89,12 +89,21 @@ struct Model {
   // of zero, repairs (achd::InertiaPolicy).
   std::vector<std::string> warnings;
 
-  // Joint rates (qd, qdd, torques): one per body, 6 for a free joint.
-  int num_joints() const { return static_cast<int>(bodies.size()); }
-  // Configuration numbers (q): num_joints(), plus 1 with a floating base (its quaternion).
-  int num_positions() const { return num_joints() + (floating ? 1 : 0); }
+  // Joint rates (the length of qd, qdd and the joint torques; nv): one per body, so a
+  // floating base's free joint counts 6.
+  int num_rates() const { return static_cast<int>(bodies.size()); }
+  // Configuration numbers (the length of q; nq): num_rates(), plus 1 with a floating base
+  // (its quaternion).
+  int num_positions() const { return num_rates() + (floating ? 1 : 0); }
+  [[deprecated("num_joints() counts joint rates (a free joint 6): use num_rates()")]]
+  int num_joints() const { return num_rates(); }
+  // The rates of a floating base's free joint (bodies 0 to 5), 0 without one: the URDF's
+  // movable joints are the rates from this index on.
+  int free_joint_rates() const { return floating ? 6 : 0; }
+  // The same in q: the free joint's seven numbers q[0..6], 0 without one.
+  int free_joint_positions() const { return floating ? 7 : 0; }
   // Where joint i's position is in q: q[i], or q[i + 1] behind a floating base's quaternion
-  // (i >= 6; the free joint's own seven numbers are q[0..6]).
+  // (i >= free_joint_rates(); the free joint's own numbers are q[0..6]).
   int position_index(int joint) const { return floating && joint >= 6 ? joint + 1 : joint; }
   int num_links() const { return static_cast<int>(links.size()); }
   bool has_tip() const { return !tip_name.empty(); }

@@ -172,7 +172,7 @@ class Simulator {
   Simulator& operator=(Simulator&&) noexcept;
 
   // State, root to tip: q holds Model::num_positions() numbers (a floating base's 7 first:
-  // position and unit quaternion, kept unit by every step), qd num_joints() (its [v; w]
+  // position and unit quaternion, kept unit by every step), qd num_rates() (its [v; w]
   // first, world axes). Setting them directly is allowed; reset() also restarts t,
   // releases every direction and clears the drift and limit records.
   // t is t0 + k dt after the k-th step of dt since t was last set (by reset(), by the

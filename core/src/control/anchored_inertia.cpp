@@ -8,7 +8,7 @@ namespace achd {
 
 Eigen::VectorXd anchored_joint_inertias(const Model& model, const Eigen::VectorXd& q,
                                         const std::vector<int>& anchors) {
-  const int n = model.num_joints(), first = model.floating ? 6 : 0;
+  const int n = model.num_rates(), first = model.free_joint_rates();
   std::vector<Transform> X0(n);
   std::vector<Vector3> r(n);
   body_poses(model, q, X0, r);

@@ -8,7 +8,7 @@ namespace achd {
 Eigen::VectorXd hold_torques(const Model& model, const Eigen::VectorXd& pose, const Vector3& gravity,
                              const std::vector<Vector6>& f_ext, const std::vector<ConstraintBlock>& held,
                              const Options& options) {
-  const int n = model.num_joints(), free = model.floating ? 6 : 0;
+  const int n = model.num_rates(), free = model.free_joint_rates();
   Case c = Case::zeros(model);
   c.q = pose;
   c.gravity = gravity;

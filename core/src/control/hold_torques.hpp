@@ -15,7 +15,7 @@ namespace achd {
 // the torques tau that, applied as ff_torques, leave qdd = 0 with the constraint forces
 // balancing the rest. Where the held directions over-determine the forces (four feet held
 // in x, y, z on a rigid pose: 12 columns, 6 independent), the truncate policy picks the
-// least-norm forces. Per joint (Model::num_joints()); the free joint's six are 0.
+// least-norm forces. Per joint (Model::num_rates()); the free joint's six are 0.
 Eigen::VectorXd hold_torques(const Model& model, const Eigen::VectorXd& pose, const Vector3& gravity,
                              const std::vector<Vector6>& f_ext, const std::vector<ConstraintBlock>& held,
                              const Options& options);

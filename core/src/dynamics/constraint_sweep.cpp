@@ -102,7 +102,7 @@ void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int 
   }
   w.sources.push_back(s);
   m += s.columns;
-  ez += model.num_joints() * (s.columns + (s.columns & 1));
+  ez += model.num_rates() * (s.columns + (s.columns & 1));
 }
 
 // The last body a block's columns pass one axis at a time: the base's child, or with the
@@ -274,7 +274,7 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
   else d.joint_torques.setZero();
   if (!c.f_virtual.empty()) d.joint_torques += d.virtual_torques;
   if (prescribed)
-    for (int i = 0; i < model.num_joints(); ++i)
+    for (int i = 0; i < model.num_rates(); ++i)
       if (c.prescribed[i]) d.joint_torques[i] = d.prescribed_torques[i];
   d.constraint_wrench.setZero();
   d.constraint_wrenches.assign(c.constraints.size(), Vector6::Zero());

@@ -43,7 +43,7 @@ double weight(const ConstraintVector& w, int k) { return w.size() ? w[k] : 1.0; 
 // into w.driver_qdd (two per body), 0 for prescribed joints.
 void driver_sweeps(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
   Data::Workspace& w = d.workspace;
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   for (int i = 0; i < n; ++i) w.driver_bias[i].setZero();
   if ((o.effects & kExternalWrenches) && !c.f_ext.empty())
     for (int l = 0; l < model.num_links(); ++l) {

@@ -67,7 +67,7 @@ bool any_nonzero(const Eigen::VectorXd& v) {
 // prescribed joint's ff is ignored (its torque is an output), so its tau is the passive part.
 void joint_forces(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
   Data::Workspace& w = d.workspace;
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   if (c.ff_torques.size()) w.tau = c.ff_torques;
   else w.tau.setZero(n);
   if (prescribed)
@@ -89,7 +89,7 @@ const SpatialVector kZero{};
 // with I_i x = [m x_lin - h x x_ang; h x x_lin + C x_ang] for I_i = [m 1, -[h]x; [h]x, C].
 void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving) {
   body_poses(model, c.q, d.X0, d.r);
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
     const RigidInertia I = set_rigid_inertia(d.IA[i], d.X0[i].R, b.inertia);
@@ -176,7 +176,7 @@ void prescribed_to_parent(const Model& model, Data& d, int i, const Matrix6& IA,
 template <bool P>
 void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
   Data::Workspace& w = d.workspace;
-  for (int i = model.num_joints() - 1; i >= 0; --i) {
+  for (int i = model.num_rates() - 1; i >= 0; --i) {
     d.constraint_torques[i] = 0;  // constraint_torques() adds each block's share after the solve
     const Body& b = model.bodies[i];
     const JointSubspace S = body_subspace(model, d, i);
@@ -227,7 +227,7 @@ void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
 template <bool P>
 double outward_accelerations(const Model& model, Data& d, const Case& c, const Vector6& a0) {
   Data::Workspace& w = d.workspace;
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   double probe = 0;
   const SpatialVector base = load_pairs(a0);
   SpatialVector a = base;
@@ -299,7 +299,7 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
   outward_kinematics(model, d, c, moving);
   if (!c.f_virtual.empty()) {
     virtual_torques(model, d, c);  // added to the ff torques (a prescribed joint ignores both)
-    for (int i = 0; i < model.num_joints(); ++i)
+    for (int i = 0; i < model.num_rates(); ++i)
       if (!prescribed || !c.prescribed[i]) d.workspace.tau[i] += d.virtual_torques[i];
   } else {
     d.virtual_torques.setZero();

@@ -44,7 +44,7 @@ double coupling_position_error(const Model& model, const JointCoupling& j, const
 }
 
 void coupled_dynamics(const Model& model, Data& d, const Case& c, const Options& o, SolveOne solve_one) {
-  const int n = model.num_joints(), p = static_cast<int>(model.couplings.size());
+  const int n = model.num_rates(), p = static_cast<int>(model.couplings.size());
   Data::Workspace& w = d.workspace;
   Case& h = w.coupling_case;
   Eigen::MatrixXd& R = w.coupling_response;  // n x p: A C^T

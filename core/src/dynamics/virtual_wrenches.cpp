@@ -11,7 +11,7 @@ namespace achd {
 
 void virtual_torques(const Model& model, Data& d, const Case& c) {
   Data::Workspace& w = d.workspace;
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   for (int i = 0; i < n; ++i) w.virtual_force[i].setZero();
   for (int l = 0; l < model.num_links(); ++l) {
     const int b = model.links[l].body;

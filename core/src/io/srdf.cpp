@@ -67,7 +67,7 @@ std::vector<SrdfPose> read_srdf_poses(const std::string& xml, const std::string&
 Eigen::VectorXd default_pose(const Model& model) {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model.num_positions());
   if (model.floating) q[6] = 1;  // qw: the identity orientation
-  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
+  for (int i = model.free_joint_rates(); i < model.num_rates(); ++i) {
     const JointLimits& l = model.bodies[i].limits;
     if (0 < l.lower || 0 > l.upper) q[model.position_index(i)] = 0.5 * (l.lower + l.upper);
   }
@@ -94,7 +94,7 @@ Eigen::VectorXd srdf_pose_q(const Model& model, const SrdfPose& pose) {
       continue;
     }
     const int i = model.joint_index(name);
-    if (i < 0 || (model.floating && i < 6)) continue;  // not a movable joint of this model
+    if (i < model.free_joint_rates()) continue;  // not a movable joint of this model
     if (values.size() != 1)
       throw Error(where + ": expected one number, got " + std::to_string(values.size()));
     q[model.position_index(i)] = values[0];

@@ -118,7 +118,7 @@ class Walk {
     } else {
       Matrix3 R_axis;
       model_.bodies.push_back(make_body(j, origin(j, parent), body, R_axis));
-      child.body = model_.num_joints() - 1;
+      child.body = model_.num_rates() - 1;
       // The child link's frame in the body (joint) frame is R_axis^T, constant as the
       // joint turns about or slides along z.
       child.offset = Transform{R_axis.transpose(), Vector3::Zero()};
@@ -145,7 +145,7 @@ class Walk {
   void add_couplings() const {
     for (const urdf::Joint* j : mimics_) {
       const int follower = model_.joint_index(j->name), leader = model_.joint_index(j->mimic->joint_name);
-      if (leader < 0 || (model_.floating && leader < 6))
+      if (leader < model_.free_joint_rates())
         throw Error("joint '" + j->name + "': <mimic> of joint '" + j->mimic->joint_name +
                     "', which is not a movable joint of the loaded robot (fixed, locked or not loaded); load with "
                     "the mimic option 'independent' (CLI --mimic independent) to make it a joint of its own");
@@ -272,7 +272,7 @@ void repair_joints_moving_nothing(Model& model) {
   for (const Body& b : model.bodies) robot_mass += b.inertia.topLeftCorner<3, 3>().trace() / 3;
   if (!std::isfinite(robot_mass)) return;  // validate() names the overflow
   const Matrix6 floor = floor_inertia(robot_mass);
-  for (int round = 0; round < model.num_joints(); ++round) {
+  for (int round = 0; round < model.num_rates(); ++round) {
     const int i = joint_moving_nothing_at_checks(model);
     if (i < 0) return;
     Body& b = model.bodies[i];
@@ -286,7 +286,7 @@ void repair_joints_moving_nothing(Model& model) {
 
 // The last checks of a loaded model: the repairs the policy allows, then validate().
 void finish(Model& model, const UrdfOptions& options) {
-  if (model.num_joints() == 0 && !model.has_tip())
+  if (model.num_rates() == 0 && !model.has_tip())
     throw Error("the tree below '" + model.root_name + "' has no movable joint; load it with a floating base "
                 "(CLI --floating, JS {floating: true}) to move it as a free body");
   if (options.inertia == InertiaPolicy::Repair) repair_joints_moving_nothing(model);

@@ -6,7 +6,7 @@
 
 namespace achd {
 
-// Throws achd::Error, naming `function`, when q does not hold num_joints() values or the
+// Throws achd::Error, naming `function`, when q does not hold num_rates() values or the
 // workspace was made for a model with another number of joints.
 void check_workspace_call(const char* function, const Model& model, const ChainWorkspace& ws,
                           const Eigen::VectorXd& q);

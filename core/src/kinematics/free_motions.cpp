@@ -113,7 +113,7 @@ Vector6 joint_direction(const Body& b) { return subspace_times(b, 1.0); }
 }  // namespace
 
 int joint_moving_nothing(const Model& model, const Eigen::VectorXd& q) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   // The length scale: the largest joint offset or centre of mass.
   std::vector<Transform> X(n);
   double L = 0;
@@ -158,7 +158,7 @@ int joint_moving_nothing(const Model& model, const Eigen::VectorXd& q) {
 }
 
 std::array<Eigen::VectorXd, 2> check_configurations(const Model& model) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   Eigen::VectorXd zero = Eigen::VectorXd::Zero(n), generic(n);
   for (int i = 0; i < n; ++i) {
     const JointLimits& l = model.bodies[i].limits;

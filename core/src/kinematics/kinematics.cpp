@@ -35,7 +35,7 @@ void body_poses(const Model& model, const Eigen::VectorXd& q, std::vector<Transf
   // waiting behind the chain of rotations (that wait cost 10 ns per joint here).
   constexpr int kBlock = 8;
   double sines[kBlock], cosines[kBlock];
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   Mat3p R;  // the last body's axes: the next one's parent in a chain (a tree reloads them)
   // A floating base: the free joint's six bodies from q[0..6], then body i's angle is
   // q[i + 1] (free_joint.hpp).
@@ -93,7 +93,7 @@ void integrate(const Model& model, const Eigen::VectorXd& q, const Eigen::Vector
     return;
   }
   // joints after the free joint: q[i + 1] += h v[i]
-  for (int i = kFreeJointBodies; i < model.num_joints(); ++i) out[i + 1] = q[i + 1] + h * v[i];
+  for (int i = kFreeJointBodies; i < model.num_rates(); ++i) out[i + 1] = q[i + 1] + h * v[i];
   for (int k = 0; k < 3; ++k) out[k] = q[k] + h * v[k];
   // the orientation: exp(h w) on the left (w in world axes); for a small turn the sine
   // over the angle by its series, which stays accurate where the quotient would not
@@ -115,7 +115,7 @@ void configuration_rate(const Model& model, const Eigen::VectorXd& q, const Eige
     rate = v;
     return;
   }
-  for (int i = kFreeJointBodies; i < model.num_joints(); ++i) rate[i + 1] = v[i];
+  for (int i = kFreeJointBodies; i < model.num_rates(); ++i) rate[i + 1] = v[i];
   for (int k = 0; k < 3; ++k) rate[k] = v[k];
   // d(quaternion)/dt = 1/2 [w; 0] (x) h: with h = (x, y, z; s) and w = (a, b, c)
   const double a = v[3], b = v[4], c = v[5], x = q[3], y = q[4], z = q[5], s = q[6];
@@ -134,17 +134,17 @@ void normalise_configuration(const Model& model, Eigen::VectorXd& q) {
 }
 
 ChainWorkspace::ChainWorkspace(const Model& model)
-    : X0(model.num_joints()),
-      r(model.num_joints(), Vector3::Zero()),
-      v(model.num_joints(), Vector6::Zero()),
-      a(model.num_joints(), Vector6::Zero()),
-      f(model.num_joints(), Vector6::Zero()),
-      Xup(model.num_joints()),
-      Ic(model.num_joints(), Matrix6::Zero()) {}
+    : X0(model.num_rates()),
+      r(model.num_rates(), Vector3::Zero()),
+      v(model.num_rates(), Vector6::Zero()),
+      a(model.num_rates(), Vector6::Zero()),
+      f(model.num_rates(), Vector6::Zero()),
+      Xup(model.num_rates()),
+      Ic(model.num_rates(), Matrix6::Zero()) {}
 
 void check_workspace_call(const char* function, const Model& model, const ChainWorkspace& ws,
                           const Eigen::VectorXd& q) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   if (q.size() != model.num_positions())
     throw Error(std::string(function) + ": q must have " + std::to_string(model.num_positions()) +
                 " values" + (model.floating ? " (7 of the floating base, then one per joint)" : "") +
@@ -178,15 +178,15 @@ std::vector<Transform> forward_kinematics(const Model& model, const Eigen::Vecto
 void link_velocities(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                      ChainWorkspace& ws, std::vector<Vector6>& velocities) {
   check_workspace_call("link_velocities", model, ws, q);
-  if (qd.size() != model.num_joints())
-    throw Error("link_velocities: qd must have " + std::to_string(model.num_joints()) + " values, got " +
+  if (qd.size() != model.num_rates())
+    throw Error("link_velocities: qd must have " + std::to_string(model.num_rates()) + " values, got " +
                 std::to_string(qd.size()));
   body_poses(model, q, ws.X0, ws.r);
   double free_rates[kFreeJointBodies];  // a floating base's rates in the solver's form
   if (model.floating) free_joint_rates(ws.X0[kFreeJointBodies - 1].R, qd.data(), free_rates);
   // Body velocity in base orientation, at the body origin: v_i = v_p (moved by r_i) + S qd.
   std::vector<Vector6>& vb = ws.v;
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     Vector6 vi = Vector6::Zero();
     if (b.parent >= 0) vi = motion_shift(vb[b.parent], ws.r[i]);
@@ -230,7 +230,7 @@ void link_jacobian(const Model& model, const Eigen::VectorXd& q, int link, const
                 std::to_string(model.num_links()) + " links after the root)");
   body_poses(model, q, ws.X0, ws.r);
   const Link& l = model.links[link];
-  J.setZero(6, model.num_joints());
+  J.setZero(6, model.num_rates());
   if (l.body < 0) return;  // fixed to the root: no joint moves it
   const Transform& X = ws.X0[l.body];
   const Vector3 p = X.p + X.R * (l.offset.p + l.offset.R * point);  // the point, base frame
@@ -251,7 +251,7 @@ void link_jacobian(const Model& model, const Eigen::VectorXd& q, int link, const
 Eigen::MatrixXd link_jacobian(const Model& model, const Eigen::VectorXd& q, int link,
                               const Vector3& point) {
   ChainWorkspace ws(model);
-  Eigen::MatrixXd J(6, model.num_joints());
+  Eigen::MatrixXd J(6, model.num_rates());
   link_jacobian(model, q, link, point, ws, J);
   return J;
 }
@@ -263,7 +263,7 @@ void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& 
   body_poses(model, q, ws.X0, ws.r);
   const Link& tip = model.tip();
   const Vector3 p_tip = tip.body < 0 ? tip.offset.p : (ws.X0[tip.body] * tip.offset).p;
-  J.setZero(6, model.num_joints());
+  J.setZero(6, model.num_rates());
   // Column i: joint i's unit motion seen at the tip. Revolute: [z x (p_tip - p_i); z];
   // prismatic: [z; 0], with z the joint axis (the body's z) in base orientation.
   for (int i = tip.body; i >= 0; i = model.bodies[i].parent) {
@@ -280,7 +280,7 @@ void tip_jacobian(const Model& model, const Eigen::VectorXd& q, ChainWorkspace& 
 
 Eigen::MatrixXd tip_jacobian(const Model& model, const Eigen::VectorXd& q) {
   ChainWorkspace ws(model);
-  Eigen::MatrixXd J(6, model.num_joints());
+  Eigen::MatrixXd J(6, model.num_rates());
   tip_jacobian(model, q, ws, J);
   return J;
 }

@@ -11,7 +11,7 @@ void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::Vect
   body_poses(model, q, X0, r);
   double free_rates[kFreeJointBodies];  // a floating base's rates in the solver's form
   if (model.floating) free_joint_rates(X0[kFreeJointBodies - 1].R, qd.data(), free_rates);
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const double rate = model.floating && i < kFreeJointBodies ? free_rates[i] : qd[i];
     const Vector3 zq = X0[i].R.col(2) * rate;  // S qd: about (revolute) or along z
@@ -26,7 +26,7 @@ void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::Vect
 const ChainMotion& thread_chain_motion(const Model& model, const Eigen::VectorXd& q,
                                        const Eigen::VectorXd& qd) {
   thread_local ChainMotion m;
-  const size_t n = model.num_joints();
+  const size_t n = model.num_rates();
   if (m.X0.size() < n) {
     m.X0.resize(n);
     m.r.resize(n);

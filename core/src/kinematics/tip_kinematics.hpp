@@ -17,7 +17,7 @@ struct TipState {
 
 // Body poses (kinematics.hpp's body_poses, as the solver sees them) and body velocities
 // of the whole chain, in base axes about each body's origin:
-// v_i = [v_p + w_p x r_i; w_p] + S qd_i. X0, r and v must hold num_joints() entries.
+// v_i = [v_p + w_p x r_i; w_p] + S qd_i. X0, r and v must hold num_rates() entries.
 void body_motion(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                  std::vector<Transform>& X0, std::vector<Vector3>& r, std::vector<Vector6>& v);
 
@@ -30,7 +30,7 @@ struct ChainMotion {
 };
 
 // body_motion into the calling thread's own ChainMotion, grown to the longest chain the
-// thread has swept and never shrunk (entries past num_joints() are stale), so a thread
+// thread has swept and never shrunk (entries past num_rates() are stale), so a thread
 // allocates only on its first query of a longer chain. The reference is valid until the
 // thread's next call.
 const ChainMotion& thread_chain_motion(const Model& model, const Eigen::VectorXd& q,

@@ -23,7 +23,7 @@ bool finite(const Matrix6& m) { return m.allFinite(); }
 // m |p|^2 can still overflow (two joints 1e200 m apart). Names the joint whose origin
 // made the number overflow.
 void check_no_overflow(const Model& model, const Eigen::VectorXd& q) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   std::vector<Transform> X(n), pose(n);  // parent -> body; body in the root frame
   for (int i = 0; i < n; ++i) {
     const int p = model.bodies[i].parent;
@@ -53,11 +53,11 @@ void check_no_overflow(const Model& model, const Eigen::VectorXd& q) {
 }  // namespace
 
 void validate(const Model& model) {
-  if (model.num_joints() == 0)
+  if (model.num_rates() == 0)
     throw Error(model.has_tip() ? "the chain from '" + model.root_name + "' to '" + model.tip_name +
                                       "' has no movable joint"
                                 : "the tree below '" + model.root_name + "' has no movable joint");
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const std::string where = "joint '" + b.joint_name + "'";
     if (b.parent < -1 || b.parent >= i)
@@ -82,16 +82,16 @@ void validate(const Model& model) {
   if (model.has_tip() && (model.links.empty() || model.links.back().name != model.tip_name))
     throw Error("the model's last link must be the tip '" + model.tip_name + "'");
   for (int l = 0; l < model.num_links(); ++l)
-    if (model.links[l].body < -1 || model.links[l].body >= model.num_joints())
+    if (model.links[l].body < -1 || model.links[l].body >= model.num_rates())
       throw Error("link '" + model.links[l].name + "': rides on body " + std::to_string(model.links[l].body) +
                   ", not a body of the model");
   if (model.couplings.size() > static_cast<size_t>(kMaxCouplings))
     throw Error("the model has " + std::to_string(model.couplings.size()) + " coupled joints, more than " +
                 std::to_string(kMaxCouplings));
-  std::vector<bool> follows(model.num_joints(), false);
+  std::vector<bool> follows(model.num_rates(), false);
   for (const JointCoupling& c : model.couplings) {
-    const int first = model.floating ? 6 : 0;
-    if (c.follower < first || c.follower >= model.num_joints() || c.leader < first || c.leader >= model.num_joints())
+    const int first = model.free_joint_rates();
+    if (c.follower < first || c.follower >= model.num_rates() || c.leader < first || c.leader >= model.num_rates())
       throw Error("a coupling names joint " + std::to_string(c.follower) + " or " + std::to_string(c.leader) +
                   ", not a movable joint of the model");
     const std::string where = "joint '" + model.bodies[c.follower].joint_name + "'";

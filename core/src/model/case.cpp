@@ -66,7 +66,7 @@ bool free_joint_valid(const Case& c) {
 
 // The common case, in one pass: right sizes and every number finite.
 bool plainly_valid(const Model& model, const Case& c, int capacity) {
-  const Eigen::Index nj = model.num_joints();
+  const Eigen::Index nj = model.num_rates();
   const int nc = static_cast<int>(c.alpha.cols());
   if (nc && !model.has_tip()) return false;
   if (c.q.size() != model.num_positions() || (c.qd.size() && c.qd.size() != nj) ||
@@ -145,7 +145,7 @@ void check_blocks(const Model& model, const Case& c) {
 
 void validate(const Model& model, const Case& c, int capacity) {
   if (plainly_valid(model, c, capacity)) return;
-  const int nj = model.num_joints();
+  const int nj = model.num_rates();
   check_vector(c.q, model.num_positions(), "q", false);
   if (model.floating && !(c.q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0))
     throw Error("q[3..6]: the floating base's orientation quaternion (qx, qy, qz, qw) is zero");

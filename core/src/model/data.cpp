@@ -10,7 +10,7 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   if (constraint_capacity < 0 || constraint_capacity > kMaxConstraintColumns)
     throw Error("constraint capacity must be in [0, " + std::to_string(kMaxConstraintColumns) + "], got " +
                 std::to_string(constraint_capacity));
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   qdd = constraint_torques = total_torques = joint_torques = prescribed_torques = virtual_torques =
       Eigen::VectorXd::Zero(n);
   nu.resize(0);

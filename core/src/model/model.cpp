@@ -16,9 +16,9 @@ const char* joint_type_name(JointType type) {
 }
 
 void Model::set_rotor_inertia(int joint, double value) {
-  if (joint < 0 || joint >= num_joints())
+  if (joint < 0 || joint >= num_rates())
     throw Error("set_rotor_inertia: joint index " + std::to_string(joint) + " is out of range [0, " +
-                std::to_string(num_joints()) + ")");
+                std::to_string(num_rates()) + ")");
   if (!std::isfinite(value) || value < 0)
     throw Error("set_rotor_inertia: joint '" + bodies[joint].joint_name +
                 "': rotor inertia must be finite and >= 0");
@@ -26,7 +26,7 @@ void Model::set_rotor_inertia(int joint, double value) {
 }
 
 int Model::joint_index(const std::string& name) const {
-  for (int i = 0; i < num_joints(); ++i)
+  for (int i = 0; i < num_rates(); ++i)
     if (bodies[i].joint_name == name) return i;
   return -1;
 }

@@ -28,7 +28,7 @@ std::string joint(const Model& model, int i) { return "joint '" + model.bodies[i
 }  // namespace
 
 void name_the_first_overflow(const Model& model, const Data& d, const Case& c, int nc) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   // Step 1, outward: velocities, velocity-product accelerations, joint torques.
   for (int i = 0; i < n; ++i) {
     if (!finite(d.v[i]))

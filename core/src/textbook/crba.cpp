@@ -10,7 +10,7 @@ namespace achd {
 
 void crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia, ChainWorkspace& ws,
           Eigen::MatrixXd& M) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   check_workspace_call("crba", model, ws, q);
   std::vector<Transform>& Xup = ws.Xup;
   std::vector<Matrix6>& Ic = ws.Ic;
@@ -30,7 +30,7 @@ void crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia, Chai
     }
   }
   for (int i = 0; i < n; ++i) {
-    if (i >= first) Xup[i] = joint_transform(model.bodies[i], q[i + (model.floating ? 1 : 0)]);
+    if (i >= first) Xup[i] = joint_transform(model.bodies[i], q[model.position_index(i)]);
     Ic[i] = model.bodies[i].inertia;
   }
   // Ic_p += X^T Ic_i X, from the tip inward.
@@ -60,7 +60,7 @@ void crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia, Chai
 
 Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia) {
   ChainWorkspace ws(model);
-  Eigen::MatrixXd M(model.num_joints(), model.num_joints());
+  Eigen::MatrixXd M(model.num_rates(), model.num_rates());
   crba(model, q, rotor_inertia, ws, M);
   return M;
 }

@@ -14,7 +14,7 @@ namespace achd {
 void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
           const Eigen::VectorXd& qdd, const Vector3& gravity, const std::vector<Vector6>& f_ext,
           std::uint32_t effects, double friction_velocity, ChainWorkspace& ws, Eigen::VectorXd& tau) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   check_workspace_call("rnea", model, ws, q);
   if (qd.size() != n || qdd.size() != n)
     throw Error("rnea: q, qd and qdd must have " + std::to_string(n) + " values");
@@ -88,7 +88,7 @@ Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::
                      const std::vector<Vector6>& f_ext, std::uint32_t effects,
                      double friction_velocity) {
   ChainWorkspace ws(model);
-  Eigen::VectorXd tau(model.num_joints());
+  Eigen::VectorXd tau(model.num_rates());
   rnea(model, q, qd, qdd, gravity, f_ext, effects, friction_velocity, ws, tau);
   return tau;
 }

@@ -68,7 +68,7 @@ Model load_floating(const std::string& urdf) {
 // (the free joint's wrench zero: nothing pushes the root), f_ext, gravity.
 Case random_floating_case(std::mt19937& rng, const Model& m) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const int n = m.num_joints();
+  const int n = m.num_rates();
   Case c;
   c.q.resize(m.num_positions());
   for (int k = 0; k < 3; ++k) c.q[k] = 2 * u(rng);
@@ -112,7 +112,7 @@ bool add_random_blocks(std::mt19937& rng, const Model& m, Case& c, int count) {
       rows += k;
       c.constraints.push_back(block);
     }
-    Eigen::MatrixXd A(rows, m.num_joints());
+    Eigen::MatrixXd A(rows, m.num_rates());
     int row = 0;
     for (const ConstraintBlock& b : c.constraints) {
       A.middleRows(row, b.alpha.cols()) = b.alpha.transpose() * link_jacobian(m, c.q, b.link, b.point);
@@ -146,8 +146,8 @@ TEST(FloatingBase, LoaderPutsTheFreeJointFirstAndCountsTheRootMass) {
   options.floating = true;
   const Model m = load_urdf_file(path, "", "", options);
   EXPECT_TRUE(m.floating);
-  EXPECT_EQ(m.num_joints(), fixed.num_joints() + 6);
-  EXPECT_EQ(m.num_positions(), fixed.num_joints() + 7);
+  EXPECT_EQ(m.num_rates(), fixed.num_rates() + 6);
+  EXPECT_EQ(m.num_positions(), fixed.num_rates() + 7);
   EXPECT_EQ(m.joint_index(m.root_name), 0);
   EXPECT_GT(m.bodies[5].inertia(0, 0), 1.0);  // the trunk's mass, which the fixed base ignores
   const Case zeros = Case::zeros(m);
@@ -178,7 +178,7 @@ TEST(FloatingBase, FreeFall) {
     g.head<3>() = c.gravity;
     for (const Vector6& a : d.link_accelerations) worst = std::max(worst, (a - g).norm() / 9.81);
     worst = std::max(worst, (d.qdd.head<6>() - g).norm() / 9.81);
-    worst = std::max(worst, d.qdd.tail(m.num_joints() - 6).norm() / 9.81);
+    worst = std::max(worst, d.qdd.tail(m.num_rates() - 6).norm() / 9.81);
   };
   for_floating_trees(5101, 20, [&](const Model& m, const RandomTree&, const RootInertia&, std::mt19937& rng) {
     check(m, rng);
@@ -286,7 +286,7 @@ TEST(FloatingBase, ConstrainedIdentitiesAndReference) {
     worst_rnea = std::max(worst_rnea, rel_error(d.joint_torques, rnea(m, c.q, c.qd, d.qdd, c.gravity, c.f_ext,
                                                                         o.effects, o.friction_velocity)));
     // M qdd + h = joint_torques with the public mass matrix (crba) and h = RNEA(q, qd, 0)
-    const Eigen::VectorXd h = rnea(m, c.q, c.qd, Eigen::VectorXd::Zero(m.num_joints()), c.gravity, c.f_ext,
+    const Eigen::VectorXd h = rnea(m, c.q, c.qd, Eigen::VectorXd::Zero(m.num_rates()), c.gravity, c.f_ext,
                                    o.effects, o.friction_velocity);
     worst_crba = std::max(worst_crba, rel_error(crba(m, c.q) * d.qdd + h, d.joint_torques));
     Eigen::VectorXd expected = c.ff_torques;
@@ -313,13 +313,13 @@ TEST(FloatingBase, ConstrainedIdentitiesAndReference) {
     // The free joint prescribed (its columns then roll through its six bodies one axis at
     // a time, not in the 6-DoF step): still the reference.
     Case given = c;
-    given.prescribed.assign(m.num_joints(), false);
-    given.qdd_given = Eigen::VectorXd::Zero(m.num_joints());
+    given.prescribed.assign(m.num_rates(), false);
+    given.qdd_given = Eigen::VectorXd::Zero(m.num_rates());
     for (int k = 0; k < 6; ++k) {
       given.prescribed[k] = true;
       given.qdd_given[k] = std::uniform_real_distribution<double>(-2, 2)(rng);
     }
-    if (m.num_joints() > 6 + 1) {  // something left free for the blocks to act through
+    if (m.num_rates() > 6 + 1) {  // something left free for the blocks to act through
       Data dg(m);
       try {
         hybrid_dynamics(m, dg, given, o);
@@ -355,19 +355,19 @@ TEST(FloatingBase, PrescribedAtRestIsTheFixedBase) {
     Case c = random_floating_case(rng, floating);
     c.qd.head<6>().setZero();
     c.f_ext.clear();
-    c.prescribed.assign(floating.num_joints(), false);
-    c.qdd_given = Eigen::VectorXd::Zero(floating.num_joints());
+    c.prescribed.assign(floating.num_rates(), false);
+    c.qdd_given = Eigen::VectorXd::Zero(floating.num_rates());
     for (int i = 0; i < 6; ++i) c.prescribed[i] = true;
     Case f;
-    f.q = c.q.tail(fixed.num_joints());
-    f.qd = c.qd.tail(fixed.num_joints());
-    f.ff_torques = c.ff_torques.tail(fixed.num_joints());
+    f.q = c.q.tail(fixed.num_rates());
+    f.qd = c.qd.tail(fixed.num_rates());
+    f.ff_torques = c.ff_torques.tail(fixed.num_rates());
     const Matrix3 R = Eigen::Quaterniond(c.q[6], c.q[3], c.q[4], c.q[5]).normalized().toRotationMatrix();
     f.gravity = R.transpose() * c.gravity;
     Data dc(floating), df(fixed);
     hybrid_dynamics(floating, dc, c);
     hybrid_dynamics(fixed, df, f);
-    worst = std::max(worst, rel_error(dc.qdd.tail(fixed.num_joints()), df.qdd));
+    worst = std::max(worst, rel_error(dc.qdd.tail(fixed.num_rates()), df.qdd));
     EXPECT_LE(dc.qdd.head<6>().norm(), 1e-12);
   }
   std::printf("free joint held at rest against the fixed base: worst relative %.2e\n", worst);

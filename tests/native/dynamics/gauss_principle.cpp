@@ -33,7 +33,7 @@ struct Worst {
 };
 
 void check_against_kkt(const Model& m, const Case& c, Worst& w) {
-  const int n = m.num_joints(), nc = c.num_constraints();
+  const int n = m.num_rates(), nc = c.num_constraints();
   const Eigen::MatrixXd M = reference_crba(m, c.q);
   const Eigen::VectorXd h = reference_rnea(m, c.q, c.qd, Eigen::VectorXd::Zero(n), c.gravity, c.f_ext);
   const Eigen::MatrixXd A = c.alpha.transpose() * reference_link_jacobian(m, c.q, m.num_links() - 1);

@@ -28,9 +28,9 @@ Model panda() { return load_urdf_file(kRobots + "panda_description/urdf/panda.ur
 void random_state(const Model& model, std::mt19937& rng, Case& c) {
   std::uniform_real_distribution<double> u(0, 1), v(-1, 1);
   c.q = default_pose(model);
-  c.qd = Eigen::VectorXd::Zero(model.num_joints());
-  c.ff_torques = Eigen::VectorXd::Zero(model.num_joints());
-  for (int i = model.floating ? 6 : 0; i < model.num_joints(); ++i) {
+  c.qd = Eigen::VectorXd::Zero(model.num_rates());
+  c.ff_torques = Eigen::VectorXd::Zero(model.num_rates());
+  for (int i = model.floating ? 6 : 0; i < model.num_rates(); ++i) {
     const JointLimits& l = model.bodies[i].limits;
     const double lo = std::max(l.lower, -2.0), hi = std::min(l.upper, 2.0);
     c.q[model.position_index(i)] = lo + u(rng) * (hi - lo);
@@ -46,7 +46,7 @@ void random_state(const Model& model, std::mt19937& rng, Case& c) {
 
 // The coupling rows C (p x n).
 Eigen::MatrixXd coupling_rows(const Model& model) {
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(model.couplings.size(), model.num_joints());
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(model.couplings.size(), model.num_rates());
   for (size_t j = 0; j < model.couplings.size(); ++j) {
     C(j, model.couplings[j].follower) += 1;
     C(j, model.couplings[j].leader) -= model.couplings[j].multiplier;
@@ -76,7 +76,7 @@ TEST(JointCouplings, SolveEqualsTheDenseKktSolve) {
   std::mt19937 rng(7);
   Data d(m);
   const Eigen::MatrixXd C = coupling_rows(m);
-  const int n = m.num_joints(), p = static_cast<int>(C.rows());
+  const int n = m.num_rates(), p = static_cast<int>(C.rows());
   double worst = 0, worst_rnea = 0, worst_row = 0;
   for (int trial = 0; trial < 50; ++trial) {
     Case c = Case::zeros(m);
@@ -118,7 +118,7 @@ TEST(JointCouplings, WithAConstraintBlockTheSolveEqualsTheDenseKktSolve) {
   std::mt19937 rng(11);
   Data d(m), free_data(m);
   const Eigen::MatrixXd C = coupling_rows(m);
-  const int n = m.num_joints(), p = static_cast<int>(C.rows());
+  const int n = m.num_rates(), p = static_cast<int>(C.rows());
   double worst = 0;
   for (int trial = 0; trial < 30; ++trial) {
     Case c = Case::zeros(m);

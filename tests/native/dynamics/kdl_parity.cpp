@@ -47,7 +47,7 @@ void compare(const std::string& urdf, const std::string& root, const std::string
   ASSERT_TRUE(kdl_parser::treeFromString(urdf, tree));
   KDL::Chain chain;
   ASSERT_TRUE(tree.getChain(root, tip, chain));
-  const int n = model.num_joints(), nc = c.num_constraints();
+  const int n = model.num_rates(), nc = c.num_constraints();
   ASSERT_EQ(static_cast<int>(chain.getNrOfJoints()), n);
   ASSERT_EQ(static_cast<int>(chain.getNrOfSegments()), model.num_links());
 

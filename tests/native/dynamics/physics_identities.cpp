@@ -192,7 +192,7 @@ TEST(ReferenceDynamics, RneaAndCrbaEqualTheReference) {
       b.damping = 0.5 * (1 + U(rng));
       b.friction = 0.5 * (1 + U(rng));
     }
-    const int n = m.num_joints();
+    const int n = m.num_rates();
     const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(n, [&] { return 3 * U(rng); });
     const Eigen::VectorXd tau = rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05);
     const double e1 =
@@ -236,8 +236,8 @@ TEST(ReferenceDynamics, WorkspaceFormsCheckTheirArguments) {
   std::mt19937 rng(606);
   const RandomChain a = random_chain(rng, 3, false), b = random_chain(rng, 5, false);
   ChainWorkspace ws(a.model);
-  const Eigen::VectorXd qa = Eigen::VectorXd::Zero(a.model.num_joints());
-  const Eigen::VectorXd qb = Eigen::VectorXd::Zero(b.model.num_joints());
+  const Eigen::VectorXd qa = Eigen::VectorXd::Zero(a.model.num_rates());
+  const Eigen::VectorXd qb = Eigen::VectorXd::Zero(b.model.num_rates());
   Eigen::MatrixXd M;
   Eigen::VectorXd tau;
   const auto message = [](const auto& call) -> std::string {

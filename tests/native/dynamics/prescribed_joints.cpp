@@ -25,7 +25,7 @@ namespace {
 
 // Marks each joint prescribed with probability 1/2 (at least one), with a random qdd.
 void prescribe_some(std::mt19937& rng, const Model& m, Case& c) {
-  const int n = m.num_joints();
+  const int n = m.num_rates();
   std::uniform_real_distribution<double> U(-3, 3);
   c.qdd_given = Eigen::VectorXd::Zero(n);
   c.prescribed.assign(n, false);
@@ -42,7 +42,7 @@ struct Dense {
 };
 
 Dense dense_solve(const Model& m, const Case& c) {
-  const int n = m.num_joints(), nc = c.num_constraints();
+  const int n = m.num_rates(), nc = c.num_constraints();
   std::vector<int> given;
   for (int i = 0; i < n; ++i)
     if (!c.prescribed.empty() && c.prescribed[i]) given.push_back(i);
@@ -112,7 +112,7 @@ TEST(PrescribedJoints, RandomChainsMatchDenseKktAndRnea) {
     if (!(ref.condition < 1e4)) return;
     Data d(m);
     hybrid_dynamics(m, d, c);
-    for (int i = 0; i < m.num_joints(); ++i) {
+    for (int i = 0; i < m.num_rates(); ++i) {
       if (c.prescribed[i]) EXPECT_EQ(d.qdd[i], c.qdd_given[i]) << "joint " << i;
       else EXPECT_EQ(d.prescribed_torques[i], 0.0) << "joint " << i;
     }
@@ -171,7 +171,7 @@ TEST(PrescribedJoints, PrescribedTorqueAsFeedForwardGivesTheSameSolve) {
     Data d(m), free(m);
     hybrid_dynamics(m, d, c);
     Case f = c;
-    for (int i = 0; i < m.num_joints(); ++i)
+    for (int i = 0; i < m.num_rates(); ++i)
       if (c.prescribed[i]) f.ff_torques[i] = d.prescribed_torques[i];
     f.qdd_given.resize(0);
     f.prescribed.clear();
@@ -192,7 +192,7 @@ TEST(PrescribedJoints, EveryJointPrescribedIsInverseDynamics) {
   double worst = 0;
   for_random_cases(1406, 40, true, [&](const RandomChain& ch, Case c) {
     const Model& m = ch.model;
-    const int n = m.num_joints();
+    const int n = m.num_rates();
     prescribe_some(rng, m, c);
     c.prescribed.assign(n, true);
     const Eigen::VectorXd rnea = reference_rnea(m, c.q, c.qd, c.qdd_given, c.gravity, c.f_ext);
@@ -233,7 +233,7 @@ TEST(PrescribedJoints, NoJointPrescribedIsTheSolveWithoutTheFields) {
       o.effects = kAllEffects;
       Case none = c;
       prescribe_some(rng, m, none);
-      none.prescribed.assign(m.num_joints(), false);
+      none.prescribed.assign(m.num_rates(), false);
       Data a(m), b(m);
       hybrid_dynamics(m, a, c, o);
       hybrid_dynamics(m, b, none, o);
@@ -243,7 +243,7 @@ TEST(PrescribedJoints, NoJointPrescribedIsTheSolveWithoutTheFields) {
       expect_same_bits(a.total_torques, b.total_torques, "total_torques");
       ASSERT_EQ(a.nu.size(), b.nu.size());
       EXPECT_EQ(std::memcmp(a.nu.data(), b.nu.data(), sizeof(double) * a.nu.size()), 0);
-      EXPECT_EQ(b.prescribed_torques, Eigen::VectorXd::Zero(m.num_joints()));
+      EXPECT_EQ(b.prescribed_torques, Eigen::VectorXd::Zero(m.num_rates()));
       ++cases;
     }
   });
@@ -258,11 +258,11 @@ TEST(PrescribedJoints, DataReusedWithoutPrescriptionHasZeroPrescribedTorques) {
   Data d(ch.model);
   prescribe_some(rng, ch.model, c);
   hybrid_dynamics(ch.model, d, c);
-  EXPECT_NE(d.prescribed_torques, Eigen::VectorXd::Zero(ch.model.num_joints()));
+  EXPECT_NE(d.prescribed_torques, Eigen::VectorXd::Zero(ch.model.num_rates()));
   c.prescribed.clear();
   c.qdd_given.resize(0);
   hybrid_dynamics(ch.model, d, c);
-  EXPECT_EQ(d.prescribed_torques, Eigen::VectorXd::Zero(ch.model.num_joints()));
+  EXPECT_EQ(d.prescribed_torques, Eigen::VectorXd::Zero(ch.model.num_rates()));
 }
 
 Model lwr() { return load_urdf_file(ACHD_SOURCE_DIR "/robots/kuka_lwr4.urdf", "lwr_base_link", "lwr_link_7"); }

@@ -86,7 +86,7 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
     achd::Data d(m);
-    const int n = m.num_joints();
+    const int n = m.num_rates();
     achd::Case c = achd::Case::zeros(m);
     for (int i = 0; i < n; ++i) c.q[i] = r["q0"][i].get<double>();
     c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
@@ -138,7 +138,7 @@ TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
     achd::Data d(m);
-    const int n = m.num_joints();
+    const int n = m.num_rates();
     achd::Case c = achd::Case::zeros(m);
     for (int i = 0; i < n; ++i) c.q[i] = r["q0"][i].get<double>();
     c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
@@ -195,7 +195,7 @@ TEST(NoAllocation, HybridDynamicsOnTheTreeRobotsHoldingTheirDefaultLinks) {
     const achd::Model m =
         achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(), r["root"].get<std::string>(), "", options);
     achd::Data d(m);
-    const int n = m.num_joints();
+    const int n = m.num_rates();
     achd::Case c = achd::Case::zeros(m);  // a floating base: at the origin, upright
     const int first = floating ? 7 : 0;   // where the joints' positions start in q
     for (int i = first; i < c.q.size(); ++i) c.q[i] = r["q0"][i - first].get<double>();
@@ -239,7 +239,7 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
     if (!r.contains("tip")) continue;  // the trees: tests/native/dynamics/tree_identities.cpp
     const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
                                                r["root"].get<std::string>(), r["tip"].get<std::string>());
-    const int n = m.num_joints();
+    const int n = m.num_rates();
     const Eigen::VectorXd q = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
     const Eigen::VectorXd qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
     const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });

@@ -156,8 +156,8 @@ void tip_alpha_equals_a_tip_block(Solver solve, const char* what) {
   for (int k = 0; k < 30; ++k) {
     const RandomTree chain = random_tree(rng, k == 0 ? 1 : std::uniform_int_distribution<int>(1, 40)(rng), true);
     Model m = chain.model;
-    for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
-    for (int nc = 1; nc <= std::min(kMaxConstraints, m.num_joints()); ++nc) {
+    for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
+    for (int nc = 1; nc <= std::min(kMaxConstraints, m.num_rates()); ++nc) {
       Case c = random_tree_inputs(rng, m);
       if (nc % 2) prescribe_random_joints(rng, m, c, 0.2);
       if (!draw_tip_constraints(rng, m, c, nc)) continue;
@@ -207,7 +207,7 @@ void two_chains_equal_one_tree(Solver solve, const char* what) {
     const Model tree = tree_model(joined);
     const Model& ma = a.model;
     const Model& mb = b.model;
-    const int na = ma.num_joints(), nb = mb.num_joints();
+    const int na = ma.num_rates(), nb = mb.num_rates();
     Case ca = random_tree_inputs(rng, ma), cb = random_tree_inputs(rng, mb);
     cb.gravity = ca.gravity;
     if (k % 3 == 1) {

@@ -34,7 +34,7 @@ struct DenseSolution {
 };
 
 DenseSolution dense_kkt(const Model& m, const Case& c, std::uint32_t effects) {
-  const int n = m.num_joints(), nc = c.num_constraints();
+  const int n = m.num_rates(), nc = c.num_constraints();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   const Eigen::MatrixXd M = reference_crba(m, c.q, effects & kRotorInertia);
   const Eigen::VectorXd h = reference_rnea(m, c.q, c.qd, zero, c.gravity, c.f_ext, effects, 0.05);
@@ -110,7 +110,7 @@ TEST(PvReferenceTrees, RneaReproducesTheAppliedTorquesAndWrenches) {
     const double e_rnea = rel_error(s.joint_torques,
                                     reference_rnea(m, c.q, c.qd, s.qdd, c.gravity, c.f_ext, o.effects, 0.05));
     Eigen::VectorXd expected = c.ff_torques;
-    for (int i = 0; i < m.num_joints(); ++i)
+    for (int i = 0; i < m.num_rates(); ++i)
       if (is_prescribed(c, i)) expected[i] = s.prescribed_torques[i];
     int row = 0;
     double e_wrench = 0;
@@ -215,7 +215,7 @@ TEST(PvReferenceChains, EqualsHybridDynamics) {
   for_random_cases(1515, 30, true, [&](const RandomChain& ch, const Case& c0) {
     SCOPED_TRACE(ch.urdf);
     Model m = ch.model;
-    for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
+    for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
     for (int variant = 0; variant < 3; ++variant) {
       Case c = c0;
       Options o;

@@ -61,7 +61,7 @@ struct Report {
 // 0.2) and checks both identities against their bounds.
 Report check(const std::string& name, const Model& model, const Eigen::VectorXd& q,
              const Eigen::VectorXd& qd) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   Case c = Case::zeros(model);
   c.q = q;
   c.qd = qd;
@@ -146,7 +146,7 @@ TEST(HardConditioning, TwoHundredAndOneThousandLinkChains) {
         scaled_chain(n, [](int) { return 0.05; },
                      [n](int i) { return 0.1 + 0.9 * (n - i) / n; }),
         "link0", "tip");
-    ASSERT_EQ(m.num_joints(), n);
+    ASSERT_EQ(m.num_rates(), n);
     check(std::to_string(n) + " links", m, wavy(n, 0.2), wavy(n, 1.0));
   }
 }

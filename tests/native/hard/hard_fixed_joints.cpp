@@ -168,7 +168,7 @@ void expect_same(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const char*
 TEST(HardFixedJoints, MergedByHandWithAMasslessToolFrameGivesTheSameResults) {
   const Model a = load_urdf_string(chain_urdf(with_fixed()), "link0", "tool");
   const Model b = load_urdf_string(chain_urdf(merged(true)), "link0", "tool");
-  ASSERT_EQ(a.num_joints(), 3);
+  ASSERT_EQ(a.num_rates(), 3);
   ASSERT_EQ(a.num_links(), 8);
   ASSERT_EQ(b.num_links(), 4);
   Data da(a), db(b);

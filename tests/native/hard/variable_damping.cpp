@@ -57,7 +57,7 @@ TEST(VariableDamping, EqualsTruncateAwayFromTheRegion) {
     for (const std::vector<int>& held : {std::vector<int>{2, 3}, std::vector<int>{0, 1, 2}}) {
       Case c = Case::zeros(m);
       c.q = r.q0;
-      c.qd = Eigen::VectorXd::Constant(m.num_joints(), 0.3);
+      c.qd = Eigen::VectorXd::Constant(m.num_rates(), 0.3);
       c.alpha.setZero(6, static_cast<int>(held.size()));
       c.beta.resize(static_cast<int>(held.size()));
       for (std::size_t j = 0; j < held.size(); ++j) {

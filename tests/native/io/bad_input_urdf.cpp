@@ -171,11 +171,11 @@ TEST(BadInputUrdf, LongChainLoadsAndSolvesFinitely) {
   const Model m = load_urdf_string(chain_urdf(links), "link0", "link10000");
   // ~0.7 s in Release, ~6 s under ASan: linear; a quadratic check would take minutes.
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30);
-  ASSERT_EQ(m.num_joints(), 10000);
+  ASSERT_EQ(m.num_rates(), 10000);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   Case c = Case::zeros(m);
-  for (int i = 0; i < m.num_joints(); ++i) c.q[i] = u(rng);
+  for (int i = 0; i < m.num_rates(); ++i) c.q[i] = u(rng);
   c.gravity = Vector3(0, 0, -9.81);
   Data d(m);
   hybrid_dynamics(m, d, c);
@@ -209,7 +209,7 @@ TEST(BadInputUrdf, MimicJointsAreCoupledByDefault) {
   UrdfOptions independent;
   independent.mimic = MimicJoints::Independent;
   const Model m = load_urdf_string(with, "a", "c", independent), plain = load_urdf_string(without, "a", "c");
-  ASSERT_EQ(m.num_joints(), 2);
+  ASSERT_EQ(m.num_rates(), 2);
   for (int i = 0; i < 2; ++i) {
     EXPECT_EQ(m.bodies[i].X_tree.R, plain.bodies[i].X_tree.R);
     EXPECT_EQ(m.bodies[i].X_tree.p, plain.bodies[i].X_tree.p);

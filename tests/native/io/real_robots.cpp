@@ -74,7 +74,7 @@ Outcome load(const std::string& file) {
   }
   for (const std::string& o : named) out.loads_with += (out.loads_with.empty() ? "" : " ") + o;
   if (named.empty()) out.loads_with = "defaults";
-  out.joints = out.model.num_joints() - (out.model.floating ? 6 : 0);
+  out.joints = out.model.num_rates() - (out.model.floating ? 6 : 0);
   out.links = out.model.num_links() + 1;
   out.warnings = static_cast<int>(out.model.warnings.size());
   return out;
@@ -137,7 +137,7 @@ TEST(RealRobots, EveryUrdfOfTheCollectionLoadsOrNamesItsOption) {
     Data data(model);
     hybrid_dynamics(model, data, c);
     ASSERT_TRUE(data.qdd.allFinite());
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.num_joints());
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.num_rates());
     const Eigen::VectorXd gravity_torques = rnea(model, c.q, zero, zero, c.gravity);
     const Eigen::VectorXd tau = rnea(model, c.q, zero, data.qdd, c.gravity);
     EXPECT_LE((tau - data.joint_torques).cwiseAbs().maxCoeff(),

@@ -112,7 +112,7 @@ TEST(FrequencyControl, GainsFollowTheInertiaEachJointMoves) {
   Simulator standing(quad);
   Eigen::VectorXd q0 = default_pose(quad);
   q0[2] = 0.3;
-  standing.reset(q0, Eigen::VectorXd::Zero(quad.num_joints()));
+  standing.reset(q0, Eigen::VectorXd::Zero(quad.num_rates()));
   JointControl g;
   g.target = q0;
   g.frequency = 5;

@@ -52,7 +52,7 @@ TEST(TreeValidation, AJointWhoseEveryBranchTakesItsMotionUpMovesNothing) {
 TEST(TreeValidation, OneBranchThatCannotTakeTheMotionUpIsEnough) {
   EXPECT_EQ(load_error(hub("0.2 0 0", "1 0 0")), "");
   const Model m = load_urdf_string(hub("0.2 0 0", "1 0 0"), "base", "");
-  ASSERT_EQ(m.num_joints(), 3);
+  ASSERT_EQ(m.num_rates(), 3);
   EXPECT_EQ(m.bodies[1].parent, 0);
   EXPECT_EQ(m.bodies[2].parent, 0);
 }

@@ -109,11 +109,11 @@ double rel(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 }
 
 void expect_same_model(const Model& a, const Model& b) {  // bit for bit
-  ASSERT_EQ(a.num_joints(), b.num_joints());
+  ASSERT_EQ(a.num_rates(), b.num_rates());
   ASSERT_EQ(a.num_links(), b.num_links());
   EXPECT_EQ(a.root_name, b.root_name);
   EXPECT_EQ(a.tip_name, b.tip_name);
-  for (int i = 0; i < a.num_joints(); ++i) {
+  for (int i = 0; i < a.num_rates(); ++i) {
     const Body &x = a.bodies[i], &y = b.bodies[i];
     EXPECT_EQ(x.joint_name, y.joint_name);
     EXPECT_EQ(x.link_name, y.link_name);
@@ -136,7 +136,7 @@ void expect_same_model(const Model& a, const Model& b) {  // bit for bit
 // Bodies in depth-first order: each body's subtree (the bodies it is an ancestor of) is the
 // range right after it; links after the root with parents before children.
 void expect_depth_first(const Model& m) {
-  const int n = m.num_joints();
+  const int n = m.num_rates();
   auto below = [&](int j, int i) {  // j in the subtree of i
     for (int k = j; k >= 0; k = m.bodies[k].parent)
       if (k == i) return true;
@@ -170,7 +170,7 @@ TEST(UrdfTrees, QuadrupedWholeTreeIsFourLegsInFileOrder) {
   const Model m = load_urdf_file(robot_path("quadruped"), "", "");
   EXPECT_EQ(m.root_name, "trunk");
   EXPECT_FALSE(m.has_tip());
-  ASSERT_EQ(m.num_joints(), 12);
+  ASSERT_EQ(m.num_rates(), 12);
   EXPECT_EQ(parents(m), (std::vector<int>{-1, 0, 1, -1, 3, 4, -1, 6, 7, -1, 9, 10}));
   const std::vector<std::string> legs = {"lf", "rf", "lh", "rh"};
   for (int leg = 0; leg < 4; ++leg) {
@@ -193,7 +193,7 @@ TEST(UrdfTrees, QuadrupedWholeTreeIsFourLegsInFileOrder) {
 TEST(UrdfTrees, DualArmTorsoHasTwoArmsOnTheWaist) {
   const Model m = load_urdf_file(robot_path("dual_arm_torso"), "", "");
   EXPECT_EQ(m.root_name, "base_link");
-  ASSERT_EQ(m.num_joints(), 15);
+  ASSERT_EQ(m.num_rates(), 15);
   EXPECT_EQ(parents(m), (std::vector<int>{-1, 0, 1, 2, 3, 4, 5, 6, 0, 8, 9, 10, 11, 12, 13}));
   EXPECT_EQ(m.bodies[1].joint_name, "left_joint_1");
   EXPECT_EQ(m.bodies[8].joint_name, "right_joint_1");
@@ -214,7 +214,7 @@ TEST(UrdfTrees, PandaFingersAreCoupledAsATreeAndLockedInAChain) {
   UrdfOptions independent;
   independent.mimic = MimicJoints::Independent;
   const Model tree = load_urdf_file(robot_path("panda_fingers"), "", "", independent);
-  ASSERT_EQ(tree.num_joints(), 9);
+  ASSERT_EQ(tree.num_rates(), 9);
   EXPECT_EQ(parents(tree), (std::vector<int>{-1, 0, 1, 2, 3, 4, 5, 6, 6}));
   EXPECT_EQ(tree.bodies[7].joint_name, "panda_finger_joint1");
   EXPECT_EQ(tree.bodies[7].type, JointType::Prismatic);
@@ -222,7 +222,7 @@ TEST(UrdfTrees, PandaFingersAreCoupledAsATreeAndLockedInAChain) {
   // The chain to the hand: the fingers are side branches, locked at 0 (the mimic joint is
   // not a joint of the model, so no option is needed) and their mass rides on joint 7.
   const Model chain = load_urdf_file(robot_path("panda_fingers"), "panda_link0", "panda_hand");
-  ASSERT_EQ(chain.num_joints(), 7);
+  ASSERT_EQ(chain.num_rates(), 7);
   ASSERT_EQ(chain.locked_joints.size(), 2u);
   EXPECT_EQ(chain.locked_joints[0].name, "panda_finger_joint1");
   EXPECT_EQ(chain.locked_joints[1].name, "panda_finger_joint2");
@@ -259,7 +259,7 @@ TEST(UrdfTrees, AFixedSideLinkCountsAsItsMassMergedByHand) {
     const Model merged = load_urdf_string(arm(camera_on_link1(xyz, rpy)), "base", "tool");
     const Model by_hand =
         load_urdf_string(arm("", combine(kLink1, kCamera, rpy_matrix(rpy), xyz)), "base", "tool");
-    ASSERT_EQ(merged.num_joints(), 2);
+    ASSERT_EQ(merged.num_rates(), 2);
     EXPECT_EQ(merged.num_links(), plain.num_links());  // the chain's links: the path's
     EXPECT_TRUE(merged.locked_joints.empty());
     EXPECT_LE(rel(merged.bodies[0].inertia, by_hand.bodies[0].inertia), 1e-12);
@@ -353,7 +353,7 @@ TEST(UrdfTrees, ErrorsNameTheLinkOrJoint) {
   expect_error([&] { load_urdf_string(arm(bad_side), "base", "tool"); }, "joint 'float': unsupported joint type 'floating'");
   UrdfOptions ignore;
   ignore.side_branches = SideBranches::Ignore;
-  EXPECT_EQ(load_urdf_string(arm(bad_side), "base", "tool", ignore).num_joints(), 2);
+  EXPECT_EQ(load_urdf_string(arm(bad_side), "base", "tool", ignore).num_rates(), 2);
   Inertial negative = kCamera;
   negative.mass = -1;
   expect_error([&] { load_urdf_string(arm(joint("c", "fixed", "link2", "cam", Vector3::Zero(), Vector3::Zero()) +
@@ -370,8 +370,8 @@ TEST(UrdfTrees, IndexTreesLoadWithTheirPosesAndHeldLinks) {
   for (const test::IndexedRobot& r : trees) {
     SCOPED_TRACE(r.name);
     EXPECT_FALSE(r.model.has_tip());
-    ASSERT_EQ(r.q0.size(), r.model.num_joints());
-    for (int i = 0; i < r.model.num_joints(); ++i) {
+    ASSERT_EQ(r.q0.size(), r.model.num_rates());
+    for (int i = 0; i < r.model.num_rates(); ++i) {
       EXPECT_GT(r.q0[i], r.model.bodies[i].limits.lower) << r.model.bodies[i].joint_name;
       EXPECT_LT(r.q0[i], r.model.bodies[i].limits.upper) << r.model.bodies[i].joint_name;
     }
@@ -379,9 +379,9 @@ TEST(UrdfTrees, IndexTreesLoadWithTheirPosesAndHeldLinks) {
     for (const std::string& link : r.constraints) EXPECT_GE(r.model.link_index(link), 0) << link;
     expect_depth_first(r.model);
   }
-  EXPECT_EQ(trees[0].model.num_joints(), 12);
-  EXPECT_GE(trees[1].model.num_joints(), 15);
-  EXPECT_EQ(trees[2].model.num_joints(), 9);
+  EXPECT_EQ(trees[0].model.num_rates(), 12);
+  EXPECT_GE(trees[1].model.num_rates(), 15);
+  EXPECT_EQ(trees[2].model.num_rates(), 9);
 }
 
 }  // namespace

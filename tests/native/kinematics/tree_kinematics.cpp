@@ -27,7 +27,7 @@ TEST(TreeKinematics, PosesVelocitiesAndLinkJacobiansMatchTheReference) {
   for_random_trees(1501, kTrees, [&](const RandomTree& t, std::mt19937& rng) {
     const Model& m = t.model;
     const Case c = random_tree_inputs(rng, m);
-    const std::vector<FrameMotion> ref = reference_motion(m, c.q, c.qd, Eigen::VectorXd::Zero(m.num_joints()));
+    const std::vector<FrameMotion> ref = reference_motion(m, c.q, c.qd, Eigen::VectorXd::Zero(m.num_rates()));
     const std::vector<Transform> poses = forward_kinematics(m, c.q);
     const std::vector<Vector6> velocities = link_velocities(m, c.q, c.qd);
     ChainWorkspace ws(m);
@@ -47,9 +47,9 @@ TEST(TreeKinematics, PosesVelocitiesAndLinkJacobiansMatchTheReference) {
       EXPECT_LE(e_vel, 1e-12) << "link " << m.links[l].name;
       EXPECT_LE(e_jac, 1e-12) << "link " << m.links[l].name;
       // Joints off the link's path have zero columns.
-      std::vector<bool> on_path(m.num_joints(), false);
+      std::vector<bool> on_path(m.num_rates(), false);
       for (int b = m.links[l].body; b >= 0; b = m.bodies[b].parent) on_path[b] = true;
-      for (int j = 0; j < m.num_joints(); ++j)
+      for (int j = 0; j < m.num_rates(); ++j)
         if (!on_path[j]) EXPECT_TRUE(J.col(j).isZero(0)) << "link " << l << " joint " << j;
       worst_pose = std::max(worst_pose, e_pose);
       worst_vel = std::max(worst_vel, e_vel);
@@ -67,9 +67,9 @@ TEST(TreeKinematics, RneaAndCrbaMatchTheReference) {
   double worst_tau = 0, worst_M = 0;
   for_random_trees(1502, kTrees, [&](const RandomTree& t, std::mt19937& rng) {
     Model m = t.model;
-    for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
+    for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
     const Case c = random_tree_inputs(rng, m);
-    const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(m.num_joints(), [&] { return uniform(rng, -3, 3); });
+    const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(m.num_rates(), [&] { return uniform(rng, -3, 3); });
     const double e_tau = rel_error(rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05),
                                    reference_rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05));
     const double e_M = matrix_error(crba(m, c.q), reference_crba(m, c.q));
@@ -86,10 +86,10 @@ TEST(TreeKinematics, RneaAndCrbaMatchTheReference) {
 // (the loader orders a tree's bodies depth-first). Returns the largest relative error.
 double loaded_model_error(const RandomTree& t, const Model& loaded, std::mt19937& rng) {
   const Model& m = t.model;
-  EXPECT_EQ(loaded.num_joints(), m.num_joints());
+  EXPECT_EQ(loaded.num_rates(), m.num_rates());
   EXPECT_EQ(loaded.num_links(), m.num_links());
-  if (loaded.num_joints() != m.num_joints() || loaded.num_links() != m.num_links()) return INFINITY;
-  const int n = m.num_joints();
+  if (loaded.num_rates() != m.num_rates() || loaded.num_links() != m.num_links()) return INFINITY;
+  const int n = m.num_rates();
   std::vector<int> joint(n), link(m.num_links());
   for (int i = 0; i < n; ++i)
     if ((joint[i] = loaded.joint_index(m.bodies[i].joint_name)) < 0) return INFINITY;
@@ -147,7 +147,7 @@ TEST(TreeUrdf, WholeTreeLoadsAsTheSameTree) {
 TEST(TreeKinematics, LinkJacobianNamesALinkOutOfRange) {
   std::mt19937 rng(1503);
   const RandomTree t = random_tree(rng, 3);
-  const Eigen::VectorXd q = Eigen::VectorXd::Zero(t.model.num_joints());
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(t.model.num_rates());
   for (const int link : {-1, t.model.num_links()}) {
     try {
       link_jacobian(t.model, q, link);

@@ -76,7 +76,7 @@ RandomChain random_chain(std::mt19937& rng, int num_links, bool allow_fixed) {
 }
 
 Case random_case(std::mt19937& rng, const Model& model, int num_constraints) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   Case c;
   c.q = Eigen::VectorXd::NullaryExpr(n, [&] { return uniform(rng, -M_PI, M_PI); });
   c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return uniform(rng, -2, 2); });
@@ -129,7 +129,7 @@ int tip_jacobian_rank(const Model& model, const Eigen::VectorXd& q) {
 
 int tip_jacobian_rank(std::mt19937& rng, const Model& model) {
   return tip_jacobian_rank(model, Eigen::VectorXd::NullaryExpr(
-                                      model.num_joints(), [&] { return uniform(rng, -M_PI, M_PI); }));
+                                      model.num_rates(), [&] { return uniform(rng, -M_PI, M_PI); }));
 }
 
 double rel_error(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {

@@ -92,7 +92,7 @@ Model tree_model(const std::vector<TreeLink>& links, const std::string& tip) {
       b.damping = l.damping;
       b.friction = l.friction;
       m.bodies.push_back(b);
-      body[k] = m.num_joints() - 1;
+      body[k] = m.num_rates() - 1;
       in_body[k] = inverse(joint);
     }
     link.body = body[k];
@@ -183,7 +183,7 @@ std::string tree_urdf(const std::vector<TreeLink>& links) {
 }
 
 Case random_tree_inputs(std::mt19937& rng, const Model& model) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   Case c;
   c.q = Eigen::VectorXd::NullaryExpr(n, [&] { return uniform(rng, -M_PI, M_PI); });
   c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return uniform(rng, -2, 2); });
@@ -195,7 +195,7 @@ Case random_tree_inputs(std::mt19937& rng, const Model& model) {
 }
 
 Eigen::MatrixXd stacked_constraint_jacobian(const Model& model, const Case& c) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   const std::vector<FrameMotion> frames = reference_motion(model, c.q, zero, zero);
   Eigen::MatrixXd A(c.num_constraints(), n);
@@ -216,7 +216,7 @@ Eigen::MatrixXd stacked_constraint_jacobian(const Model& model, const Case& c) {
 double tree_coupling_condition(const Model& model, const Case& c) {
   const int nc = c.num_constraints();
   if (nc == 0) return 1;
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   std::vector<int> free;
   for (int i = 0; i < n; ++i)
     if (!c.any_prescribed() || !c.prescribed[i]) free.push_back(i);
@@ -250,7 +250,7 @@ std::optional<Case> with_random_blocks(std::mt19937& rng, const Model& model, Ca
     for (int k = 0; k < blocks; ++k) {
       const int link = movable[k];
       const int most = std::min({kMaxConstraints, depth[link], max_columns - columns,
-                                 model.num_joints() - columns});
+                                 model.num_rates() - columns});
       if (most < 1) break;
       ConstraintBlock b;
       b.link = link;
@@ -292,7 +292,7 @@ std::optional<Case> random_tree_case(std::mt19937& rng, const Model& model, int 
 }
 
 void prescribe_random_joints(std::mt19937& rng, const Model& model, Case& c, double share) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   c.prescribed.assign(n, false);
   c.qdd_given = Eigen::VectorXd::NullaryExpr(n, [&] { return uniform(rng, -3, 3); });
   int free = n;

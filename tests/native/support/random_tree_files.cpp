@@ -30,7 +30,7 @@ json case_json(const achd::Model& m, const achd::Case& c) {
   j["q"] = json::object();
   j["qd"] = json::object();
   j["ff_torques"] = json::object();
-  for (int i = 0; i < m.num_joints(); ++i) {
+  for (int i = 0; i < m.num_rates(); ++i) {
     const std::string& name = m.bodies[i].joint_name;
     j["q"][name] = c.q[i];
     if (c.qd.size()) j["qd"][name] = c.qd[i];

@@ -59,7 +59,7 @@ Matrix6 joint_motion_transform(const Body& b, double q) {
 // Xup_i = XJ(q_i) XT_i, XT_i from X_tree (parent body frame -> body frame at q = 0).
 std::vector<Matrix6> parent_to_body(const Model& model, const Eigen::VectorXd& q) {
   std::vector<Matrix6> Xup;
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     Xup.push_back(joint_motion_transform(b, q[i]) * motion_transform(b.X_tree.R, b.X_tree.p));
   }
@@ -76,7 +76,7 @@ struct Pose {
 
 std::vector<Pose> body_poses_in_base(const Model& model, const Eigen::VectorXd& q) {
   std::vector<Pose> pose;
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const Pose parent = b.parent < 0 ? Pose{} : pose[b.parent];
     const Pose at_zero = parent.then(b.X_tree.R, b.X_tree.p);
@@ -97,7 +97,7 @@ Eigen::VectorXd reference_rnea(const Model& model, const Eigen::VectorXd& q,
                                const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
                                const Vector3& gravity, const std::vector<Vector6>& f_ext,
                                std::uint32_t effects, double friction_velocity) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   const std::vector<Matrix6> Xup = parent_to_body(model, q);
   const bool products = effects & kVelocityProducts;
   // a_0 = -a_g: gravity as the base accelerating upward.
@@ -142,7 +142,7 @@ Eigen::VectorXd reference_rnea(const Model& model, const Eigen::VectorXd& q,
 }
 
 Eigen::MatrixXd reference_crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   const std::vector<Matrix6> Xup = parent_to_body(model, q);
   std::vector<Matrix6> Ic(n);
   for (int i = 0; i < n; ++i) Ic[i] = model.bodies[i].inertia;

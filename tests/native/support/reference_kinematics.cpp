@@ -10,8 +10,8 @@ bool is_prismatic(const Body& b) { return b.type == JointType::Prismatic; }
 // Every body's frame motion, root to tip: X_i = X_p X_tree,i X_joint(q_i).
 std::vector<FrameMotion> body_motion(const Model& model, const Eigen::VectorXd& q,
                                      const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd) {
-  std::vector<FrameMotion> m(model.num_joints());
-  for (int i = 0; i < model.num_joints(); ++i) {
+  std::vector<FrameMotion> m(model.num_rates());
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const FrameMotion parent = b.parent < 0 ? FrameMotion() : m[b.parent];
     FrameMotion& f = m[i];
@@ -69,7 +69,7 @@ std::vector<FrameMotion> reference_motion(const Model& model, const Eigen::Vecto
 }
 
 Eigen::MatrixXd reference_link_jacobian(const Model& model, const Eigen::VectorXd& q, int link) {
-  const int n = model.num_joints();
+  const int n = model.num_rates();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   const std::vector<FrameMotion> bodies = body_motion(model, q, zero, zero);
   const Link& l = model.links[link];

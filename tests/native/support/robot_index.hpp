@@ -15,7 +15,7 @@ struct IndexedRobot {
   std::vector<std::string> constraints;  // a tree's default held links
   UrdfOptions options;                   // its "mimic" option
   Model model;
-  bool has_fixed_joints() const { return model.num_links() != model.num_joints(); }
+  bool has_fixed_joints() const { return model.num_links() != model.num_rates(); }
 };
 
 // Reads `source_dir`/robots/index.json and loads every chain through load_urdf_string.

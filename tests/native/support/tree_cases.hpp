@@ -39,7 +39,7 @@ int for_tree_cases(unsigned seed, F f) {
   int cases = 0;
   auto run = [&](const RandomTree& t, std::mt19937& rng, const std::vector<int>& arm_tips) {
     Model m = t.model;
-    for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
+    for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
     for (int variant = 0; variant < 3; ++variant) {
       std::optional<Case> blocks;
       if (variant == 0 && arm_tips.empty()) {
