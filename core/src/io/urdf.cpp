@@ -141,10 +141,17 @@ class Walk {
   }
 
   // The couplings of the movable <mimic> joints placed as bodies (MimicJoints::Couple):
-  // each to its leader, which must be a movable joint of the model too.
-  void add_couplings() const {
+  // each to its leader, which must be a movable joint of the model too. A <mimic> naming a
+  // joint the file does not have at all couples to nothing: its joint moves on its own,
+  // with a warning (a leader the file has but the model holds fixed is an error).
+  void add_couplings() {
     for (const urdf::Joint* j : mimics_) {
       const int follower = model_.joint_index(j->name), leader = model_.joint_index(j->mimic->joint_name);
+      if (!urdf_.getJoint(j->mimic->joint_name)) {
+        model_.warnings.push_back("joint '" + j->name + "': <mimic> of joint '" + j->mimic->joint_name +
+                                  "', which the file does not have: it moves on its own");
+        continue;
+      }
       if (leader < model_.free_joint_rates())
         throw Error("joint '" + j->name + "': <mimic> of joint '" + j->mimic->joint_name +
                     "', which is not a movable joint of the loaded robot (fixed, locked or not loaded); load with "

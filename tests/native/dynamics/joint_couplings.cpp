@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <regex>
 #include <string>
 
 #include <Eigen/Dense>
@@ -67,6 +68,27 @@ TEST(JointCouplings, PandaLoadsWithItsFingersCoupled) {
   UrdfOptions independent;
   independent.mimic = MimicJoints::Independent;
   EXPECT_TRUE(load_urdf_file(kRobots + "panda_description/urdf/panda.urdf", "", "", independent).couplings.empty());
+}
+
+// A <mimic> naming a joint the file does not have couples to nothing: its joint loads as
+// a joint of its own, with a warning naming both (a leader the file has but the model
+// holds fixed stays an error: tests/native/cli/bad_input_cli.cpp).
+TEST(JointCouplings, AMimicOfAJointTheFileDoesNotHaveLoadsWithAWarning) {
+  const std::string link = R"(<link name="NAME"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>)";
+  const auto named = [&](const std::string& name) { return std::regex_replace(link, std::regex("NAME"), name); };
+  const std::string urdf = "<robot name=\"r\">" + named("base") + named("a") + named("b") +
+                           R"(<joint name="ja" type="revolute"><parent link="base"/><child link="a"/>
+                                <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+                              <joint name="jb" type="revolute"><parent link="a"/><child link="b"/>
+                                <origin xyz="0.1 0 0"/><axis xyz="0 1 0"/>
+                                <limit lower="-1" upper="1" effort="1" velocity="1"/>
+                                <mimic joint="gone" multiplier="2"/></joint></robot>)";
+  const Model m = load_urdf_string(urdf, "", "");
+  EXPECT_TRUE(m.couplings.empty());
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("joint 'jb': <mimic> of joint 'gone', which the file does not have"), std::string::npos)
+      << m.warnings[0];
 }
 
 // Without other constraints: the KKT system [M C^T; C 0] [qdd; nu_c] = [tau - h; 0] of

@@ -126,7 +126,9 @@ TEST(RealRobots, EveryUrdfOfTheCollectionLoadsOrNamesItsOption) {
       // The error named the option and said why, in one line.
       EXPECT_EQ(o.error.find('\n'), std::string::npos) << o.error;
     }
-    for (const std::string& w : o.model.warnings) EXPECT_NE(w.find("link '"), std::string::npos) << w;
+    // Every warning names the link or joint it is about.
+    for (const std::string& w : o.model.warnings)
+      EXPECT_TRUE(w.rfind("link '", 0) == 0 || w.rfind("joint '", 0) == 0) << w;
 
     // A solve at rest under gravity: finite, and RNEA at the solved qdd gives back
     // joint_torques (the coupled joints' torques -C^T nu_c; zero without couplings),
