@@ -78,6 +78,7 @@ nlohmann::ordered_json study_json(const Study& study) {
     }
   j["reference"] = {{"integrator", "rk4"},
                     {"dt_s", ref.dt},
+                    {"halvings", ref.halvings},  // of the study's reference_dt (refine_reference)
                     {"self_error_q_rad", ref.self_error_q},
                     {"self_error_qd_rad_s", ref.self_error_qd},
                     {"smallest_error_q_rad", value(smallest)},

@@ -40,6 +40,14 @@ bool holds_directions(const Scene& scene) {
   return false;
 }
 
+// The error and stability of a run that ended in `end`, against the reference.
+void score(const EndState& end, const Reference& ref, StudyRun& r) {
+  r.error_q = end.finite ? max_abs_difference(end.q, ref.end.q) : INFINITY;
+  r.error_qd = end.finite ? max_abs_difference(end.qd, ref.end.qd) : INFINITY;
+  r.stable = end.finite && std::isfinite(r.error_qd) && r.error_q <= kUnstableError;
+  r.status = r.stable ? "ok" : end.finite && std::isfinite(r.error_qd) ? "diverged" : "unstable";
+}
+
 // Error, drifts and stability of a run that ended in `end`, against the reference.
 StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt, double duration,
                  const Reference& ref) {
@@ -47,10 +55,7 @@ StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt
   r.integrator = integrator_name(options.integrator);
   r.dt = dt;
   r.steps = steps_for_duration(duration, dt);
-  r.error_q = end.finite ? max_abs_difference(end.q, ref.end.q) : INFINITY;
-  r.error_qd = end.finite ? max_abs_difference(end.qd, ref.end.qd) : INFINITY;
-  r.stable = end.finite && std::isfinite(r.error_qd) && r.error_q <= kUnstableError;
-  r.status = r.stable ? "ok" : end.finite && std::isfinite(r.error_qd) ? "diverged" : "unstable";
+  score(end, ref, r);
   r.energy_drift = end.energy_drift;
   for (int k = 0; k < kNumDirections; ++k) {  // x, y, z first, then rx, ry, rz
     double& drift = k < 3 ? r.held_drift_linear : r.held_drift_angular;
@@ -120,8 +125,8 @@ double knob_step(const Scene& scene, const std::vector<StudyRun>& ladder) {
 // the default.
 // Keep knob_runs() below in step with the runs added here.
 void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConfig& config,
-               const Reference& ref, std::vector<StudyRun>& runs, std::vector<TimedRun>& queue,
-               const StepObserver& observe) {
+               const Reference& ref, std::vector<StudyRun>& runs, std::vector<EndState>& ends,
+               std::vector<TimedRun>& queue, const StepObserver& observe) {
   const double dt = knob_step(scene, runs);
   if (!(dt > 0)) return;
   // The default solve of each integrator, computed when a knob first needs it.
@@ -140,6 +145,7 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
     r.change_q = end.finite && d.finite ? max_abs_difference(end.q, d.q) : INFINITY;
     queue.push_back({o, dt, r.steps, runs.size()});
     runs.push_back(r);
+    ends.push_back(end);
   };
   add("default", "", base);
   SimulatorOptions o = base;
@@ -264,7 +270,30 @@ Reference reference_run(const Scene& scene, const SimulatorOptions& options, dou
       throw Error("accuracy: the RK4 reference run at dt " + number_text(step) + " s failed: " + end.failure);
   ref.self_error_q = max_abs_difference(ref.end.q, half.q);
   ref.self_error_qd = max_abs_difference(ref.end.qd, half.qd);
+  ref.finer = half;
   return ref;
+}
+
+void refine_reference(const Scene& scene, const SimulatorOptions& options, double duration, double wanted,
+                      double max_steps, Reference& ref, const StepObserver& observe) {
+  SimulatorOptions o = options;
+  o.integrator = Integrator::RK4;
+  double steps = 0;
+  while (ref.self_error_q > wanted && ref.halvings < kMaxReferenceHalvings) {
+    const double dt = ref.dt / 4;
+    steps += duration / dt;
+    if (steps > max_steps) return;
+    const EndState finest = run_to_end(scene, o, dt, duration, observe);
+    if (!finest.finite) return;  // the coarser pair stays the reference
+    const double self_error_q = max_abs_difference(ref.finer.q, finest.q);
+    if (!(self_error_q <= ref.self_error_q / 4)) return;  // round-off: halving gains nothing
+    ref.dt /= 2;
+    ref.end = ref.finer;
+    ref.finer = finest;
+    ref.self_error_q = self_error_q;
+    ref.self_error_qd = max_abs_difference(ref.end.qd, ref.finer.qd);
+    ++ref.halvings;
+  }
 }
 
 StudyConfig default_config(const Scene& scene, bool quick) {
@@ -295,17 +324,15 @@ Study run_study(const Scene& scene, const StudyConfig& config, const StepObserve
 
   study.reference = reference_run(scene, base, config.reference_dt, config.duration, observe);
   std::vector<TimedRun> queue;
+  std::vector<EndState> ends;  // of each run, to score it again against a refined reference
   for (Integrator integrator : kLadderIntegrators) {
     SimulatorOptions o = base;
     o.integrator = integrator;
     for (std::size_t i = 0; i < config.dts.size(); ++i) {
       const double dt = config.dts[i];
-      StudyRun r = measure(run_to_end(scene, o, dt, config.duration, observe), o, dt, config.duration, study.reference);
+      ends.push_back(run_to_end(scene, o, dt, config.duration, observe));
+      StudyRun r = measure(ends.back(), o, dt, config.duration, study.reference);
       r.kind = "integrator";
-      // Observed order p from e ~ C dt^p between this step and the previous one.
-      const StudyRun* previous = i > 0 ? &study.runs.back() : nullptr;
-      if (previous && previous->stable && r.stable)
-        r.order = std::log(previous->error_q / r.error_q) / std::log(previous->dt / r.dt);
       queue.push_back({o, dt, r.steps, study.runs.size()});
       study.runs.push_back(r);
     }
@@ -319,14 +346,36 @@ Study run_study(const Scene& scene, const StudyConfig& config, const StepObserve
     o.integrator = Integrator::DormandPrince;
     o.rtol = rtol;
     o.atol = rtol / 100;
-    StudyRun r = measure(run_to_end(scene, o, adaptive_dt, config.duration, observe), o, adaptive_dt,
-                         config.duration, study.reference);
+    ends.push_back(run_to_end(scene, o, adaptive_dt, config.duration, observe));
+    StudyRun r = measure(ends.back(), o, adaptive_dt, config.duration, study.reference);
     r.kind = "integrator";
     r.setting = "rtol " + number_text(rtol);
     queue.push_back({o, adaptive_dt, r.steps, study.runs.size()});
     study.runs.push_back(r);
   }
-  if (config.knobs) run_knobs(scene, base, config, study.reference, study.runs, queue, observe);
+  if (config.knobs) run_knobs(scene, base, config, study.reference, study.runs, ends, queue, observe);
+  // A reference a tenth of the smallest stable integrator error off, or as close as
+  // refine_reference gets: the smallest error measured against a coarse reference is
+  // partly the reference's own, so each refinement scores the runs again and asks anew.
+  for (;;) {
+    double smallest = INFINITY;
+    for (const StudyRun& r : study.runs)
+      if (r.kind == "integrator" && r.stable) smallest = std::min(smallest, r.error_q);
+    const int halvings = study.reference.halvings;
+    if (std::isfinite(smallest))
+      refine_reference(scene, base, config.duration, smallest / 10, kMaxStudySteps - planned, study.reference,
+                       observe);
+    if (study.reference.halvings == halvings) break;
+    for (std::size_t i = 0; i < study.runs.size(); ++i) score(ends[i], study.reference, study.runs[i]);
+  }
+  // Observed order p from e ~ C dt^p between each ladder step and the previous one.
+  for (std::size_t i = 1; i < study.runs.size(); ++i) {
+    StudyRun& r = study.runs[i];
+    const StudyRun& previous = study.runs[i - 1];
+    if (r.kind == "integrator" && r.setting.empty() && previous.integrator == r.integrator &&
+        previous.setting.empty() && previous.kind == "integrator" && previous.stable && r.stable)
+      r.order = std::log(previous.error_q / r.error_q) / std::log(previous.dt / r.dt);
+  }
   time_interleaved(scene, queue, config, study.runs, observe);
   // The error-cost front of the integrator runs (fixed steps and tolerances together).
   std::vector<CostError> points;

@@ -11,7 +11,9 @@
 //            on a shared machine it leaves out the time spent descheduled), and per
 //            simulated second: ns_per_step / dt.
 // The reference is RK4 at dt_ref; its own error is estimated as max|q(dt_ref) -
-// q(dt_ref / 2)| (the change when its step is halved).
+// q(dt_ref / 2)| (the change when its step is halved). A study then halves dt_ref again
+// (refine_reference) until that estimate is at most a tenth of the smallest error it
+// measured, so that its best rows are ranked by their own errors, not the reference's.
 //
 // Every run is the simulator as a user configures it with the scene: the same equations
 // at every dt (friction's smoothing velocity and the Baumgarte frequency are the scene's
@@ -57,11 +59,24 @@ double max_abs_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
 struct Reference {
   double dt = 0;
   EndState end;          // RK4 at dt
+  EndState finer;        // RK4 at dt / 2
   double self_error_q = 0;   // max|q(dt) - q(dt / 2)|, rad
   double self_error_qd = 0;  // max|qd(dt) - qd(dt / 2)|, rad/s
+  int halvings = 0;          // of the study's reference_dt by refine_reference
 };
 Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
                         const StepObserver& observe = {});
+
+// The most times refine_reference halves the reference's step (each costs as many steps as
+// the reference's two runs together, doubled every time).
+constexpr int kMaxReferenceHalvings = 4;
+
+// Halves ref's step (its run at dt / 2 becomes the reference, a run at dt / 4 its check)
+// while its self error is above `wanted`, at most kMaxReferenceHalvings times, and stops
+// when a halving no longer cuts the self error by 4 (RK4's error falls 16x per halving
+// until round-off takes over) or when the next halving would pass `max_steps` steps.
+void refine_reference(const Scene& scene, const SimulatorOptions& options, double duration, double wanted,
+                      double max_steps, Reference& ref, const StepObserver& observe = {});
 
 // A run is unstable when its state left the finite numbers or its error exceeds this.
 constexpr double kUnstableError = 1.0;  // rad
