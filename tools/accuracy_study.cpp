@@ -284,6 +284,7 @@ void refine_reference(const Scene& scene, const SimulatorOptions& options, doubl
     steps += duration / dt;
     if (steps > max_steps) return;
     const EndState finest = run_to_end(scene, o, dt, duration, observe);
+    ref.refinement_steps += steps_for_duration(duration, dt);
     if (!finest.finite) return;  // the coarser pair stays the reference
     const double self_error_q = max_abs_difference(ref.finer.q, finest.q);
     if (!(self_error_q <= ref.self_error_q / 4)) return;  // round-off: halving gains nothing

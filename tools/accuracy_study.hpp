@@ -63,6 +63,7 @@ struct Reference {
   double self_error_q = 0;   // max|q(dt) - q(dt / 2)|, rad
   double self_error_qd = 0;  // max|qd(dt) - qd(dt / 2)|, rad/s
   int halvings = 0;          // of the study's reference_dt by refine_reference
+  std::int64_t refinement_steps = 0;  // the steps refine_reference ran, kept or not
 };
 Reference reference_run(const Scene& scene, const SimulatorOptions& options, double dt, double duration,
                         const StepObserver& observe = {});
@@ -127,7 +128,8 @@ struct Study {
 StudyConfig default_config(const Scene& scene, bool quick);
 
 // The steps a study of `scene` takes: the reference, the ladder, the knobs (at the
-// scene's dt) and the timing runs. A double: it may be far beyond any integer type.
+// scene's dt) and the timing runs; and, not known before the runs, the reference's
+// refinement (Reference::refinement_steps). A double: it may be far beyond any integer type.
 double planned_steps(const Scene& scene, const StudyConfig& config);
 
 // The most steps run_study() takes on: about 5 minutes on the 7-DoF arm (docs/guide/accuracy-cost.md's
