@@ -139,7 +139,8 @@ ACHD_EXPORT int achd_robot_tip_jacobian(const Robot* r, const double* q, double*
 ACHD_EXPORT int achd_robot_mass_matrix(const Robot* r, const double* q, int rotor, double* out) {
   return achd::wasm::guarded([&] {
     const int n = r->model->num_joints();
-    const Eigen::MatrixXd M = achd::crba(*r->model, achd::wasm::vec(q, r->model->num_positions()), rotor != 0);
+    const achd::Options o = achd::with_effects(rotor != 0 ? achd::kDefaultEffects : achd::kDefaultEffects & ~achd::kRotorInertia);
+    const Eigen::MatrixXd M = achd::crba(*r->model, achd::wasm::vec(q, r->model->num_positions()), o);
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out, n, n) = M;
   });
 }
@@ -155,9 +156,10 @@ ACHD_EXPORT int achd_robot_rnea(const Robot* r, const double* q, const double* q
     std::vector<achd::Vector6> wrenches;
     if (f_ext)
       for (int l = 0; l < m.num_links(); ++l) wrenches.emplace_back(f_ext + 6 * l);
+    achd::Options o = achd::with_effects(effects);
+    o.friction_velocity = friction_velocity;
     const Eigen::VectorXd tau = achd::rnea(m, achd::wasm::vec(q, m.num_positions()), achd::wasm::vec(qd, n),
-                                           achd::wasm::vec(qdd, n), achd::Vector3(gravity),
-                                           wrenches, effects, friction_velocity);
+                                           achd::wasm::vec(qdd, n), achd::Vector3(gravity), wrenches, o);
     Eigen::Map<Eigen::VectorXd>(out, n) = tau;
   });
 }

@@ -51,6 +51,13 @@ struct Options {
   double friction_velocity = 0.05;  // friction = F tanh(qd / friction_velocity)
 };
 
+// The default options with other effects: rnea(model, q, qd, qdd, g, {}, with_effects(kGravity)).
+inline Options with_effects(std::uint32_t effects) {
+  Options o;
+  o.effects = effects;
+  return o;
+}
+
 // Throws achd::Error naming the option unless tolerance >= 0, damping > 0,
 // singular_region > 0, max_damping > 0 and friction_velocity > 0 are finite
 // (hybrid_dynamics calls it).

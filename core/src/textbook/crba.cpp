@@ -8,8 +8,9 @@
 
 namespace achd {
 
-void crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia, ChainWorkspace& ws,
+void crba(const Model& model, ChainWorkspace& ws, const Eigen::VectorXd& q, const Options& options,
           Eigen::MatrixXd& M) {
+  const bool rotor_inertia = options.effects & kRotorInertia;
   const int n = model.num_rates();
   check_workspace_call("crba", model, ws, q);
   std::vector<Transform>& Xup = ws.Xup;
@@ -58,10 +59,10 @@ void crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia, Chai
   }
 }
 
-Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, bool rotor_inertia) {
+Eigen::MatrixXd crba(const Model& model, const Eigen::VectorXd& q, const Options& options) {
   ChainWorkspace ws(model);
   Eigen::MatrixXd M(model.num_rates(), model.num_rates());
-  crba(model, q, rotor_inertia, ws, M);
+  crba(model, ws, q, options, M);
   return M;
 }
 

@@ -11,9 +11,11 @@
 
 namespace achd {
 
-void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+void rnea(const Model& model, ChainWorkspace& ws, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
           const Eigen::VectorXd& qdd, const Vector3& gravity, const std::vector<Vector6>& f_ext,
-          std::uint32_t effects, double friction_velocity, ChainWorkspace& ws, Eigen::VectorXd& tau) {
+          const Options& options, Eigen::VectorXd& tau) {
+  validate(options);
+  const std::uint32_t effects = options.effects;
   const int n = model.num_rates();
   check_workspace_call("rnea", model, ws, q);
   if (qd.size() != n || qdd.size() != n)
@@ -77,19 +79,18 @@ void rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& q
     tau[i] = is_rotational(b) ? z.dot(f[i].tail<3>()) : z.dot(f[i].head<3>());
     if (effects & kRotorInertia) tau[i] += b.rotor_inertia * qdd[i];
     if (effects & kDamping) tau[i] += b.damping * qd[i];
-    if (effects & kFriction) tau[i] += b.friction * std::tanh(qd[i] / friction_velocity);
+    if (effects & kFriction) tau[i] += b.friction * std::tanh(qd[i] / options.friction_velocity);
     if (b.parent >= 0) f[b.parent] += force_shift(f[i], r[i]);
   }
   if (floating) free_joint_torques_to_public(X0[kFreeJointBodies - 1].R, tau.data(), tau.data());
 }
 
 Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                     const Eigen::VectorXd& qdd, const Vector3& gravity,
-                     const std::vector<Vector6>& f_ext, std::uint32_t effects,
-                     double friction_velocity) {
+                     const Eigen::VectorXd& qdd, const Vector3& gravity, const std::vector<Vector6>& f_ext,
+                     const Options& options) {
   ChainWorkspace ws(model);
   Eigen::VectorXd tau(model.num_rates());
-  rnea(model, q, qd, qdd, gravity, f_ext, effects, friction_velocity, ws, tau);
+  rnea(model, ws, q, qd, qdd, gravity, f_ext, options, tau);
   return tau;
 }
 

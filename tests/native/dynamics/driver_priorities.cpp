@@ -86,7 +86,7 @@ TEST(DriverPriorities, EachDriverPassesThroughInProportionOneMinusItsWeight) {
     ASSERT_EQ(d.rank, c.num_constraints());
     // Dense: A = alpha^T J at each point, M with rotor inertia, J^T f_ext over the links.
     const Eigen::MatrixXd A = stacked_constraint_jacobian(m, c);
-    const Eigen::MatrixXd M = crba(m, c.q, true);
+    const Eigen::MatrixXd M = crba(m, c.q);
     Eigen::VectorXd JTf = Eigen::VectorXd::Zero(m.num_rates());
     for (int l = 0; l < m.num_links(); ++l)
       JTf += link_jacobian(m, c.q, l, Vector3::Zero()).transpose() * c.f_ext[l];

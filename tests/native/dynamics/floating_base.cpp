@@ -284,10 +284,10 @@ TEST(FloatingBase, ConstrainedIdentitiesAndReference) {
     Data d(m);
     hybrid_dynamics(m, d, c, o);
     worst_rnea = std::max(worst_rnea, rel_error(d.joint_torques, rnea(m, c.q, c.qd, d.qdd, c.gravity, c.f_ext,
-                                                                        o.effects, o.friction_velocity)));
+                                                                        o)));
     // M qdd + h = joint_torques with the public mass matrix (crba) and h = RNEA(q, qd, 0)
     const Eigen::VectorXd h = rnea(m, c.q, c.qd, Eigen::VectorXd::Zero(m.num_rates()), c.gravity, c.f_ext,
-                                   o.effects, o.friction_velocity);
+                                   o);
     worst_crba = std::max(worst_crba, rel_error(crba(m, c.q) * d.qdd + h, d.joint_torques));
     Eigen::VectorXd expected = c.ff_torques;
     int row = 0;

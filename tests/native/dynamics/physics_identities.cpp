@@ -194,10 +194,10 @@ TEST(ReferenceDynamics, RneaAndCrbaEqualTheReference) {
     }
     const int n = m.num_rates();
     const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(n, [&] { return 3 * U(rng); });
-    const Eigen::VectorXd tau = rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05);
+    const Eigen::VectorXd tau = rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, with_effects(kAllEffects));
     const double e1 =
         rel_error(tau, reference_rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05));
-    const Eigen::MatrixXd M = crba(m, c.q, true), Mref = reference_crba(m, c.q, true);
+    const Eigen::MatrixXd M = crba(m, c.q), Mref = reference_crba(m, c.q, true);
     const double e2 = (M - Mref).cwiseAbs().maxCoeff() / std::max(1.0, Mref.cwiseAbs().maxCoeff());
     EXPECT_LE(e1, 1e-12) << ch.urdf;
     EXPECT_LE(e2, 1e-12) << ch.urdf;
@@ -208,8 +208,8 @@ TEST(ReferenceDynamics, RneaAndCrbaEqualTheReference) {
     std::vector<Transform> poses;
     std::vector<Vector6> velocities;
     for (int k = 0; k < 2; ++k) {
-      rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05, ws, tau_ws);
-      crba(m, c.q, true, ws, M_ws);
+      rnea(m, ws, c.q, c.qd, qdd, c.gravity, c.f_ext, with_effects(kAllEffects), tau_ws);
+      crba(m, ws, c.q, {}, M_ws);
       tip_jacobian(m, c.q, ws, J_ws);
       forward_kinematics(m, c.q, ws, poses);
       link_velocities(m, c.q, c.qd, ws, velocities);
@@ -248,14 +248,14 @@ TEST(ReferenceDynamics, WorkspaceFormsCheckTheirArguments) {
     }
     return "";
   };
-  EXPECT_EQ(message([&] { crba(b.model, qb, true, ws, M); }),
+  EXPECT_EQ(message([&] { crba(b.model, ws, qb, {}, M); }),
             "crba: the workspace was made for a model with 3 joints, this one has 5");
-  EXPECT_EQ(message([&] { crba(a.model, qb, true, ws, M); }), "crba: q must have 3 values, got 5");
-  EXPECT_EQ(message([&] { rnea(a.model, qa, qb, qa, Vector3::Zero(), {}, kAllEffects, 0.05, ws, tau); }),
+  EXPECT_EQ(message([&] { crba(a.model, ws, qb, {}, M); }), "crba: q must have 3 values, got 5");
+  EXPECT_EQ(message([&] { rnea(a.model, ws, qa, qb, qa, Vector3::Zero(), {}, with_effects(kAllEffects), tau); }),
             "rnea: q, qd and qdd must have 3 values");
   EXPECT_EQ(message([&] { tip_jacobian(b.model, qb, ws, M); }),
             "tip_jacobian: the workspace was made for a model with 3 joints, this one has 5");
-  EXPECT_EQ(message([&] { crba(a.model, qa, true, ws, M); }), "");
+  EXPECT_EQ(message([&] { crba(a.model, ws, qa, {}, M); }), "");
 }
 
 // Transform's two maps are each other's duals: moving a motion m and a force f from a

@@ -253,8 +253,8 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
     g_allocations = 0;
     g_counting = true;
     for (int k = 0; k < 2; ++k) {
-      achd::rnea(m, q, qd, qdd, achd::Vector3(0, 0, -9.81), f_ext, achd::kAllEffects, 0.05, ws, tau);
-      achd::crba(m, q, true, ws, M);
+      achd::rnea(m, ws, q, qd, qdd, achd::Vector3(0, 0, -9.81), f_ext, achd::with_effects(achd::kAllEffects), tau);
+      achd::crba(m, ws, q, {}, M);
       achd::forward_kinematics(m, q, ws, poses);
       achd::link_velocities(m, q, qd, ws, velocities);
       achd::tip_jacobian(m, q, ws, J);
@@ -263,8 +263,8 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
     g_counting = false;
     EXPECT_EQ(g_allocations, 0) << r["name"];
     // They computed something: the value forms give the same.
-    EXPECT_EQ(tau, achd::rnea(m, q, qd, qdd, achd::Vector3(0, 0, -9.81), f_ext, achd::kAllEffects, 0.05));
-    EXPECT_EQ(M, achd::crba(m, q, true));
+    EXPECT_EQ(tau, achd::rnea(m, q, qd, qdd, achd::Vector3(0, 0, -9.81), f_ext, achd::with_effects(achd::kAllEffects)));
+    EXPECT_EQ(M, achd::crba(m, q));
   }
 }
 

@@ -70,7 +70,7 @@ TEST(TreeKinematics, RneaAndCrbaMatchTheReference) {
     for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, uniform(rng, 0, 0.1));
     const Case c = random_tree_inputs(rng, m);
     const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(m.num_rates(), [&] { return uniform(rng, -3, 3); });
-    const double e_tau = rel_error(rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05),
+    const double e_tau = rel_error(rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, with_effects(kAllEffects)),
                                    reference_rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05));
     const double e_M = matrix_error(crba(m, c.q), reference_crba(m, c.q));
     EXPECT_LE(e_tau, 1e-12) << tree_urdf(t.links);
@@ -102,8 +102,8 @@ double loaded_model_error(const RandomTree& t, const Model& loaded, std::mt19937
   std::vector<Vector6> f_ext(m.num_links());
   for (int l = 0; l < m.num_links(); ++l) f_ext[link[l]] = c.f_ext[l];
   const Eigen::MatrixXd M = crba(m, c.q), M_loaded = crba(loaded, q);
-  const Eigen::VectorXd tau = rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, kAllEffects, 0.05);
-  const Eigen::VectorXd tau_loaded = rnea(loaded, q, qd, qdd_loaded, c.gravity, f_ext, kAllEffects, 0.05);
+  const Eigen::VectorXd tau = rnea(m, c.q, c.qd, qdd, c.gravity, c.f_ext, with_effects(kAllEffects));
+  const Eigen::VectorXd tau_loaded = rnea(loaded, q, qd, qdd_loaded, c.gravity, f_ext, with_effects(kAllEffects));
   const std::vector<Transform> poses = forward_kinematics(m, c.q), poses_loaded = forward_kinematics(loaded, q);
   double e = 0;
   for (int i = 0; i < n; ++i) {

@@ -165,7 +165,7 @@ TEST(SimulatorLinks, JointControlSettlesAtTheGravityEquilibrium) {
   sim.run(5000, 1e-3);
   // At rest, kp (target - q) = g(q): RNEA's torque holding q still under gravity.
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(7);
-  const Eigen::VectorXd g = rnea(m, sim.q, zero, zero, o.gravity, {}, kGravity);
+  const Eigen::VectorXd g = rnea(m, sim.q, zero, zero, o.gravity, {}, with_effects(kGravity));
   EXPECT_LE(sim.qd.lpNorm<Eigen::Infinity>(), 1e-8);
   EXPECT_LE((pd.kp.cwiseProduct(target - sim.q) - g).lpNorm<Eigen::Infinity>(), 1e-6 * g.norm());
   EXPECT_GE((sim.q - target).norm(), 1e-3);  // gravity holds it off the target

@@ -71,10 +71,9 @@ TEST(Simulator, EnergyMatchesDenseDefinitions) {
   Eigen::VectorXd q = lwr_q0(), qd(7);
   qd << 0.5, -1.0, 0.7, 1.2, -0.4, 2.0, -3.0;
   sim.reset(q, qd);
-  const Eigen::MatrixXd M = crba(m, q, true);
+  const Eigen::MatrixXd M = crba(m, q);
   EXPECT_NEAR(sim.kinetic_energy(), 0.5 * qd.dot(M * qd), 1e-12 * sim.kinetic_energy());
-  const Eigen::VectorXd g = rnea(m, q, Eigen::VectorXd::Zero(7), Eigen::VectorXd::Zero(7),
-                                 Vector3(0, 0, -9.81), {}, kGravity);
+  const Eigen::VectorXd g = rnea(m, q, Eigen::VectorXd::Zero(7), Eigen::VectorXd::Zero(7), Vector3(0, 0, -9.81), {}, with_effects(kGravity));
   for (int i = 0; i < 7; ++i) {
     const double h = 1e-6;
     Eigen::VectorXd qp = q, qm = q;
@@ -153,7 +152,7 @@ struct DenseFixture {
 
 TEST(Effects, EachAdditiveEffectAddsItsDenseTerm) {
   const DenseFixture f;
-  const Eigen::MatrixXd M = crba(f.m, f.q, true);
+  const Eigen::MatrixXd M = crba(f.m, f.q);
   const Eigen::LDLT<Eigen::MatrixXd> Minv(M);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(7);
   const double v_f = Options{}.friction_velocity;
@@ -167,8 +166,8 @@ TEST(Effects, EachAdditiveEffectAddsItsDenseTerm) {
     Eigen::VectorXd tau;  // the generalised force the effect adds
   };
   const Term terms[] = {
-      {kGravity, -rnea(f.m, f.q, zero, zero, f.g, {}, kGravity)},
-      {kExternalWrenches, -rnea(f.m, f.q, zero, zero, f.g, f.f_ext, kExternalWrenches)},
+      {kGravity, -rnea(f.m, f.q, zero, zero, f.g, {}, with_effects(kGravity))},
+      {kExternalWrenches, -rnea(f.m, f.q, zero, zero, f.g, f.f_ext, with_effects(kExternalWrenches))},
       {kDamping, -B},
       {kFriction, -F},
   };
@@ -186,8 +185,8 @@ TEST(Effects, RotorInertiaMatchesDenseSolve) {
   const DenseFixture f;
   const std::uint32_t e = kGravity | kVelocityProducts | kRotorInertia;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(7);
-  const Eigen::VectorXd h = rnea(f.m, f.q, f.qd, zero, f.g, {}, kGravity | kVelocityProducts);
-  const Eigen::VectorXd dense = crba(f.m, f.q, true).ldlt().solve(-h);
+  const Eigen::VectorXd h = rnea(f.m, f.q, f.qd, zero, f.g, {}, with_effects(kGravity | kVelocityProducts));
+  const Eigen::VectorXd dense = crba(f.m, f.q).ldlt().solve(-h);
   EXPECT_LT(rel(f.qdd(e, f.qd), dense), 1e-12);
   EXPECT_GT(rel(f.qdd(e & ~kRotorInertia, f.qd), dense), 1e-3);  // rotor inertia matters
 }
@@ -204,7 +203,7 @@ TEST(Effects, SkipsEqualTheComputedPath) {
   EXPECT_EQ(f.qdd(all, zero), f.qdd(all, tiny));
   // The skipped path also inverts RNEA.
   const Eigen::VectorXd at_rest = f.qdd(all, zero);
-  EXPECT_LT(rel(rnea(f.m, f.q, zero, at_rest, f.g, f.f_ext, all), zero), 1e-12);
+  EXPECT_LT(rel(rnea(f.m, f.q, zero, at_rest, f.g, f.f_ext, with_effects(all)), zero), 1e-12);
 
   const Eigen::VectorXd with_zero_wrenches = [&] {
     DenseFixture z;
