@@ -64,6 +64,14 @@ bool free_joint_valid(const Case& c) {
   return true;
 }
 
+// Extra inertia: one per joint, each finite and >= 0 (NaN fails the test).
+bool extra_inertia_valid(const Model& model, const Eigen::VectorXd& x) {
+  if (x.size() != model.num_joints()) return false;
+  for (int i = 0; i < x.size(); ++i)
+    if (!(x[i] >= 0 && std::isfinite(x[i]))) return false;
+  return true;
+}
+
 // The common case, in one pass: right sizes and every number finite.
 bool plainly_valid(const Model& model, const Case& c, int capacity) {
   const Eigen::Index nj = model.num_joints();
@@ -92,6 +100,7 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
     if (!weights_valid(b.w_fext, k) || !weights_valid(b.w_ff, k)) return false;
     s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k);
   }
+  if (c.extra_inertia.size() && !extra_inertia_valid(model, c.extra_inertia)) return false;
   return s == 0 && c.num_constraints() <= capacity && c.constraints.size() <= static_cast<size_t>(capacity);
 }
 
@@ -204,6 +213,15 @@ void validate(const Model& model, const Case& c, int capacity) {
     if (!std::isfinite(c.qdd_given[i]))
       throw Error("qdd_given[" + std::to_string(i) + "] (joint '" + model.bodies[i].joint_name +
                   "') is not finite");
+  if (c.extra_inertia.size() && !extra_inertia_valid(model, c.extra_inertia)) {
+    if (c.extra_inertia.size() != nj)
+      throw Error("extra_inertia: expected " + std::to_string(nj) + " values (one per joint) or none, got " +
+                  std::to_string(c.extra_inertia.size()));
+    for (int i = 0; i < nj; ++i)
+      if (!(c.extra_inertia[i] >= 0) || !std::isfinite(c.extra_inertia[i]))
+        throw Error("extra_inertia[" + std::to_string(i) + "] (joint '" + model.bodies[i].joint_name +
+                    "') must be finite and >= 0, got " + std::to_string(c.extra_inertia[i]));
+  }
 }
 
 void validate(const Options& o) {
