@@ -14,6 +14,7 @@
 #include "achd/error.hpp"
 #include "achd/simulator.hpp"
 #include "anchored_inertia.hpp"
+#include "direction_sets.hpp"
 #include "hold_torques.hpp"
 #include "message_number.hpp"
 
@@ -73,7 +74,7 @@ void Simulator::update_control_terms() {
     // kp_i = m_i (2 pi f)^2, kd_i = 2 zeta m_i (2 pi f), m_i the inertia joint i moves with
     // the held links still (anchored_inertia.hpp; M_ii when nothing is held)
     std::vector<int> anchors;
-    for (const LinkDirections& set : sets_)
+    for (const LinkDirections& set : directions_->sets())
       if (set.held.count()) anchors.push_back(model_.links[set.link].body);
     const Eigen::VectorXd m = anchored_joint_inertias(model_, control_.target, anchors);
     const double w = 2 * 3.14159265358979323846 * control_.frequency;  // rad/s

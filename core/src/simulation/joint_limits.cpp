@@ -33,7 +33,9 @@
 #include "achd/hybrid_dynamics.hpp"
 #include "achd/kinematics.hpp"
 #include "achd/simulator.hpp"
+#include "direction_sets.hpp"
 #include "held_directions.hpp"
+#include "integrators.hpp"
 #include "tip_kinematics.hpp"
 
 namespace achd {
@@ -78,8 +80,8 @@ void Simulator::update_limit_stops(double w_n) {
   }
   if (!resting) return;
   // The step's first solve, with the stops' joints prescribed: the torque each stop exerts.
-  stage_ = 0;
-  evaluate(q, qd, angles_, t, w_n, limit_data_, limit_angle_rate_);
+  integrator_->stage = 0;
+  evaluate(*this, w_n, limit_data_, limit_angle_rate_);
   for (int i = 0; i < n; ++i) {
     if (!limit_stop_[i]) continue;
     const double ff = case_.ff_torques.size() ? case_.ff_torques[i] : 0.0;
@@ -127,12 +129,13 @@ void Simulator::stop_at_limits() {
     reached = reached || limit_reached_[i];
   }
   if (!reached) return;
-  stage_ = -1;  // a failure here is no integrator stage's
+  integrator_->stage = -1;  // a failure here is no integrator stage's
+  const std::vector<LinkDirections>& sets = directions_->sets();
 
   // The held columns of every link, one block per link with some (beta filled below);
   // accelerated directions are free.
   impact_case_.constraints.clear();
-  for (const LinkDirections& set : sets_) {
+  for (const LinkDirections& set : sets) {
     int nc = 0;
     for (int k = 0; k < kNumDirections; ++k) nc += set.held.mode[k] == DirectionMode::Hold;
     if (!nc) continue;
@@ -148,8 +151,8 @@ void Simulator::stop_at_limits() {
   const auto held_changes = [&](bool velocity) {
     size_t b = 0;
     double off = 0;
-    for (size_t s = 0; s < sets_.size(); ++s) {
-      const LinkDirections& set = sets_[s];
+    for (size_t s = 0; s < sets.size(); ++s) {
+      const LinkDirections& set = sets[s];
       if (b >= impact_case_.constraints.size() || impact_case_.constraints[b].link != set.link) continue;
       const TipState now = link_state(model_, X0_, v_, set.link, set.point);
       const TipState& before = impact_points_[s];
@@ -169,8 +172,8 @@ void Simulator::stop_at_limits() {
 
   // Position: back on the limit with the held quantities unchanged.
   body_motion(model_, q, qd, X0_, r_, v_);
-  for (size_t s = 0; s < sets_.size(); ++s)
-    impact_points_[s] = link_state(model_, X0_, v_, sets_[s].link, sets_[s].point);
+  for (size_t s = 0; s < sets.size(); ++s)
+    impact_points_[s] = link_state(model_, X0_, v_, sets[s].link, sets[s].point);
   for (int it = 0; it < kProjectionIterations; ++it) {
     double off = 0;
     for (int i = 0; i < n; ++i) {
