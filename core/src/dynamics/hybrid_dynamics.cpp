@@ -310,12 +310,12 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
   if (wrenches) add_external_wrenches(model, d, c);
 
   const bool rotor = o.effects & kRotorInertia;
-  if (c.extra_inertia.size()) {
-    if (prescribed) inward_sweep<true, true>(model, d, c, rotor);
-    else inward_sweep<false, true>(model, d, c, rotor);
-  } else {
+  if (!c.extra_inertia.size()) {
     if (prescribed) inward_sweep<true, false>(model, d, c, rotor);
     else inward_sweep<false, false>(model, d, c, rotor);
+  } else {
+    if (prescribed) inward_sweep<true, true>(model, d, c, rotor);
+    else inward_sweep<false, true>(model, d, c, rotor);
   }
   if (nc) {
     constraint_sources(model, d, c);

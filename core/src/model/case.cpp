@@ -100,7 +100,6 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
     if (!weights_valid(b.w_fext, k) || !weights_valid(b.w_ff, k)) return false;
     s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k);
   }
-  if (c.extra_inertia.size() && !extra_inertia_valid(model, c.extra_inertia)) return false;
   return s == 0 && c.num_constraints() <= capacity && c.constraints.size() <= static_cast<size_t>(capacity);
 }
 
@@ -153,7 +152,8 @@ void check_blocks(const Model& model, const Case& c) {
 }  // namespace
 
 void validate(const Model& model, const Case& c, int capacity) {
-  if (plainly_valid(model, c, capacity)) return;
+  if (plainly_valid(model, c, capacity) && (!c.extra_inertia.size() || extra_inertia_valid(model, c.extra_inertia)))
+    return;
   const int nj = model.num_joints();
   check_vector(c.q, model.num_positions(), "q", false);
   if (model.floating && !(c.q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0))
