@@ -34,11 +34,11 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
   case_.f_ext.reserve(model_.num_links());
   case_.coupling_beta = Eigen::VectorXd::Zero(model_.couplings.size());
-  // Blocks and held angles: room for every link, so that no step allocates.
+  // Blocks, impact points and the saved held angles: room for every link, so that no step
+  // allocates (the state's held angles grow with the sets, set_of()).
   const int links = model_.num_links();
   case_.constraints.reserve(links);
   impact_points_.resize(links);
-  held_angles.resize(0);
   saved_.q = q;
   saved_.qd = qd;
   for (HeldAngles* a : {&saved_.held_angles, &limit_angle_rate_}) a->setZero(links * kNumDirections);
