@@ -21,7 +21,7 @@ namespace {
 
 using namespace achd;
 
-const std::filesystem::path kRoot = std::filesystem::path(__FILE__).parent_path().parent_path().parent_path();
+const std::filesystem::path kRoot = ACHD_SOURCE_DIR;
 
 Model lwr() { return load_urdf_file((kRoot / "robots/kuka_lwr4.urdf").string(), "lwr_base_link", "lwr_link_7"); }
 Eigen::VectorXd lwr_q0() {
