@@ -40,12 +40,12 @@ std::string number(double x) {
 std::string describe(const Model& m) {
   std::string s = "{\"root\":" + quoted(m.root_name) + ",\"tip\":" + (m.has_tip() ? quoted(m.tip_name) : "null") +
                   ",\"floating\":" + (m.floating ? "true" : "false") +
-                  ",\"num_joints\":" + std::to_string(m.num_joints()) +
+                  ",\"num_joints\":" + std::to_string(m.num_rates()) +
                   ",\"num_positions\":" + std::to_string(m.num_positions()) + ",\"joints\":[";
   if (m.floating)
     s += "{\"name\":" + quoted(m.root_name) + ",\"type\":\"floating\",\"lower\":-1e300,\"upper\":1e300,"
          "\"velocity\":0,\"effort\":0,\"damping\":0,\"friction\":0}";
-  for (int j = m.floating ? 6 : 0; j < m.num_joints(); ++j) {
+  for (int j = m.free_joint_rates(); j < m.num_rates(); ++j) {
     const Body& b = m.bodies[j];
     s += std::string(s.back() == '[' ? "" : ",") + "{\"name\":" + quoted(b.joint_name) + ",\"type\":" +
          quoted(joint_type_name(b.type)) + ",\"lower\":" + number(b.limits.lower) +
@@ -138,7 +138,7 @@ ACHD_EXPORT int achd_robot_tip_jacobian(const Robot* r, const double* q, double*
 // out: M(q), nj x nj row-major, with the rotor inertia on the diagonal if rotor != 0.
 ACHD_EXPORT int achd_robot_mass_matrix(const Robot* r, const double* q, int rotor, double* out) {
   return achd::wasm::guarded([&] {
-    const int n = r->model->num_joints();
+    const int n = r->model->num_rates();
     const achd::Options o = achd::with_effects(rotor != 0 ? achd::kDefaultEffects : achd::kDefaultEffects & ~achd::kRotorInertia);
     const Eigen::MatrixXd M = achd::crba(*r->model, achd::wasm::vec(q, r->model->num_positions()), o);
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out, n, n) = M;
@@ -152,7 +152,7 @@ ACHD_EXPORT int achd_robot_rnea(const Robot* r, const double* q, const double* q
                                 double friction_velocity, double* out) {
   return achd::wasm::guarded([&] {
     const achd::Model& m = *r->model;
-    const int n = m.num_joints();
+    const int n = m.num_rates();
     std::vector<achd::Vector6> wrenches;
     if (f_ext)
       for (int l = 0; l < m.num_links(); ++l) wrenches.emplace_back(f_ext + 6 * l);

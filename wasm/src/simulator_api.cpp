@@ -73,7 +73,7 @@ ACHD_EXPORT double achd_sim_rejected_substeps(const achd::Simulator* sim) {
 
 ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const double* qd) {
   return achd::wasm::guarded([&] {
-    // q: num_positions() numbers (a floating base's 7 first), qd: num_joints()
+    // q: num_positions() numbers (a floating base's 7 first), qd: num_rates()
     const int nq = static_cast<int>(sim->q.size()), n = static_cast<int>(sim->qd.size());
     sim->reset(Eigen::Map<const Eigen::VectorXd>(q, nq), Eigen::Map<const Eigen::VectorXd>(qd, n));
   });
@@ -118,7 +118,7 @@ ACHD_EXPORT int achd_sim_direction_sets(const achd::Simulator* sim, int* out) {
 }
 
 // The joint PD controller (Simulator::set_joint_control): target num_positions()
-// doubles; kp and kd num_joints() each, or both null for gains from frequency (Hz) and
+// doubles; kp and kd num_rates() each, or both null for gains from frequency (Hz) and
 // damping_ratio; hold != 0 adds the hold feed-forward (JointControl::hold).
 ACHD_EXPORT int achd_sim_set_joint_control(achd::Simulator* sim, const double* target, const double* kp,
                                            const double* kd, double frequency, double damping_ratio, int hold) {

@@ -14,7 +14,7 @@ static_assert(sizeof(Vector6) == 6 * sizeof(double), "Vector6 arrays must be den
 struct Solver {
   explicit Solver(std::shared_ptr<const Model> m, int max_constraints)
       : model(std::move(m)), c(Case::zeros(*model)), data(*model), max_constraints(max_constraints) {
-    const int n = model->num_joints();
+    const int n = model->num_rates();
     c.qd.setZero(n);
     c.ff_torques.setZero(n);
     // alpha and beta live in fixed inline storage: resizing the column count keeps the

@@ -2,6 +2,7 @@
 // achd: the Popov-Vereshchagin hybrid dynamics solver. One include for everything.
 #include "achd/case.hpp"
 #include "achd/data.hpp"
+#include "achd/directions.hpp"
 #include "achd/dynamics.hpp"
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
@@ -10,6 +11,7 @@
 #include "achd/options.hpp"
 #include "achd/pv_reference.hpp"
 #include "achd/simulator.hpp"
+#include "achd/simulator_options.hpp"
 #include "achd/spatial.hpp"
 #include "achd/srdf.hpp"
 #include "achd/urdf.hpp"

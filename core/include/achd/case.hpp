@@ -67,6 +67,12 @@ struct Case {
   // Coupled joints (Model::couplings): qdd_f - k qdd_l for each coupling, empty = 0 (what
   // q_f = k q_l + c asks); the simulator sets it to hold the coupling's drift.
   Eigen::VectorXd coupling_beta;
+  // Extra axial inertia per joint: empty = none, else one per joint, finite and >= 0. Added
+  // to joint i's D = S^T IA S where its rotor inertia is (RBDA 9.28), whether or not
+  // Effect::kRotorInertia is on: the mass matrix is M + diag(rotor) + diag(extra_inertia).
+  // The implicit Euler step puts dt times the passive torques' derivative there
+  // (core/src/simulation/integrators/implicit_euler.cpp).
+  Eigen::VectorXd extra_inertia;
 
   // Constraint columns in all: the tip's and every block's.
   int num_constraints() const;

@@ -3,13 +3,14 @@
 // page and its URL hash: snake_case words, listed in the order of the C++ enums so that a
 // name's index is the enum's value (the static_asserts below keep the two in step).
 // JS option keys are the same words in camelCase (velocity_products -> velocityProducts).
-// Integrator and direction names are integrator_name() and direction_name()
-// (simulator.hpp).
+// Integrator and direction names are integrator_name() (simulator_options.hpp) and
+// direction_name() (directions.hpp).
 #include <cstdint>
 
 #include "achd/joint_motion.hpp"
 #include "achd/options.hpp"
-#include "achd/simulator.hpp"
+#include "achd/directions.hpp"
+#include "achd/simulator_options.hpp"
 
 namespace achd {
 

@@ -172,8 +172,9 @@ void prescribed_to_parent(const Model& model, Data& d, int i, const Matrix6& IA,
 // Ia_i = IA_i - U U^T / D and pa_i = pA_i + U u / D are added, shifted by r_i, to its
 // parent's IA and pA, as X^T IA X - Us Us^T / D and X^T pA + Us u / D with Us = X^T U.
 // A prescribed joint (P: some joint is) passes X^T IA X and X^T pA + Us qdd_given, and
-// keeps Dinv = 0, W = 0.
-template <bool P>
+// keeps Dinv = 0, W = 0. X: the case has extra inertia (Case::extra_inertia), added to D
+// with the rotor inertia; without it the sweep is the one it was before that input.
+template <bool P, bool X>
 void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
   Data::Workspace& w = d.workspace;
   for (int i = model.num_rates() - 1; i >= 0; --i) {
@@ -181,10 +182,12 @@ void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
     const Body& b = model.bodies[i];
     const JointSubspace S = body_subspace(model, d, i);
     const Matrix6& IA = d.IA[i];
-    // U = IA S,  D = S^T IA S + rotor inertia (RBDA 9.28),  u = tau - S^T pA
+    // U = IA S,  D = S^T IA S + rotor inertia (+ extra inertia) (RBDA 9.28),  u = tau - S^T pA
     const SpatialVector U = S.inertia_times(IA);
     const SpatialVector pA = load_pairs(d.pA[i]);
-    const double D = S.project(U) + (rotor ? b.rotor_inertia : 0.0);
+    double D;
+    if constexpr (X) D = S.project(U) + ((rotor ? b.rotor_inertia : 0.0) + c.extra_inertia[i]);
+    else D = S.project(U) + (rotor ? b.rotor_inertia : 0.0);
     const double u = w.tau[i] - S.project(pA);
     if constexpr (P) {
       if (c.prescribed[i]) {
@@ -306,8 +309,14 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
   }
   if (wrenches) add_external_wrenches(model, d, c);
 
-  if (prescribed) inward_sweep<true>(model, d, c, o.effects & kRotorInertia);
-  else inward_sweep<false>(model, d, c, o.effects & kRotorInertia);
+  const bool rotor = o.effects & kRotorInertia;
+  if (!c.extra_inertia.size()) {
+    if (prescribed) inward_sweep<true, false>(model, d, c, rotor);
+    else inward_sweep<false, false>(model, d, c, rotor);
+  } else {
+    if (prescribed) inward_sweep<true, true>(model, d, c, rotor);
+    else inward_sweep<false, true>(model, d, c, rotor);
+  }
   if (nc) {
     constraint_sources(model, d, c);
     // K must be finite before it is factored (an infinite pivot would pass for a zero).

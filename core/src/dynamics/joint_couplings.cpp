@@ -33,6 +33,7 @@ void homogeneous_case(const Case& c, int n, Case& h) {
   if (c.any_prescribed()) h.qdd_given.setZero();
   else h.qdd_given.resize(0);
   h.coupling_beta.resize(0);
+  h.extra_inertia = c.extra_inertia;  // part of the mass matrix the responses see
 }
 
 }  // namespace

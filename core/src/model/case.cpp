@@ -64,6 +64,14 @@ bool free_joint_valid(const Case& c) {
   return true;
 }
 
+// Extra inertia: one per joint, each finite and >= 0 (NaN fails the test).
+bool extra_inertia_valid(const Model& model, const Eigen::VectorXd& x) {
+  if (x.size() != model.num_rates()) return false;
+  for (int i = 0; i < x.size(); ++i)
+    if (!(x[i] >= 0 && std::isfinite(x[i]))) return false;
+  return true;
+}
+
 // The common case, in one pass: right sizes and every number finite.
 bool plainly_valid(const Model& model, const Case& c, int capacity) {
   const Eigen::Index nj = model.num_rates();
@@ -144,7 +152,8 @@ void check_blocks(const Model& model, const Case& c) {
 }  // namespace
 
 void validate(const Model& model, const Case& c, int capacity) {
-  if (plainly_valid(model, c, capacity)) return;
+  if (plainly_valid(model, c, capacity) && (!c.extra_inertia.size() || extra_inertia_valid(model, c.extra_inertia)))
+    return;
   const int nj = model.num_rates();
   check_vector(c.q, model.num_positions(), "q", false);
   if (model.floating && !(c.q.segment<4>(3).lpNorm<Eigen::Infinity>() > 0))
@@ -204,6 +213,15 @@ void validate(const Model& model, const Case& c, int capacity) {
     if (!std::isfinite(c.qdd_given[i]))
       throw Error("qdd_given[" + std::to_string(i) + "] (joint '" + model.bodies[i].joint_name +
                   "') is not finite");
+  if (c.extra_inertia.size() && !extra_inertia_valid(model, c.extra_inertia)) {
+    if (c.extra_inertia.size() != nj)
+      throw Error("extra_inertia: expected " + std::to_string(nj) + " values (one per joint) or none, got " +
+                  std::to_string(c.extra_inertia.size()));
+    for (int i = 0; i < nj; ++i)
+      if (!(c.extra_inertia[i] >= 0) || !std::isfinite(c.extra_inertia[i]))
+        throw Error("extra_inertia[" + std::to_string(i) + "] (joint '" + model.bodies[i].joint_name +
+                    "') must be finite and >= 0, got " + std::to_string(c.extra_inertia[i]));
+  }
 }
 
 void validate(const Options& o) {

@@ -118,6 +118,7 @@ const Case& free_joint_case(const Case& in, Case& out) {
   out.constraints = in.constraints;
   out.f_ext = in.f_ext;
   out.f_virtual = in.f_virtual;
+  out.extra_inertia = in.extra_inertia;  // added where the rotor inertia is, as it is
   return out;
 }
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "achd/data.hpp"
-#include "achd/simulator.hpp"
+#include "achd/directions.hpp"
 
 namespace achd {
 

@@ -6,7 +6,8 @@
 #include <string>
 
 #include "achd/case.hpp"
-#include "achd/simulator.hpp"
+#include "achd/directions.hpp"
+#include "achd/model.hpp"
 #include "tip_kinematics.hpp"
 
 namespace achd {

@@ -14,6 +14,7 @@
 #include "achd/error.hpp"
 #include "achd/simulator.hpp"
 #include "anchored_inertia.hpp"
+#include "direction_sets.hpp"
 #include "hold_torques.hpp"
 #include "message_number.hpp"
 
@@ -31,7 +32,7 @@ void check_frequency(const JointControl& c) {
 }  // namespace
 
 void Simulator::set_joint_control(const JointControl& given) {
-  const int n = model_.num_joints(), np = model_.num_positions();
+  const int n = model_.num_rates(), np = model_.num_positions();
   if (given.target.size() != np)
     throw Error("joint control: target: expected " + std::to_string(np) + " values (a pose as q), got " +
                 std::to_string(given.target.size()));
@@ -51,12 +52,12 @@ void Simulator::set_joint_control(const JointControl& given) {
       throw Error(std::string("joint control: ") + field + ": expected " + std::to_string(n) +
                   " values (one per joint), got " + std::to_string(gains->size()));
   for (int i = 0; i < n; ++i) {
-    const std::string joint = model_.floating && i < 6 ? model_.root_name : model_.bodies[i].joint_name;
+    const std::string joint = i < model_.free_joint_rates() ? model_.root_name : model_.bodies[i].joint_name;
     for (const auto& [g, field] : {std::pair<double, const char*>{c.kp[i], "kp"}, {c.kd[i], "kd"}}) {
       if (!(g >= 0) || !std::isfinite(g))
         throw Error(std::string("joint control: ") + field + " of joint '" + joint + "' must be finite and >= 0, got " +
                     message_number(g));
-      if (model_.floating && i < 6 && g != 0)
+      if (i < model_.free_joint_rates() && g != 0)
         throw Error(std::string("joint control: ") + field + "[" + std::to_string(i) + "] of joint '" + joint +
                     "' (the floating base's free joint, not actuated) must be 0, got " + message_number(g));
     }
@@ -73,7 +74,7 @@ void Simulator::update_control_terms() {
     // kp_i = m_i (2 pi f)^2, kd_i = 2 zeta m_i (2 pi f), m_i the inertia joint i moves with
     // the held links still (anchored_inertia.hpp; M_ii when nothing is held)
     std::vector<int> anchors;
-    for (const LinkDirections& set : sets_)
+    for (const LinkDirections& set : directions_->sets())
       if (set.held.count()) anchors.push_back(model_.links[set.link].body);
     const Eigen::VectorXd m = anchored_joint_inertias(model_, control_.target, anchors);
     const double w = 2 * 3.14159265358979323846 * control_.frequency;  // rad/s
@@ -85,7 +86,7 @@ void Simulator::update_control_terms() {
                     message_number(control_.frequency) + " Hz are not finite");
   }
   if (!control_on_ || !control_.hold) {
-    hold_torques_.setZero(model_.num_joints());
+    hold_torques_.setZero(model_.num_rates());
     return;
   }
   // (the gravity and solver options a step uses: effects with the gravity bit off mean none)
@@ -102,8 +103,8 @@ void Simulator::update_control_terms() {
 void Simulator::apply_joint_control(const Eigen::VectorXd& q_at, const Eigen::VectorXd& qd_at) {
   if (!control_on_) return;  // step() set case_.ff_torques = ff_torques
   if (ff_torques.size()) case_.ff_torques = ff_torques;
-  else case_.ff_torques.setZero(model_.num_joints());
-  for (int i = 0; i < model_.num_joints(); ++i) {
+  else case_.ff_torques.setZero(model_.num_rates());
+  for (int i = 0; i < model_.num_rates(); ++i) {
     const int p = model_.position_index(i);
     case_.ff_torques[i] +=
         control_.kp[i] * (control_.target[p] - q_at[p]) - control_.kd[i] * qd_at[i] + hold_torques_[i];

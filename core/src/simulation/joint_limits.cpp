@@ -33,7 +33,9 @@
 #include "achd/hybrid_dynamics.hpp"
 #include "achd/kinematics.hpp"
 #include "achd/simulator.hpp"
+#include "direction_sets.hpp"
 #include "held_directions.hpp"
+#include "integrators.hpp"
 #include "tip_kinematics.hpp"
 
 namespace achd {
@@ -59,14 +61,14 @@ double held_change(int k, const Transform& before, const Transform& now) {
 }  // namespace
 
 int Simulator::limit_stop(int joint) const {
-  if (joint < 0 || joint >= model_.num_joints())
+  if (joint < 0 || joint >= model_.num_rates())
     throw Error("limit_stop: joint index " + std::to_string(joint) + " is not in 0.." +
-                std::to_string(model_.num_joints() - 1));
+                std::to_string(model_.num_rates() - 1));
   return limit_stop_[joint];
 }
 
 void Simulator::update_limit_stops(double w_n) {
-  const int n = model_.num_joints();
+  const int n = model_.num_rates();
   bool resting = false;
   for (int i = 0; i < n; ++i) {
     // A stop the caller moved the joint off (by setting q or qd, or the policy) is gone.
@@ -78,8 +80,8 @@ void Simulator::update_limit_stops(double w_n) {
   }
   if (!resting) return;
   // The step's first solve, with the stops' joints prescribed: the torque each stop exerts.
-  stage_ = 0;
-  evaluate(q, qd, angles_, t, w_n, limit_data_, limit_angle_rate_);
+  integrator_->stage = 0;
+  evaluate(*this, w_n, limit_data_, limit_angle_rate_);
   for (int i = 0; i < n; ++i) {
     if (!limit_stop_[i]) continue;
     const double ff = case_.ff_torques.size() ? case_.ff_torques[i] : 0.0;
@@ -101,7 +103,7 @@ void Simulator::solve_impact(const char* what) {
     hybrid_dynamics(model_, limit_data_, impact_case_, o);
   } catch (const Error& e) {
     std::string joints;
-    for (int i = 0; i < model_.num_joints(); ++i)
+    for (int i = 0; i < model_.num_rates(); ++i)
       if (limit_reached_[i])
         joints += (joints.empty() ? "'" : ", '") + model_.bodies[i].joint_name + "'";
     throw Error(std::string("the ") + what + " of joint " + joints + " at its limit failed: " + e.what());
@@ -111,7 +113,7 @@ void Simulator::solve_impact(const char* what) {
 void Simulator::stop_at_limits() {
   if (options_.limits != LimitPolicy::Clamp) return;
   if (!q.allFinite() || !qd.allFinite()) return;  // step() names the joint
-  const int n = model_.num_joints();
+  const int n = model_.num_rates();
   bool reached = false;
   for (int i = 0; i < n; ++i) {
     const JointLimits& l = model_.bodies[i].limits;
@@ -127,12 +129,13 @@ void Simulator::stop_at_limits() {
     reached = reached || limit_reached_[i];
   }
   if (!reached) return;
-  stage_ = -1;  // a failure here is no integrator stage's
+  integrator_->stage = -1;  // a failure here is no integrator stage's
+  const std::vector<LinkDirections>& sets = directions_->sets();
 
   // The held columns of every link, one block per link with some (beta filled below);
   // accelerated directions are free.
   impact_case_.constraints.clear();
-  for (const LinkDirections& set : sets_) {
+  for (const LinkDirections& set : sets) {
     int nc = 0;
     for (int k = 0; k < kNumDirections; ++k) nc += set.held.mode[k] == DirectionMode::Hold;
     if (!nc) continue;
@@ -148,8 +151,8 @@ void Simulator::stop_at_limits() {
   const auto held_changes = [&](bool velocity) {
     size_t b = 0;
     double off = 0;
-    for (size_t s = 0; s < sets_.size(); ++s) {
-      const LinkDirections& set = sets_[s];
+    for (size_t s = 0; s < sets.size(); ++s) {
+      const LinkDirections& set = sets[s];
       if (b >= impact_case_.constraints.size() || impact_case_.constraints[b].link != set.link) continue;
       const TipState now = link_state(model_, X0_, v_, set.link, set.point);
       const TipState& before = impact_points_[s];
@@ -169,8 +172,8 @@ void Simulator::stop_at_limits() {
 
   // Position: back on the limit with the held quantities unchanged.
   body_motion(model_, q, qd, X0_, r_, v_);
-  for (size_t s = 0; s < sets_.size(); ++s)
-    impact_points_[s] = link_state(model_, X0_, v_, sets_[s].link, sets_[s].point);
+  for (size_t s = 0; s < sets.size(); ++s)
+    impact_points_[s] = link_state(model_, X0_, v_, sets[s].link, sets[s].point);
   for (int it = 0; it < kProjectionIterations; ++it) {
     double off = 0;
     for (int i = 0; i < n; ++i) {

@@ -12,7 +12,7 @@ namespace {
 // with v_i turned into body axes (R^T v, about the body origin) to meet I_i there.
 double kinetic(const Model& model, const ChainMotion& m, const Eigen::VectorXd& qd, bool rotor) {
   double T = 0;
-  for (int i = 0; i < model.num_joints(); ++i) {
+  for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const Matrix3& R = m.X0[i].R;
     Vector6 vb;

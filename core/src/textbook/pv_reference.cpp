@@ -5,7 +5,7 @@
 //
 //   pass 1, outward (i = 0 .. n-1):  Xup_i, v_i = Xup_i v_p + S_i qd_i,  c_i = v_i x S_i qd_i,
 //           IA_i = I_i,  pA_i = v_i x* I_i v_i - f_ext_i
-//   pass 2, inward (i = n-1 .. 0):   U_i = IA_i S_i,  D_i = S_i^T U_i (+ rotor inertia),
+//   pass 2, inward (i = n-1 .. 0):   U_i = IA_i S_i,  D_i = S_i^T U_i (+ rotor + extra inertia),
 //           u_i = tau_i - S_i^T pA_i,
 //           Ia = IA_i - U_i U_i^T / D_i,  pa = pA_i + Ia c_i + U_i u_i / D_i,
 //           IA_p += Xup_i^T Ia Xup_i,  pA_p += Xup_i^T pa
@@ -136,6 +136,12 @@ ReferenceSolution solve(const Model& model, const Case& c, const Options& o) {
   const bool gravity = o.effects & kGravity;
   const bool wrenches = (o.effects & kExternalWrenches) && !c.f_ext.empty();
   const bool rotor = o.effects & kRotorInertia;
+  // The axial inertia each joint's motor side adds: rotor (per Options::effects) plus
+  // Case::extra_inertia.
+  auto armature = [&](int i) {
+    const double r = rotor ? model.bodies[i].rotor_inertia : 0.0;
+    return c.extra_inertia.size() ? r + c.extra_inertia[i] : r;
+  };
   const bool physical = o.convention == Convention::Physical;
   const Eigen::VectorXd qd = c.qd.size() ? c.qd : Eigen::VectorXd::Zero(n);
   // Without velocity products the dynamics sees the joints at rest (v = 0, c = 0); the
@@ -199,7 +205,7 @@ ReferenceSolution solve(const Model& model, const Case& c, const Options& o) {
   for (int i = n - 1; i >= 0; --i) {
     const Body& b = model.bodies[i];
     U[i] = IA[i] * S[i];
-    D[i] = S[i].dot(U[i]) + (rotor ? b.rotor_inertia : 0.0);
+    D[i] = S[i].dot(U[i]) + armature(i);
     u[i] = tau[i] - S[i].dot(pA[i]);
     Matrix6 Ia;
     Vector6 pa;
@@ -313,10 +319,8 @@ ReferenceSolution solve(const Model& model, const Case& c, const Options& o) {
     if (prescribed(i)) {
       out.qdd[i] = c.qdd_given[i];
       a[i] = a_in + S[i] * out.qdd[i];
-      // S^T f_i, f_i = IA_i a_i + pA_i + E_i nu (+ rotor qdd), less the passive torques
-      out.prescribed_torques[i] = S[i].dot(IA[i] * a[i] + pA[i] + E_nu[i]) +
-                                  (rotor ? model.bodies[i].rotor_inertia * out.qdd[i] : 0.0) -
-                                  passive[i];
+      // S^T f_i, f_i = IA_i a_i + pA_i + E_i nu (+ armature qdd), less the passive torques
+      out.prescribed_torques[i] = S[i].dot(IA[i] * a[i] + pA[i] + E_nu[i]) + armature(i) * out.qdd[i] - passive[i];
     } else {
       // EZ_i^T nu = S_i^T E_i nu
       out.qdd[i] = (u[i] - U[i].dot(a_in) - S[i].dot(E_nu[i])) / D[i];

@@ -84,7 +84,7 @@ TEST(FloatingSimulation, FreeFallIsOneBodyFalling) {
 
 TEST(FloatingSimulation, SpinAboutAPrincipalAxisIsAConstantTurn) {
   const Model m = load_floating(kBox, true);
-  EXPECT_EQ(m.num_joints(), 6);
+  EXPECT_EQ(m.num_rates(), 6);
   SimulatorOptions o;
   o.gravity = Vector3::Zero();
   Simulator sim(m, o);

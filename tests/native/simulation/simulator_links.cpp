@@ -73,8 +73,8 @@ TEST(SimulatorLinks, FloatingQuadrupedStandsTenSecondsOnHeldFeet) {
   sim.reset(s.q0, {});
   JointControl pd;
   pd.target = s.q0;
-  pd.kp = Eigen::VectorXd::Constant(m.num_joints(), 30.0);
-  pd.kd = Eigen::VectorXd::Constant(m.num_joints(), 0.5);
+  pd.kp = Eigen::VectorXd::Constant(m.num_rates(), 30.0);
+  pd.kd = Eigen::VectorXd::Constant(m.num_rates(), 0.5);
   pd.kp.head(6).setZero();  // the free joint is not actuated
   pd.kd.head(6).setZero();
   sim.set_joint_control(pd);
@@ -110,7 +110,7 @@ TEST(SimulatorLinks, BothHandsOfTheTorsoHeldIn6D) {
   const IndexedRobot r = tree_robot("dual_arm_torso");
   const Model& m = r.model;
   Simulator sim(m);  // Dormand-Prince, all effects
-  sim.reset(r.q0, Eigen::VectorXd::Constant(m.num_joints(), 0.3));
+  sim.reset(r.q0, Eigen::VectorXd::Constant(m.num_rates(), 0.3));
   const int left = m.link_index("left_hand"), right = m.link_index("right_hand");
   for (int k = 0; k < kNumDirections; ++k) sim.set_direction(left, k, DirectionMode::Hold);
   for (int k = 0; k < 3; ++k) sim.set_direction(right, k, DirectionMode::Hold);  // right: position only
@@ -136,7 +136,7 @@ TEST(SimulatorLinks, APointOffTheLinkOriginStaysWhereItWas) {
   const IndexedRobot r = tree_robot("dual_arm_torso");
   const Model& m = r.model;
   Simulator sim(m);
-  sim.reset(r.q0, Eigen::VectorXd::Constant(m.num_joints(), 0.5));
+  sim.reset(r.q0, Eigen::VectorXd::Constant(m.num_rates(), 0.5));
   const int hand = m.link_index("left_hand");
   const Vector3 point(0.05, -0.02, 0.1);
   sim.set_direction_point(hand, point);

@@ -66,7 +66,7 @@ TEST(Simulator, EnergyConservedRk4QuarterMillisecond) {
 // checked here as dV/dq = g(q) (RNEA with gravity only) by central differences.
 TEST(Simulator, EnergyMatchesDenseDefinitions) {
   Model m = lwr();
-  for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, 0.01 * (i + 1));
+  for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, 0.01 * (i + 1));
   Simulator sim(m);
   Eigen::VectorXd q = lwr_q0(), qd(7);
   qd << 0.5, -1.0, 0.7, 1.2, -0.4, 2.0, -3.0;
@@ -128,7 +128,7 @@ struct DenseFixture {
   std::vector<Vector6> f_ext;
   Vector3 g = Vector3(0.3, -0.2, -9.81);
   DenseFixture() {
-    for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, 0.02 + 0.01 * i);
+    for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, 0.02 + 0.01 * i);
     qd << 0.4, -0.7, 0.03, 0.9, -0.02, 1.1, -0.5;
     for (int l = 0; l < m.num_links(); ++l) {
       Vector6 f;
@@ -424,7 +424,7 @@ TEST(Simulator, ReleasedHeldDirectionResumesWhereTheTipIs) {
 
 TEST(Simulator, StepDoesNotAllocate) {
   Model m = lwr();
-  for (int i = 0; i < m.num_joints(); ++i) m.set_rotor_inertia(i, 0.01);
+  for (int i = 0; i < m.num_rates(); ++i) m.set_rotor_inertia(i, 0.01);
   for (Integrator integrator : kIntegrators) {
     SimulatorOptions o;
     o.integrator = integrator;
@@ -452,7 +452,7 @@ TEST(Simulator, StepWithLinkDirectionsAndJointControlDoesNotAllocate) {
   Eigen::VectorXd q0 = Case::zeros(m).q;
   q0[2] = 0.3;
   for (int leg = 0; leg < 4; ++leg) q0.segment<3>(7 + 3 * leg) << 0.1, leg < 2 ? 0.8 : -0.8, leg < 2 ? -1.6 : 1.6;
-  JointControl pd{q0, Eigen::VectorXd::Constant(m.num_joints(), 20.0), Eigen::VectorXd::Constant(m.num_joints(), 0.3)};
+  JointControl pd{q0, Eigen::VectorXd::Constant(m.num_rates(), 20.0), Eigen::VectorXd::Constant(m.num_rates(), 0.3)};
   pd.kp.head(6).setZero();
   pd.kd.head(6).setZero();
   for (Integrator integrator : kIntegrators) {

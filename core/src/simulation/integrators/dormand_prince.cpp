@@ -2,7 +2,7 @@
 // order 5 with an embedded order-4 error estimate, "first same as last" (FSAL), under the
 // standard step-size control (Hairer, Norsett, Wanner, Solving ODEs I, II.4).
 //
-// x = (q, qd, held angles), x' = f(x) (Simulator::evaluate). A substep of h:
+// x = (q, qd, held angles), x' = f(x) (the evaluate callable). A substep of h:
 //   k_s = f(x + h sum_{j<s} a_sj k_j),  s = 1..7 (k_1 = f(x), reused from the last k_7);
 //   x' = x + h sum_j b_j k_j (5th order; b = a_7j, so k_7 = f(x') is the next k_1);
 //   err = h sum_j e_j k_j, e = b - b* (b*: the 4th-order weights).
@@ -17,8 +17,7 @@
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
-#include "achd/simulator.hpp"
-#include "held_directions.hpp"
+#include "integrators.hpp"
 
 namespace achd {
 
@@ -58,32 +57,33 @@ std::string text(double x) {
 
 }  // namespace
 
-void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
-  const int n = model_.num_joints();
-  const double rtol = options_.rtol, atol = options_.atol;
-  const Eigen::Index na = held_angle_count();  // the held angles in use
-  stage_ = 0;
-  evaluate(q, qd, angles_, t, w_n, first, k_angle_[0]);
+void dormand_prince(const Model& model, IntegratorWorkspace& ws, SimulationState& x, double dt, double rtol,
+                    double atol, const std::vector<char>& integrated_angles, Evaluate evaluate, Data& first) {
+  const int n = model.num_rates();
+  const Eigen::Index na = x.held_angles.size();
+  ws.stage = 0;
+  evaluate(x, first, ws.k_angle[0]);
   // No substep size helps when the acceleration at the start is not finite.
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(first.qdd[i]))
-      throw Error("the acceleration of joint '" + model_.bodies[i].joint_name + "' is not finite (qdd = " +
+      throw Error("the acceleration of joint '" + model.bodies[i].joint_name + "' is not finite (qdd = " +
                   text(first.qdd[i]) + ")");
-  configuration_rate(model_, q, qd, k_q_[0]);
-  k_qd_[0] = first.qdd;
+  configuration_rate(model, x.q, x.qd, ws.k_q[0]);
+  ws.k_qd[0] = first.qdd;
 
-  double h = substep_ > 0 ? substep_ : dt;  // the proposal carried over from the last call
-  double done = 0;                          // of dt, covered by accepted substeps
+  double h = ws.substep > 0 ? ws.substep : dt;  // the proposal carried over from the last call
+  double done = 0;                              // of dt, covered by accepted substeps
   int rejections = 0;
   std::int64_t accepted = 0;  // substeps accepted in this call
+  SimulationState& next = ws.next_state;
   for (;;) {
     const double remaining = dt - done;
     // The last substep ends on dt exactly; one within 1% of the rest takes all of it.
     const bool last = done + 1.01 * h >= dt;
     const double hs = last ? remaining : h;
-    substep_ = hs;
+    ws.substep = hs;
     if (hs < kMinSubstepFraction * dt) {
-      stage_ = -1;
+      ws.stage = -1;
       throw Error("the adaptive substep fell to " + text(hs) + " s, below its floor of " +
                   text(kMinSubstepFraction) + " dt (rtol " + text(rtol) + ", atol " + text(atol) +
                   "): the motion is too fast or too stiff here for these tolerances");
@@ -91,25 +91,24 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
     // Stages 2..7; stage 7 is the 5th-order solution x'.
     bool finite = true;
     for (int s = 1; s < 7 && finite; ++s) {
-      stage_ = s;
-      Eigen::VectorXd& qs = s == 6 ? q_next_ : q_stage_;
-      Eigen::VectorXd& qds = s == 6 ? qd_next_ : qd_stage_;
-      HeldAngles& as = s == 6 ? angle_next_ : angle_stage_;
-      qs = q;
-      qds = qd;
-      as.head(na) = angles_.head(na);
+      ws.stage = s;
+      SimulationState& xs = s == 6 ? next : ws.stage_state;
+      xs.q = x.q;
+      xs.qd = x.qd;
+      xs.held_angles.head(na) = x.held_angles;
       for (int j = 0; j < s; ++j) {
         if (kA[s][j] == 0) continue;
         const double c = hs * kA[s][j];
-        qs += c * k_q_[j];
-        qds += c * k_qd_[j];
-        as.head(na) += c * k_angle_[j].head(na);
+        xs.q += c * ws.k_q[j];
+        xs.qd += c * ws.k_qd[j];
+        xs.held_angles.head(na) += c * ws.k_angle[j].head(na);
       }
-      finite = qs.allFinite() && qds.allFinite() && as.head(na).allFinite();
+      finite = xs.q.allFinite() && xs.qd.allFinite() && xs.held_angles.head(na).allFinite();
       if (!finite) break;  // rejected below: a smaller substep
-      evaluate(qs, qds, as, t + done + kC[s] * hs, w_n, stage_data_, k_angle_[s]);
-      configuration_rate(model_, qs, qds, k_q_[s]);
-      k_qd_[s] = stage_data_.qdd;
+      xs.t = x.t + done + kC[s] * hs;
+      evaluate(xs, ws.stage_data, ws.k_angle[s]);
+      configuration_rate(model, xs.q, xs.qd, ws.k_q[s]);
+      ws.k_qd[s] = ws.stage_data.qdd;
     }
     // ||err||: RMS of err_i / (atol + rtol max(|x_i|, |x'_i|)) over q, qd, held angles.
     double sum = 0;
@@ -121,60 +120,58 @@ void Simulator::step_dormand_prince(double dt, double w_n, Data& first) {
         ++count;
       };
       // q has num_positions() numbers (one more than qd with a floating base's quaternion)
-      const int nq = static_cast<int>(q.size());
+      const int nq = static_cast<int>(x.q.size());
       for (int i = 0; i < std::max(n, nq); ++i) {
         if (i < nq) {
           double eq = 0;
-          for (int j = 0; j < 7; ++j) eq += kE[j] * k_q_[j][i];
-          add(q[i], q_next_[i], hs * eq);
+          for (int j = 0; j < 7; ++j) eq += kE[j] * ws.k_q[j][i];
+          add(x.q[i], next.q[i], hs * eq);
         }
         if (i < n) {
           double eqd = 0;
-          for (int j = 0; j < 7; ++j) eqd += kE[j] * k_qd_[j][i];
-          add(qd[i], qd_next_[i], hs * eqd);
+          for (int j = 0; j < 7; ++j) eqd += kE[j] * ws.k_qd[j][i];
+          add(x.qd[i], next.qd[i], hs * eqd);
         }
       }
-      for (size_t set = 0; set < sets_.size(); ++set)
-        for (int k = 0; k < kNumDirections; ++k) {
-          if (sets_[set].held.mode[k] != DirectionMode::Hold || is_linear_direction(k)) continue;
-          const size_t a = set * kNumDirections + k;
-          double e = 0;
-          for (int j = 0; j < 7; ++j) e += kE[j] * k_angle_[j][a];
-          add(angles_[a], angle_next_[a], hs * e);
-        }
+      for (Eigen::Index a = 0; a < na; ++a) {
+        if (!integrated_angles[a]) continue;
+        double e = 0;
+        for (int j = 0; j < 7; ++j) e += kE[j] * ws.k_angle[j][a];
+        add(x.held_angles[a], next.held_angles[a], hs * e);
+      }
     }
     const double err = finite ? (count ? std::sqrt(sum / count) : 0) : INFINITY;
     if (err <= 1) {
-      q = q_next_;  // copies: q and qd keep their buffers (the JS API views them)
-      normalise_configuration(model_, q);
-      qd = qd_next_;
-      angles_.head(na) = angle_next_.head(na);
+      x.q = next.q;  // copies: q and qd keep their buffers (the JS API views them)
+      normalise_configuration(model, x.q);
+      x.qd = next.qd;
+      x.held_angles = next.held_angles.head(na);
       // FSAL: k_7 at x' is k_1 of the next substep.
-      k_q_[0].swap(k_q_[6]);
-      k_qd_[0].swap(k_qd_[6]);
-      k_angle_[0].swap(k_angle_[6]);
-      ++substeps_;
-      double next = hs * (rejections ? std::min(1.0, growth(err)) : growth(err));
+      ws.k_q[0].swap(ws.k_q[6]);
+      ws.k_qd[0].swap(ws.k_qd[6]);
+      ws.k_angle[0].swap(ws.k_angle[6]);
+      ++ws.substeps;
+      double next_h = hs * (rejections ? std::min(1.0, growth(err)) : growth(err));
       // A last substep cut short to end on dt does not shrink the proposal.
-      if (last && hs < h) next = std::max(next, h);
-      substep_ = h = next;
+      if (last && hs < h) next_h = std::max(next_h, h);
+      ws.substep = h = next_h;
       rejections = 0;
       if (last) return;
       done += hs;
       if (++accepted >= kMaxSubstepsPerStep) {
-        stage_ = -1;
+        ws.stage = -1;
         throw Error(std::to_string(kMaxSubstepsPerStep) + " adaptive substeps (the last of " + text(hs) +
                     " s) covered only " + text(done) + " s of this step's " + text(dt) + " s (rtol " + text(rtol) +
                     ", atol " + text(atol) + "): the motion is too fast or too stiff here for these tolerances");
       }
     } else {
-      ++rejected_substeps_;
+      ++ws.rejected;
       if (++rejections > kMaxRejections) {
-        stage_ = -1;
+        ws.stage = -1;
         throw Error(std::to_string(kMaxRejections) + " adaptive substeps in a row were rejected (the last of " +
                     text(hs) + " s, its error " + text(err) + " times the tolerance)");
       }
-      substep_ = h = hs * growth(err);
+      ws.substep = h = hs * growth(err);
     }
   }
 }

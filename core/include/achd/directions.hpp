@@ -1,0 +1,77 @@
+#pragma once
+// The directions a Simulator holds or accelerates on its links, and the events the
+// variable_damping policy records on them.
+//
+// Directions are the base axes at a point of a link (its origin unless set otherwise):
+// x, y, z (linear) and rx, ry, rz (angular). Each link has its own set.
+//   Hold, linear e:  keeps e . p_point at its value when the direction was set.
+//   Hold, angular e: keeps the integral of e . w_link since it was set at zero (its held
+//                    angle, SimulationState::held_angles).
+//   Accelerate:      the classical acceleration of the point along e equals the setpoint.
+// The directions of a link become one constraint block (Case::constraints) whose columns
+// are the active directions, with a Baumgarte-stabilised beta including the
+// velocity-product term that separates spatial from classical acceleration.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "achd/spatial.hpp"
+
+namespace achd {
+
+enum class DirectionMode { Free, Hold, Accelerate };
+
+constexpr int kNumDirections = 6;
+// "x", "y", "z", "rx", "ry", "rz"; index_of_direction returns -1 for anything else.
+const char* direction_name(int index);
+int index_of_direction(const std::string& name);
+
+// Held angles of the direction sets, kNumDirections per set (Simulator::step integrates them).
+using HeldAngles = Eigen::VectorXd;
+
+// The held set of one link: one mode per direction, with what each mode needs (the held
+// angles are part of the simulated state: SimulationState::held_angles).
+struct HeldDirections {
+  std::array<DirectionMode, kNumDirections> mode{};
+  std::array<double, kNumDirections> setpoint{};  // Accelerate: classical acceleration
+  std::array<double, kNumDirections> target{};    // Hold, linear: e . p_point when set
+  // Driver priorities of each direction's column (Case::w_fext, w_ff): 1 = the direction
+  // resists f_ext / ff_torques fully; below 1 that share of the driver passes through.
+  std::array<double, kNumDirections> w_fext{1, 1, 1, 1, 1, 1}, w_ff{1, 1, 1, 1, 1, 1};
+
+  bool active(int k) const { return mode[k] != DirectionMode::Free; }
+  int count() const;
+};
+
+// The directions of one link: where they act and their held set.
+struct LinkDirections {
+  int link = 0;                     // Model::links index
+  Vector3 point = Vector3::Zero();  // where the directions act, in the link's frame
+  HeldDirections held;
+  std::array<double, kNumDirections> max_residual{};  // since each direction was set
+};
+
+// What became of an active direction, from the solve at the start of a step under the
+// variable_damping policy (direction_events.cpp has the thresholds):
+//   Limited:  damping acts on it (its eigen-direction of K is in the singular region);
+//   Released: damping dominates (sigma <= lambda): the direction is no longer followed;
+//   Resumed:  it has left the singular region. A released Hold direction resumes from
+//             where the tip is: its target (linear: e . p_tip) or held angle (0) is reset
+//             then, so the stabilisation does not pull the tip back to the old target.
+enum class DirectionEventKind { Limited, Released, Resumed };
+struct DirectionEvent {
+  double t;            // time of the state whose solve showed the change (s)
+  std::int64_t step;   // steps completed at that state (t = t0 + step dt)
+  int link;            // index in Model::links of the link whose direction it is
+  int direction;       // 0..5: x y z rx ry rz
+  DirectionEventKind kind;
+  double sigma_min;    // the coupling matrix's smallest singular value in that solve
+};
+// The events a Simulator keeps (reserved at construction; later ones are counted in
+// Simulator::events_not_kept()).
+constexpr std::size_t kMaxDirectionEvents = 10000;
+
+}  // namespace achd

@@ -1,0 +1,126 @@
+// The Simulator's x' = f(x): each link's block (alpha set with its directions) gets its
+// beta at the state, the prescribed joints their trajectories' accelerations, the
+// couplings their drift's decay and the joints the PD torques; one hybrid_dynamics solve
+// gives qdd, and the held angles' rates are e . w_link. Also the prescribed joint motion
+// the solves follow.
+#include <cmath>
+
+#include "achd/error.hpp"
+#include "achd/hybrid_dynamics.hpp"
+#include "achd/simulator.hpp"
+#include "direction_sets.hpp"
+#include "held_directions.hpp"
+#include "joint_couplings.hpp"
+#include "message_number.hpp"
+#include "simulator_checks.hpp"
+#include "tip_kinematics.hpp"
+
+namespace achd {
+
+void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAngles& angle_rates) {
+  if (!x.q.allFinite() || !x.qd.allFinite())
+    throw Error("the stage's state is not finite (" + non_finite_joint(model_, x.q, x.qd) + ")");
+  body_motion(model_, x.q, x.qd, X0_, r_, v_);
+  const std::vector<LinkDirections>& sets = directions_->sets();
+  angle_rates.head(held_angles.size()).setZero();  // sets with no active direction have none
+  for (size_t b = 0; b < case_.constraints.size(); ++b) {
+    const int s = directions_->block_set()[b];
+    const LinkDirections& set = sets[s];
+    const TipState at = link_state(model_, X0_, v_, set.link, set.point);
+    const double* angle = x.held_angles.data() + s * kNumDirections;
+    ConstraintVector& beta = case_.constraints[b].beta;
+    direction_targets(set.held, at, angle, w_n, options_.stabilisation_damping,
+                      options_.effects & kVelocityProducts, beta);
+    // beta is the acceleration the solver enforces along each held or accelerated
+    // direction, in index order (direction_columns).
+    for (int k = 0, column = 0; k < kNumDirections; ++k) {
+      if (!set.held.active(k)) continue;
+      if (!std::isfinite(beta[column++]))
+        throw Error("the acceleration to enforce along " + direction_label(model_, set.link, k) +
+                    " is not finite (beta = " + message_number(beta[column - 1]) + "; " +
+                    (model_.has_tip() && set.link == model_.num_links() - 1 ? "tip" : "point") + " speed " +
+                    message_number(at.v.norm()) + " m/s, " + message_number(at.w.norm()) + " rad/s)");
+    }
+    for (int k = 0; k < kNumDirections; ++k)
+      angle_rates[s * kNumDirections + k] = set.held.mode[k] == DirectionMode::Hold && !is_linear_direction(k)
+                                                ? direction_axis(k).dot(at.w) : 0.0;
+  }
+  for (int i = 0; i < model_.num_rates(); ++i)
+    if (moving_[i]) case_.qdd_given[i] = sample(motions_[i], x.t).qdd;
+  // Coupled joints: e = q_f - k q_l - c decays as the held directions' errors do,
+  //   e'' = -2 zeta w e' - w^2 e.
+  for (size_t j = 0; j < model_.couplings.size(); ++j) {
+    const JointCoupling& cj = model_.couplings[j];
+    case_.coupling_beta[j] = -2 * options_.stabilisation_damping * w_n * coupling_rate_error(model_, cj, x.qd) -
+                             w_n * w_n * coupling_position_error(model_, cj, x.q);
+  }
+  apply_joint_control(x.q, x.qd);
+  case_.q = x.q;
+  case_.qd = x.qd;
+  hybrid_dynamics(model_, out, case_, solver_);
+}
+
+// e . w_link of each held angular direction at (q, qd), 0 for the other directions.
+void Simulator::held_angle_rates(const SimulationState& x, HeldAngles& angle_rates) {
+  body_motion(model_, x.q, x.qd, X0_, r_, v_);
+  const std::vector<LinkDirections>& sets = directions_->sets();
+  for (size_t s = 0; s < sets.size(); ++s) {
+    const LinkDirections& set = sets[s];
+    const Vector3 w = link_state(model_, X0_, v_, set.link, set.point).w;
+    for (int k = 0; k < kNumDirections; ++k)
+      angle_rates[s * kNumDirections + k] =
+          set.held.mode[k] == DirectionMode::Hold && !is_linear_direction(k) ? direction_axis(k).dot(w) : 0.0;
+  }
+}
+
+void Simulator::check_joint(int joint, const char* what) const {
+  if (joint < 0 || joint >= model_.num_rates())
+    throw Error(std::string(what) + ": joint index " + std::to_string(joint) + " is not in 0.." +
+                std::to_string(model_.num_rates() - 1));
+}
+
+void Simulator::prescribe(int joint, const JointMotion& motion) {
+  check_joint(joint, "prescribe");
+  if (joint < model_.free_joint_rates())
+    throw Error("prescribe: joint '" + model_.root_name + "' is the floating base's free joint; only its joints "
+                "after it take a motion");
+  validate(motion, "joint '" + model_.bodies[joint].joint_name + "': ");
+  if (!std::isfinite(t)) throw Error("prescribe: t is not finite");
+  motions_[joint] = motion;
+  moving_[joint] = 1;
+  case_.prescribed[joint] = true;
+  limit_stop_[joint] = 0;  // its motion is given: no stop holds it
+  const JointSample at = sample(motion, t);
+  q[model_.position_index(joint)] = at.q;
+  qd[joint] = at.qd;
+  case_.qdd_given[joint] = at.qdd;
+}
+
+void Simulator::release(int joint) {
+  check_joint(joint, "release");
+  moving_[joint] = 0;
+  case_.prescribed[joint] = false;
+  case_.qdd_given[joint] = 0;  // a limit stop prescribes 0
+}
+
+bool Simulator::prescribed(int joint) const {
+  check_joint(joint, "prescribed");
+  return moving_[joint] != 0;
+}
+
+const JointMotion& Simulator::motion(int joint) const {
+  check_joint(joint, "motion");
+  if (!moving_[joint]) throw Error("motion: joint '" + model_.bodies[joint].joint_name + "' is not prescribed");
+  return motions_[joint];
+}
+
+void Simulator::follow_trajectories(double t_at) {
+  for (int i = 0; i < model_.num_rates(); ++i) {
+    if (!moving_[i]) continue;
+    const JointSample at = sample(motions_[i], t_at);
+    q[model_.position_index(i)] = at.q;
+    qd[i] = at.qd;
+  }
+}
+
+}  // namespace achd
