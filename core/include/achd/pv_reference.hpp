@@ -6,8 +6,8 @@
 // (hybrid_dynamics) in the tests and the place to learn the algorithm; it allocates and is
 // not fast. Of what hybrid_dynamics solves it solves q, qd, ff_torques, gravity, f_ext, the
 // tip's alpha/beta and Case::constraints blocks, prescribed joints, damping, friction and
-// rotor inertia per Options::effects, Case::extra_inertia, both conventions; the coupling matrix by the
-// truncated pseudo-inverse (Options::tolerance, relative to sigma_max unless
+// rotor inertia per Options::effects, Case::extra_inertia, both conventions; the coupling
+// matrix by the truncated pseudo-inverse (Options::tolerance, relative to sigma_max unless
 // absolute_tolerance).
 #include <vector>
 
