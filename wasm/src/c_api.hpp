@@ -9,6 +9,7 @@
 
 #include <emscripten/emscripten.h>
 
+#include "achd/data.hpp"
 #include "achd/model.hpp"
 
 #define ACHD_EXPORT extern "C" EMSCRIPTEN_KEEPALIVE
@@ -20,6 +21,9 @@ namespace achd::wasm {
 struct Robot {
   std::shared_ptr<const Model> model;
   std::string info;  // JSON description read once by the wrapper (names, limits, ...)
+  // robot.solve (case_api.cpp): its outputs, made on first use, and its last result text.
+  std::unique_ptr<Data> data;
+  std::string result;
 };
 
 void set_last_error(const char* message);
