@@ -38,16 +38,21 @@ Vector6 spatial(const json& v, const std::string& where) {
   return x;
 }
 
-std::string fmt(double x) {
-  char buf[40];
+// x as JSON text that reads back as x: 17 significant digits (%.17g), or with
+// Digits::Shortest the fewest that do (nlohmann's Grisu2, what its dump() writes: much
+// faster than printf in wasm). A number that is not finite is written as printf does,
+// which is not JSON.
+std::string fmt(double x, Digits digits = Digits::Seventeen) {
+  char buf[64];
+  if (digits == Digits::Shortest && std::isfinite(x)) return {buf, nlohmann::detail::to_chars(buf, buf + sizeof buf, x)};
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
 }
 
 template <typename V>
-std::string array(const V& v) {
+std::string array(const V& v, Digits digits) {
   std::string s = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt(v[i]);
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt(v[i], digits);
   return s + "]";
 }
 
@@ -275,7 +280,7 @@ Case parse_case(const std::string& text, const Model& model, const std::string& 
   return case_from_json(j, model, source);
 }
 
-std::string result_json(const Model& model, const Data& d, const Case& c) {
+std::string result_json(const Model& model, const Data& d, const Case& c, Digits digits) {
   std::string s = "{\n";
   s += "  \"joints\": [";  // a floating base's free joint once (its six entries in qdd)
   for (int i = 0; i < model.num_joints(); ++i)
@@ -283,15 +288,15 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
   s += "],\n  \"links\": [" + quoted(model.root_name);
   for (const Link& l : model.links) s += ", " + quoted(l.name);
   s += "],\n";
-  s += "  \"qdd\": " + array(d.qdd) + ",\n";
-  s += "  \"constraint_torques\": " + array(d.constraint_torques) + ",\n";
-  s += "  \"total_torques\": " + array(d.total_torques) + ",\n";
+  s += "  \"qdd\": " + array(d.qdd, digits) + ",\n";
+  s += "  \"constraint_torques\": " + array(d.constraint_torques, digits) + ",\n";
+  s += "  \"total_torques\": " + array(d.total_torques, digits) + ",\n";
   if (model.couplings.empty()) {
-    s += "  \"nu\": " + array(d.nu) + ",\n";
+    s += "  \"nu\": " + array(d.nu, digits) + ",\n";
   } else {  // the coupled joints' forces follow the constraint columns', each entry named
     Eigen::VectorXd nu(d.nu.size() + d.coupling_forces.size());
     nu << d.nu, d.coupling_forces;
-    s += "  \"nu\": " + array(nu) + ",\n  \"nu_owners\": [";
+    s += "  \"nu\": " + array(nu, digits) + ",\n  \"nu_owners\": [";
     std::string owners;  // (no constraint columns in nu with the constraints effect off)
     if (d.nu.size())
       for (int k = 0; k < c.alpha.cols(); ++k) owners += std::string(owners.empty() ? "" : ", ") + "\"tip\"";
@@ -303,37 +308,37 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
       owners += std::string(owners.empty() ? "" : ", ") + quoted("coupling " + model.bodies[j.follower].joint_name);
     s += owners + "],\n";
   }
-  s += "  \"joint_torques\": " + array(d.joint_torques) + ",\n";
-  if (!c.f_virtual.empty()) s += "  \"virtual_torques\": " + array(d.virtual_torques) + ",\n";
+  s += "  \"joint_torques\": " + array(d.joint_torques, digits) + ",\n";
+  if (!c.f_virtual.empty()) s += "  \"virtual_torques\": " + array(d.virtual_torques, digits) + ",\n";
   if (c.any_prescribed()) {  // null where the joint is not prescribed, as in qdd_given
     s += "  \"prescribed_torques\": [";
     for (int i = 0; i < model.num_joints(); ++i)
-      s += (i ? ", " : "") + (c.prescribed[i] ? fmt(d.prescribed_torques[i]) : std::string("null"));
+      s += (i ? ", " : "") + (c.prescribed[i] ? fmt(d.prescribed_torques[i], digits) : std::string("null"));
     s += "],\n";
   }
-  s += "  \"constraint_wrench\": " + array(d.constraint_wrench) + ",\n";
+  s += "  \"constraint_wrench\": " + array(d.constraint_wrench, digits) + ",\n";
   s += "  \"constraint_wrenches\": [";  // one per block of c.constraints
-  for (size_t b = 0; b < c.constraints.size(); ++b) s += (b ? ", " : "") + array(d.constraint_wrenches[b]);
+  for (size_t b = 0; b < c.constraints.size(); ++b) s += (b ? ", " : "") + array(d.constraint_wrenches[b], digits);
   s += "],\n";
   s += "  \"link_accelerations\": [";
   for (int i = 0; i <= model.num_links(); ++i)
-    s += std::string(i ? ",\n    " : "\n    ") + array(d.link_accelerations[i]);
+    s += std::string(i ? ",\n    " : "\n    ") + array(d.link_accelerations[i], digits);
   s += "\n  ],\n";
   s += "  \"rank\": " + std::to_string(d.rank) + ",\n";
-  s += "  \"sigma_min\": " + fmt(sigma_min(d)) + ",\n";
+  s += "  \"sigma_min\": " + fmt(sigma_min(d), digits) + ",\n";
   s += "  \"dropped\": [";
   for (Eigen::Index k = 0; k < d.dropped.cols(); ++k)
-    s += (k ? ", " : "") + array(d.dropped.col(k));
+    s += (k ? ", " : "") + array(d.dropped.col(k), digits);
   s += "]";
-  if (!model.locked_joints.empty()) s += ",\n  \"locked_joints\": " + locked_joints_json(model);
+  if (!model.locked_joints.empty()) s += ",\n  \"locked_joints\": " + locked_joints_json(model, digits);
   return s + "\n}\n";
 }
 
-std::string locked_joints_json(const Model& model) {
+std::string locked_joints_json(const Model& model, Digits digits) {
   std::string s = "[";
   for (size_t k = 0; k < model.locked_joints.size(); ++k)
     s += std::string(k ? ", " : "") + "{\"name\": " + quoted(model.locked_joints[k].name) +
-         ", \"value\": " + fmt(model.locked_joints[k].value) + "}";
+         ", \"value\": " + fmt(model.locked_joints[k].value, digits) + "}";
   return s + "]";
 }
 

@@ -44,14 +44,20 @@ std::string no_joint(const Model& model, const std::string& name);
 // Why `name` names no link after the root (the links wrenches and constraint blocks act on).
 std::string no_link(const Model& model, const std::string& name);
 
-// The result of the last solve of `c` as JSON text, numbers with 17 significant digits:
+// How result_json writes numbers: with 17 significant digits (the CLI's output), or with
+// the fewest that read back as the same double (the wasm module's results, which JS
+// parses: printf's 17 digits cost more there than the solve).
+enum class Digits { Seventeen, Shortest };
+
+// The result of the last solve of `c` as JSON text, numbers as `digits` says (either
+// reads back as the same doubles):
 // the names ("joints" in the order of qdd, "links" in the order of link_accelerations,
 // root link first), the outputs, "constraint_wrenches" (one per block of c.constraints);
 // "prescribed_torques" (null where a joint is not prescribed) only when c prescribes a
 // joint, "locked_joints" only when the model has any.
-std::string result_json(const Model& model, const Data& data, const Case& c);
+std::string result_json(const Model& model, const Data& data, const Case& c, Digits digits = Digits::Seventeen);
 
 // Model::locked_joints as a JSON array [{"name", "value"}] (results and `achd info`).
-std::string locked_joints_json(const Model& model);
+std::string locked_joints_json(const Model& model, Digits digits = Digits::Seventeen);
 
 }  // namespace achd::cli

@@ -48,7 +48,7 @@ ACHD_EXPORT const char* achd_robot_solve(Robot* r, const char* case_text, int co
     o.friction_velocity = friction_velocity;
     if (!r->data) r->data = std::make_unique<achd::Data>(model);
     achd::hybrid_dynamics(model, *r->data, c, o);
-    r->result = achd::cli::result_json(model, *r->data, c);
+    r->result = achd::cli::result_json(model, *r->data, c, achd::cli::Digits::Shortest);
     out = r->result.c_str();
   });
   return out;
