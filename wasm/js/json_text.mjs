@@ -7,10 +7,10 @@
 // (undefined, NaN, +-Infinity, a BigInt, a symbol, a function, a Map, a Set, a DataView,
 // an ArrayBuffer, a class instance, a getter, a value that contains itself, one nested
 // deeper than any input) is written as a string the C++ side marks as that value
-// (tools/foreign_values.hpp), so that the case parser refuses it in its own words and
-// names it: "q must be an array of 7 numbers or an object {joint name: value}, got a
-// Map", "q[3] is not finite". -0 keeps its sign. A typed array (not a BigInt one) is the
-// array of its numbers.
+// (tools/foreign_values.hpp), so that the case parser refuses it in its own words, which
+// name the field and the index, and adds what it was (", got a Map"; "q[3] is not
+// finite"). -0 keeps its sign. A typed array (not a BigInt one) is the array of its
+// numbers.
 //
 // Every input is read once (the case parser sees that one reading): an array's length
 // and each element one time, a typed array's elements straight from its memory, an

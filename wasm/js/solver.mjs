@@ -132,7 +132,7 @@ export class Solver extends AchdHandle {
     this._prescribed = mask;
   }
   get prescribed() { this._live(); return this._prescribed.slice(); }
-  // Why `name` is no movable joint of the model, in the case parser's words.
+  // Why `name` names none of the model's movable joints, in the case parser's words.
   _noJoint(name) {
     const ptr = this._live();
     return achdWithString(name, (p) => achdWasm.text.UTF8ToString(achdWasm.module._achd_solver_no_joint(ptr, p)));
