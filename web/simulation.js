@@ -74,9 +74,9 @@ export class Simulation {
     try {
       // The links as the module loaded them (robot.links: parents, joints, masses).
       const names = [this.robot.root, ...this.robot.linkNames];
-      const joints = new Map(this.robot.links.map((l) => [l.name, l.joint]));
+      const jointAbove = new Map(this.robot.links.map((l) => [l.name, l.joint]));
       this.movable = [Boolean(this.robot.floating),
-        ...this.robot.linkNames.map((l) => Boolean(joints.get(l)) && joints.get(l).type !== 'fixed')];
+        ...this.robot.linkNames.map((l) => Boolean(jointAbove.get(l)) && jointAbove.get(l).type !== 'fixed')];
       // parents[i]: the links() index of the link link i hangs from (-1 for the root).
       const index = new Map(names.map((l, i) => [l, i]));
       const parentOf = linkParents(this.robot);
