@@ -42,17 +42,28 @@ Vector6 spatial(const json& v, const std::string& where) {
 // Digits::Shortest the fewest that do (nlohmann's Grisu2, what its dump() writes: much
 // faster than printf in wasm). A number that is not finite is written as printf does,
 // which is not JSON.
-std::string fmt(double x, Digits digits = Digits::Seventeen) {
+void append_number(std::string& out, double x, Digits digits) {
   char buf[64];
-  if (digits == Digits::Shortest && std::isfinite(x)) return {buf, nlohmann::detail::to_chars(buf, buf + sizeof buf, x)};
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
+  if (digits == Digits::Shortest && std::isfinite(x)) {
+    out.append(buf, nlohmann::detail::to_chars(buf, buf + sizeof buf, x));
+    return;
+  }
+  out.append(buf, static_cast<size_t>(std::snprintf(buf, sizeof buf, "%.17g", x)));
+}
+
+std::string fmt(double x, Digits digits = Digits::Seventeen) {
+  std::string s;
+  append_number(s, x, digits);
+  return s;
 }
 
 template <typename V>
 std::string array(const V& v, Digits digits) {
   std::string s = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt(v[i], digits);
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (i) s += ", ";
+    append_number(s, v[i], digits);
+  }
   return s + "]";
 }
 
@@ -234,8 +245,13 @@ void prescribed_joints(const json& v, const Model& model, Case& c) {
   }
 }
 
-// A JSON string.
-std::string quoted(const std::string& s) { return json(s).dump(); }
+// A JSON string. (Names of printable ASCII without quotes or backslashes, nearly all,
+// are written as they are: what dump() writes for them, without its cost.)
+std::string quoted(const std::string& s) {
+  for (const char ch : s)
+    if (ch < 0x20 || ch > 0x7e || ch == '"' || ch == '\\') return json(s).dump();
+  return '"' + s + '"';
+}
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <emscripten/emscripten.h>
+#include <nlohmann/json_fwd.hpp>
 
 #include "achd/data.hpp"
 #include "achd/model.hpp"
@@ -27,6 +28,10 @@ struct Robot {
 };
 
 void set_last_error(const char* message);
+
+// The JSON text of a case-shaped input written by the JS bridge (wasm/js/json_text.mjs),
+// parsed, the values JSON cannot hold marked (foreign_values.hpp), for the case parser.
+nlohmann::json json_from_bridge(const char* text);
 
 // Runs f(); on an exception stores its message and returns 1.
 template <typename F>

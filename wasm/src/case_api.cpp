@@ -10,19 +10,28 @@
 #include "c_api.hpp"
 #include "case_json.hpp"
 #include "foreign_values.hpp"
-#include "json_text.hpp"
 
 namespace achd::wasm {
 namespace {
 
-// The bridge's JSON text as a JSON value, foreign values marked.
+// The bridge's JSON text as a JSON value, foreign values marked. (A JS object has no two
+// equal keys: the check of parse_json_text, which costs a set of keys per object, is not
+// needed here.)
 nlohmann::json from_bridge(const char* text) {
-  nlohmann::json j = cli::parse_json_text(text);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {  // (a lone UTF-16 surrogate in a string)
+    throw Error(std::string("invalid JSON: ") + e.what());
+  }
   cli::mark_foreign(j);
   return j;
 }
 
 }  // namespace
+
+nlohmann::json json_from_bridge(const char* text) { return from_bridge(text); }
+
 }  // namespace achd::wasm
 
 using achd::wasm::Robot;

@@ -3,12 +3,12 @@
 #include <cstddef>
 #include <limits>
 
+#include <nlohmann/json.hpp>
+
 #include "achd/achd.hpp"
 #include "boundary.hpp"
 #include "c_api.hpp"
 #include "case_json.hpp"
-#include "foreign_values.hpp"
-#include "json_text.hpp"
 
 namespace achd::wasm {
 
@@ -123,10 +123,8 @@ ACHD_EXPORT int achd_solver_set_num_constraints(Solver* s, int nc) {
 // that a solve never allocates.
 ACHD_EXPORT int achd_solver_set_constraints(Solver* s, const char* text) {
   return achd::wasm::guarded([&] {
-    nlohmann::json j = achd::cli::parse_json_text(text);
-    achd::cli::mark_foreign(j);
     achd::Case parsed;
-    achd::cli::constraint_blocks(j, *s->model, parsed);
+    achd::cli::constraint_blocks(achd::wasm::json_from_bridge(text), *s->model, parsed);
     const std::vector<achd::ConstraintBlock>& given = parsed.constraints;
     if (given.size() > static_cast<size_t>(achd::kMaxConstraintColumns))
       throw achd::Error("constraints: at most " + std::to_string(achd::kMaxConstraintColumns) + " blocks, got " +
