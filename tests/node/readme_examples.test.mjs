@@ -12,7 +12,7 @@ import { mkdirSync, readFileSync, statSync, symlinkSync, writeFileSync } from 'n
 import { join } from 'node:path';
 import { test } from 'node:test';
 
-import { defaultSettings, parseHash, simulatorOptions } from '../../web/settings.js';
+import { adoptOffer, defaultSettings, parseHash, simulatorOptions } from '../../web/settings.js';
 import { moduleOffer } from '../../web/module_offer.js';
 import { loadAchd, nativeCli, repo, robots, scratchDir } from './helpers.mjs';
 
@@ -173,6 +173,7 @@ test(`every page link in README.md runs ${LINK_SECONDS} simulated seconds as the
   assert.ok(links.length >= 1, 'README.md has no page link');
   const achd = await loadAchd();
   const offer = moduleOffer(achd);
+  adoptOffer(offer);  // as the page does once its module has loaded
   const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
   const failures = [];
   for (const link of links) {
