@@ -87,7 +87,8 @@ export class Robot extends AchdHandle {
   // copies). The case is the CLI's: written as JSON text by the bridge (json_text.mjs,
   // read once, what JSON cannot hold marked) and parsed, checked and solved by C++ with
   // the CLI's case parser, whose messages name the field and the index; the result is
-  // the CLI's result JSON, numbers with 17 significant digits (the same doubles).
+  // the CLI's result JSON, each number in the fewest digits that read back as it (the
+  // same doubles as the CLI's 17 digits).
   solve(c, options) {
     this._live();
     const args = achdSolverOptions(options);

@@ -186,9 +186,6 @@ ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) {
   achd::wasm::guarded([&] { out = achd::sigma_min(s->data); });
   return out;
 }
-ACHD_EXPORT int achd_solver_nu_size(const Solver* s) { return static_cast<int>(s->data.nu.size()); }
-ACHD_EXPORT int achd_solver_dropped_rows(const Solver* s) { return static_cast<int>(s->data.dropped.rows()); }
-ACHD_EXPORT int achd_solver_dropped_cols(const Solver* s) { return static_cast<int>(s->data.dropped.cols()); }
 
 // solver.result(): the outputs of the last solve as the CLI writes them
 // (achd::cli::result_json); valid until the next call, or null with the reason in
