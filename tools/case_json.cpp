@@ -3,13 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <utility>
 
+#include "foreign_values.hpp"
 #include "json_text.hpp"
 #include "printable.hpp"
-#include "read_text_file.hpp"
 
 namespace achd::cli {
 namespace {
@@ -19,14 +17,15 @@ using nlohmann::json;
 std::string at(const std::string& field, size_t i) { return field + "[" + std::to_string(i) + "]"; }
 
 double number(const json& v, const std::string& where) {
-  if (!v.is_number()) throw Error(where + " must be a number");
+  if (non_finite(v)) throw Error(where + " is not finite");
+  if (!v.is_number()) throw Error(where + " must be a number" + got(v));
   const double x = v.get<double>();
   if (!std::isfinite(x)) throw Error(where + " is not finite");
   return x;
 }
 
 Eigen::VectorXd vector(const json& v, const std::string& field, int n) {
-  if (!v.is_array()) throw Error(field + " must be an array of " + std::to_string(n) + " numbers");
+  if (!v.is_array()) throw Error(field + " must be an array of " + std::to_string(n) + " numbers" + got(v));
   if (static_cast<int>(v.size()) != n)
     throw Error(field + ": expected " + std::to_string(n) + " values, got " + std::to_string(v.size()));
   Eigen::VectorXd out(n);
@@ -39,16 +38,32 @@ Vector6 spatial(const json& v, const std::string& where) {
   return x;
 }
 
-std::string fmt(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
+// x as JSON text that reads back as x: 17 significant digits (%.17g), or with
+// Digits::Shortest the fewest that do (nlohmann's Grisu2, what its dump() writes: much
+// faster than printf in wasm). A number that is not finite is written as printf does,
+// which is not JSON.
+void append_number(std::string& out, double x, Digits digits) {
+  char buf[64];
+  if (digits == Digits::Shortest && std::isfinite(x)) {
+    out.append(buf, nlohmann::detail::to_chars(buf, buf + sizeof buf, x));
+    return;
+  }
+  out.append(buf, static_cast<size_t>(std::snprintf(buf, sizeof buf, "%.17g", x)));
+}
+
+std::string fmt(double x, Digits digits = Digits::Seventeen) {
+  std::string s;
+  append_number(s, x, digits);
+  return s;
 }
 
 template <typename V>
-std::string array(const V& v) {
+std::string array(const V& v, Digits digits) {
   std::string s = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt(v[i]);
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (i) s += ", ";
+    append_number(s, v[i], digits);
+  }
   return s + "]";
 }
 
@@ -62,8 +77,10 @@ std::string shortest(double x) {
   return buf;
 }
 
-// Why `name` is not a movable joint of the model, in the user's terms: a joint the loader
-// locked (a side joint of a chain), or one that is not on the chain / not below the root.
+}  // namespace
+
+Eigen::VectorXd numbers(const json& v, const std::string& field, int n) { return vector(v, field, n); }
+
 std::string no_joint(const Model& model, const std::string& name) {
   for (const LockedJoint& l : model.locked_joints)
     if (l.name == name)
@@ -73,7 +90,6 @@ std::string no_joint(const Model& model, const std::string& name) {
   return "no movable joint '" + printable(name) + "' below the root link '" + model.root_name + "'";
 }
 
-// Why `name` names no link after the root (the links wrenches and constraint blocks act on).
 std::string no_link(const Model& model, const std::string& name) {
   if (name == model.root_name && model.floating)
     return "'" + printable(name) + "' is the floating root link, which does not take wrenches or constraint blocks yet "
@@ -82,17 +98,13 @@ std::string no_link(const Model& model, const std::string& name) {
   return "no link '" + printable(name) + "'" + (model.has_tip() ? " on the chain" : " below the root link '" + model.root_name + "'");
 }
 
-// A per-joint vector: q (positions = true) or qd, ff_torques: an array in model order
-// (num_positions() or num_rates() numbers), or an object keyed by joint name (joints not
-// named: 0). A floating base's free joint, named after the root link, comes first with 7
-// numbers in q ([x, y, z, qx, qy, qz, qw]) and 6 in the others; keyed by name it is an
-// array of those, and when it is not named, the identity pose at the origin and rest.
-Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Model& model, bool positions = false) {
+Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Model& model, bool positions) {
   const int n = positions ? model.num_positions() : model.num_rates();
   const int free = model.floating ? (positions ? 7 : 6) : 0;  // the free joint's numbers
   if (!v.is_object()) {
     if (!v.is_array())
-      throw Error(field + " must be an array of " + std::to_string(n) + " numbers or an object {joint name: value}");
+      throw Error(field + " must be an array of " + std::to_string(n) + " numbers or an object {joint name: value}" +
+                  got(v));
     return vector(v, field, n);
   }
   Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
@@ -107,8 +119,6 @@ Eigen::VectorXd joint_vector(const json& v, const std::string& field, const Mode
   return out;
 }
 
-// "f_ext" and "f_virtual" (`field`): an array of one wrench per link after the root, or an
-// object keyed by link name (links not named: no wrench).
 void link_wrenches(const json& f, const Model& model, const std::string& field, std::vector<Vector6>& out) {
   const int nl = model.num_links();
   if (f.is_object()) {
@@ -116,25 +126,28 @@ void link_wrenches(const json& f, const Model& model, const std::string& field, 
     for (const auto& item : f.items()) {
       const int l = model.link_index(item.key());
       if (l < 0) throw Error(field + ": " + no_link(model, item.key()));
-      out[l] = spatial(item.value(), field + "['" + item.key() + "']");
+      out[l] = spatial(item.value(), field + "['" + printable(item.key()) + "']");
     }
     return;
   }
-  if (!f.is_array()) throw Error(field + " must be an array of 6-element wrenches or an object {link name: wrench}");
+  if (!f.is_array())
+    throw Error(field + " must be an array of 6-element wrenches or an object {link name: wrench}" + got(f));
   if (static_cast<int>(f.size()) != nl)
     throw Error(field + ": expected " + std::to_string(nl) + " wrenches (one per link after the root), got " +
                 std::to_string(f.size()));
   for (size_t i = 0; i < f.size(); ++i) out.push_back(spatial(f[i], at(field, i)));
 }
 
+namespace {
+
 // "w_fext" / "w_ff" of the tip (prefix "") or of a block: one weight per alpha column.
 void driver_weights(const json& j, const std::string& prefix, int nc, ConstraintVector& w_fext,
                     ConstraintVector& w_ff) {
   for (auto [name, out] : {std::pair<const char*, ConstraintVector*>{"w_fext", &w_fext}, {"w_ff", &w_ff}}) {
-    if (!j.contains(name)) continue;
+    if (!given(j, name)) continue;
     const json& v = j[name];
     const std::string field = prefix + name;
-    if (!v.is_array()) throw Error(field + " must be an array of numbers in [0, 1], one per alpha column");
+    if (!v.is_array()) throw Error(field + " must be an array of numbers in [0, 1], one per alpha column" + got(v));
     if (static_cast<int>(v.size()) != nc)
       throw Error(field + ": expected " + std::to_string(nc) + " values (one per alpha column), got " +
                   std::to_string(v.size()));
@@ -145,10 +158,11 @@ void driver_weights(const json& j, const std::string& prefix, int nc, Constraint
 
 // Constraint columns: `alpha` (up to kMaxConstraints 6-element columns) and `beta` (one
 // per column; absent = zeros) of the tip (prefix "") or of a block ("constraints[b].").
-void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, ConstraintVector& beta) {
-  if (j.contains("alpha")) {
+void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, ConstraintVector& beta,
+             bool alpha_required = false) {
+  if (alpha_required ? j.contains("alpha") : given(j, "alpha")) {
     const json& a = j["alpha"];
-    if (!a.is_array()) throw Error(prefix + "alpha must be an array of 6-element columns");
+    if (!a.is_array()) throw Error(prefix + "alpha must be an array of 6-element columns" + got(a));
     if (a.size() > static_cast<size_t>(kMaxConstraints))
       throw Error(prefix + "alpha: at most " + std::to_string(kMaxConstraints) + " constraints, got " +
                   std::to_string(a.size()));
@@ -156,9 +170,9 @@ void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, 
     for (size_t k = 0; k < a.size(); ++k) alpha.col(k) = spatial(a[k], at(prefix + "alpha", k));
   }
   const int nc = static_cast<int>(alpha.cols());
-  if (j.contains("beta")) {
+  if (given(j, "beta")) {
     const json& b = j["beta"];
-    if (!b.is_array()) throw Error(prefix + "beta must be an array of numbers");
+    if (!b.is_array()) throw Error(prefix + "beta must be an array of numbers" + got(b));
     if (static_cast<int>(b.size()) != nc)
       throw Error(prefix + "beta: expected " + std::to_string(nc) + " values (one per alpha column), got " +
                   std::to_string(b.size()));
@@ -169,30 +183,33 @@ void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, 
   }
 }
 
-// "constraints": blocks {link, alpha, beta, point} on links named by the user.
+}  // namespace
+
 void constraint_blocks(const json& cs, const Model& model, Case& c) {
-  if (!cs.is_array()) throw Error("constraints must be an array of blocks {link, alpha, beta, point}");
+  if (!cs.is_array()) throw Error("constraints must be an array of blocks {link, alpha, beta, point}" + got(cs));
   for (size_t b = 0; b < cs.size(); ++b) {
     const json& j = cs[b];
     const std::string where = at("constraints", b);
-    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point}");
+    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point}" + got(j));
     for (const auto& item : j.items())
       if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point" &&
           item.key() != "w_fext" && item.key() != "w_ff")
         throw Error(where + ": unknown field '" + printable(item.key()) + "'");
     if (!j.contains("link")) throw Error(where + ": missing required field 'link'");
     if (!j.contains("alpha")) throw Error(where + ": missing required field 'alpha'");
-    if (!j["link"].is_string()) throw Error(where + ".link must be a link name");
+    if (!j["link"].is_string()) throw Error(where + ".link must be a link name" + got(j["link"]));
     ConstraintBlock block;
     const std::string name = j["link"].get<std::string>();
     block.link = model.link_index(name);
     if (block.link < 0) throw Error(where + ".link: " + no_link(model, name));
-    columns(j, where + ".", block.alpha, block.beta);
+    columns(j, where + ".", block.alpha, block.beta, true);
     driver_weights(j, where + ".", static_cast<int>(block.alpha.cols()), block.w_fext, block.w_ff);
-    if (j.contains("point")) block.point = vector(j["point"], where + ".point", 3);
+    if (given(j, "point")) block.point = vector(j["point"], where + ".point", 3);
     c.constraints.push_back(block);
   }
 }
+
+namespace {
 
 // "qdd_given": the prescribed joints' accelerations, as an object keyed by joint name or
 // an array in model order with null for a joint that is not prescribed.
@@ -217,7 +234,7 @@ void prescribed_joints(const json& v, const Model& model, Case& c) {
   }
   if (!v.is_array())
     throw Error("qdd_given must be an object {joint name: acceleration} or an array of " + std::to_string(nj) +
-                " numbers or nulls (null: the joint is not prescribed)");
+                " numbers or nulls (null: the joint is not prescribed)" + got(v));
   if (static_cast<int>(v.size()) != nj)
     throw Error("qdd_given: expected " + std::to_string(nj) + " values (one per joint, null where not prescribed), got " +
                 std::to_string(v.size()));
@@ -228,14 +245,19 @@ void prescribed_joints(const json& v, const Model& model, Case& c) {
   }
 }
 
-// A JSON string.
-std::string quoted(const std::string& s) { return json(s).dump(); }
+// A JSON string. (Names of printable ASCII without quotes or backslashes, nearly all,
+// are written as they are: what dump() writes for them, without its cost.)
+std::string quoted(const std::string& s) {
+  for (const char ch : s)
+    if (ch < 0x20 || ch > 0x7e || ch == '"' || ch == '\\') return json(s).dump();
+  return '"' + s + '"';
+}
 
 }  // namespace
 
 Case case_from_json(const json& j, const Model& model, const std::string& source) {
   try {
-    if (!j.is_object()) throw Error("the case must be a JSON object");
+    if (!j.is_object()) throw Error("the case must be a JSON object" + got(j));
     static const char* known[] = {"q",          "qd",        "gravity",     "alpha",     "beta", "f_ext",
                                   "ff_torques", "qdd_given", "constraints", "f_virtual", "w_fext", "w_ff"};
     for (const auto& item : j.items()) {
@@ -248,17 +270,18 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
     Case c;
     c.q = joint_vector(j["q"], "q", model, true);
     c.gravity = vector(j["gravity"], "gravity", 3);
-    if (j.contains("qd")) c.qd = joint_vector(j["qd"], "qd", model);
-    if (j.contains("ff_torques")) c.ff_torques = joint_vector(j["ff_torques"], "ff_torques", model);
+    if (given(j, "qd")) c.qd = joint_vector(j["qd"], "qd", model);
+    if (given(j, "ff_torques")) c.ff_torques = joint_vector(j["ff_torques"], "ff_torques", model);
     columns(j, "", c.alpha, c.beta);
     driver_weights(j, "", static_cast<int>(c.alpha.cols()), c.w_fext, c.w_ff);
-    if (j.contains("constraints")) constraint_blocks(j["constraints"], model, c);
-    if (j.contains("f_ext")) link_wrenches(j["f_ext"], model, "f_ext", c.f_ext);
-    if (j.contains("f_virtual")) link_wrenches(j["f_virtual"], model, "f_virtual", c.f_virtual);
-    if (j.contains("qdd_given")) prescribed_joints(j["qdd_given"], model, c);
+    if (given(j, "constraints")) constraint_blocks(j["constraints"], model, c);
+    if (given(j, "f_ext")) link_wrenches(j["f_ext"], model, "f_ext", c.f_ext);
+    if (given(j, "f_virtual")) link_wrenches(j["f_virtual"], model, "f_virtual", c.f_virtual);
+    if (given(j, "qdd_given")) prescribed_joints(j["qdd_given"], model, c);
     validate(model, c);
     return c;
   } catch (const Error& e) {
+    if (source.empty()) throw;
     throw Error(source + ": " + e.what());
   }
 }
@@ -273,7 +296,7 @@ Case parse_case(const std::string& text, const Model& model, const std::string& 
   return case_from_json(j, model, source);
 }
 
-std::string result_json(const Model& model, const Data& d, const Case& c) {
+std::string result_json(const Model& model, const Data& d, const Case& c, Digits digits) {
   std::string s = "{\n";
   s += "  \"joints\": [";  // a floating base's free joint once (its six entries in qdd)
   for (int i = 0; i < model.num_rates(); ++i)
@@ -281,15 +304,15 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
   s += "],\n  \"links\": [" + quoted(model.root_name);
   for (const Link& l : model.links) s += ", " + quoted(l.name);
   s += "],\n";
-  s += "  \"qdd\": " + array(d.qdd) + ",\n";
-  s += "  \"constraint_torques\": " + array(d.constraint_torques) + ",\n";
-  s += "  \"total_torques\": " + array(d.total_torques) + ",\n";
+  s += "  \"qdd\": " + array(d.qdd, digits) + ",\n";
+  s += "  \"constraint_torques\": " + array(d.constraint_torques, digits) + ",\n";
+  s += "  \"total_torques\": " + array(d.total_torques, digits) + ",\n";
   if (model.couplings.empty()) {
-    s += "  \"nu\": " + array(d.nu) + ",\n";
+    s += "  \"nu\": " + array(d.nu, digits) + ",\n";
   } else {  // the coupled joints' forces follow the constraint columns', each entry named
     Eigen::VectorXd nu(d.nu.size() + d.coupling_forces.size());
     nu << d.nu, d.coupling_forces;
-    s += "  \"nu\": " + array(nu) + ",\n  \"nu_owners\": [";
+    s += "  \"nu\": " + array(nu, digits) + ",\n  \"nu_owners\": [";
     std::string owners;  // (no constraint columns in nu with the constraints effect off)
     if (d.nu.size())
       for (int k = 0; k < c.alpha.cols(); ++k) owners += std::string(owners.empty() ? "" : ", ") + "\"tip\"";
@@ -301,42 +324,38 @@ std::string result_json(const Model& model, const Data& d, const Case& c) {
       owners += std::string(owners.empty() ? "" : ", ") + quoted("coupling " + model.bodies[j.follower].joint_name);
     s += owners + "],\n";
   }
-  s += "  \"joint_torques\": " + array(d.joint_torques) + ",\n";
-  if (!c.f_virtual.empty()) s += "  \"virtual_torques\": " + array(d.virtual_torques) + ",\n";
+  s += "  \"joint_torques\": " + array(d.joint_torques, digits) + ",\n";
+  if (!c.f_virtual.empty()) s += "  \"virtual_torques\": " + array(d.virtual_torques, digits) + ",\n";
   if (c.any_prescribed()) {  // null where the joint is not prescribed, as in qdd_given
     s += "  \"prescribed_torques\": [";
     for (int i = 0; i < model.num_rates(); ++i)
-      s += (i ? ", " : "") + (c.prescribed[i] ? fmt(d.prescribed_torques[i]) : std::string("null"));
+      s += (i ? ", " : "") + (c.prescribed[i] ? fmt(d.prescribed_torques[i], digits) : std::string("null"));
     s += "],\n";
   }
-  s += "  \"constraint_wrench\": " + array(d.constraint_wrench) + ",\n";
+  s += "  \"constraint_wrench\": " + array(d.constraint_wrench, digits) + ",\n";
   s += "  \"constraint_wrenches\": [";  // one per block of c.constraints
-  for (size_t b = 0; b < c.constraints.size(); ++b) s += (b ? ", " : "") + array(d.constraint_wrenches[b]);
+  for (size_t b = 0; b < c.constraints.size(); ++b) s += (b ? ", " : "") + array(d.constraint_wrenches[b], digits);
   s += "],\n";
   s += "  \"link_accelerations\": [";
   for (int i = 0; i <= model.num_links(); ++i)
-    s += std::string(i ? ",\n    " : "\n    ") + array(d.link_accelerations[i]);
+    s += std::string(i ? ",\n    " : "\n    ") + array(d.link_accelerations[i], digits);
   s += "\n  ],\n";
   s += "  \"rank\": " + std::to_string(d.rank) + ",\n";
-  s += "  \"sigma_min\": " + fmt(sigma_min(d)) + ",\n";
+  s += "  \"sigma_min\": " + fmt(sigma_min(d), digits) + ",\n";
   s += "  \"dropped\": [";
   for (Eigen::Index k = 0; k < d.dropped.cols(); ++k)
-    s += (k ? ", " : "") + array(d.dropped.col(k));
+    s += (k ? ", " : "") + array(d.dropped.col(k), digits);
   s += "]";
-  if (!model.locked_joints.empty()) s += ",\n  \"locked_joints\": " + locked_joints_json(model);
+  if (!model.locked_joints.empty()) s += ",\n  \"locked_joints\": " + locked_joints_json(model, digits);
   return s + "\n}\n";
 }
 
-std::string locked_joints_json(const Model& model) {
+std::string locked_joints_json(const Model& model, Digits digits) {
   std::string s = "[";
   for (size_t k = 0; k < model.locked_joints.size(); ++k)
     s += std::string(k ? ", " : "") + "{\"name\": " + quoted(model.locked_joints[k].name) +
-         ", \"value\": " + fmt(model.locked_joints[k].value) + "}";
+         ", \"value\": " + fmt(model.locked_joints[k].value, digits) + "}";
   return s + "]";
-}
-
-std::string read_json_file(const std::string& path, const std::string& what, bool allow_stdin) {
-  return read_text_file(path, kMaxJsonFileBytes, what, allow_stdin);
 }
 
 }  // namespace achd::cli

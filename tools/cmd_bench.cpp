@@ -13,6 +13,7 @@
 
 #include "args.hpp"
 #include "case_json.hpp"
+#include "json_file.hpp"
 #include "commands.hpp"
 #include "timing.hpp"
 #include "urdf_options.hpp"

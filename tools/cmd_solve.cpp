@@ -5,6 +5,7 @@
 
 #include "args.hpp"
 #include "case_json.hpp"
+#include "json_file.hpp"
 #include "commands.hpp"
 #include "urdf_options.hpp"
 

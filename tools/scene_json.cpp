@@ -6,6 +6,7 @@
 #include "achd/names.hpp"
 #include "achd/srdf.hpp"
 #include "case_json.hpp"
+#include "json_file.hpp"
 #include "json_text.hpp"
 #include "printable.hpp"
 #include "read_text_file.hpp"

@@ -177,7 +177,9 @@ export interface SolverOptions extends SolveOptions {
 
 /** The zero-copy solver. Write the input views, call solve(), read the output views. */
 export interface Solver {
-  /** joint rates (Robot.numJoints); q has Robot.numPositions numbers. */
+  /** joint rates (Robot.numRates); q has Robot.numPositions numbers. */
+  readonly numRates: number;
+  /** @deprecated the old name of numRates (it counted joint rates, a free joint 6), kept for one release. */
   readonly numJoints: number;
   readonly numPositions: number;
   readonly numLinks: number;
@@ -298,7 +300,7 @@ export interface SimulatorOptions {
 export interface JointControl {
   /** a pose as q (numPositions numbers); default the simulator's q when it is set. */
   target?: Vec;
-  /** one number for every joint (0 on a floating base's free joint) or numJoints numbers, >= 0. */
+  /** one number for every joint (0 on a floating base's free joint) or numRates numbers, >= 0. */
   kp?: number | Vec;
   /** the same; default 0. */
   kd?: number | Vec;
@@ -348,6 +350,8 @@ export interface StepOptions {
 /** Time stepping under the hybrid solver. */
 export interface Simulator {
   /** joint rates: qd's length; q has numPositions numbers (7 + joints with a floating base). */
+  readonly numRates: number;
+  /** @deprecated the old name of numRates (it counted joint rates, a free joint 6), kept for one release. */
   readonly numJoints: number;
   readonly numPositions: number;
   readonly numLinks: number;
@@ -429,6 +433,51 @@ export interface Simulator {
   delete(): void;
 }
 
+export interface JointSlot {
+  readonly name: string;
+  readonly type: 'revolute' | 'continuous' | 'prismatic' | 'floating';
+  readonly rateIndex: number;
+  readonly rateCount: number;
+  readonly positionIndex: number;
+  readonly positionCount: number;
+}
+
+/** A pose: position, and rotation as a row-major 3 x 3 matrix. */
+export interface Placement {
+  readonly position: readonly [number, number, number];
+  readonly rotation: readonly number[];
+}
+
+export type VisualGeometry =
+  | { readonly type: 'box'; readonly size: readonly [number, number, number] }
+  | { readonly type: 'cylinder'; readonly radius: number; readonly length: number }
+  | { readonly type: 'sphere'; readonly radius: number }
+  | { readonly type: 'mesh'; readonly filename: string; readonly scale: readonly [number, number, number] };
+
+/** A URDF <visual>: its origin in its link's frame, its shape, its material's colour
+ * (r, g, b, a in [0, 1]; null when the material gives none). */
+export interface Visual extends Placement {
+  readonly geometry: VisualGeometry;
+  readonly color: readonly [number, number, number, number] | null;
+}
+
+export interface RobotLink {
+  readonly name: string;
+  /** where it is drawn: 0 the root, 1 + its index in linkNames; a merged link: its host's. */
+  readonly frame: number;
+  /** the URDF parent link; null for the root. */
+  readonly parent: string | null;
+  /** the URDF joint above it (its URDF type); null for the root. */
+  readonly joint: { readonly name: string; readonly type: string } | null;
+  /** the joint whose body it rides on; null: fixed to the root. */
+  readonly body: string | null;
+  /** its own <inertial> mass (kg), 0 without one. */
+  readonly mass: number;
+  /** a merged link's pose in its frame's link (its joints at their locked values or 0); null for the others. */
+  readonly offset: Placement | null;
+  readonly visuals: readonly Visual[];
+}
+
 export interface Robot {
   readonly root: string;
   /** null for a tree (loaded without a tip). */
@@ -452,8 +501,10 @@ export interface Robot {
    * qw]) and 6 in qd, qdd and the torques ([v; w], world axes). */
   readonly floating: boolean;
   /** joint rates: the length of qd, qdd and the torques (6 + joints with a floating base). */
+  readonly numRates: number;
+  /** @deprecated the old name of numRates (it counted joint rates, a free joint 6), kept for one release. */
   readonly numJoints: number;
-  /** the length of q (7 + joints with a floating base, else numJoints). */
+  /** the length of q (7 + joints with a floating base, else numRates). */
   readonly numPositions: number;
   /** links after the root (fixed-joint links included). */
   readonly numLinks: number;
@@ -464,11 +515,17 @@ export interface Robot {
   readonly friction: number[];
   /** links after the root, parents before children (a chain's tip last). */
   readonly linkNames: string[];
+  /** each joint's numbers in q (positions) and in qd, qdd and the torques (rates), in
+   * jointNames' order: a floating base's free joint 7 and 6 from 0, every other joint one. */
+  readonly joints: readonly JointSlot[];
+  /** the links the robot carries as its URDF has them: the root, linkNames, then the links
+   * merged into a body without being links of the model (a chain's side branches). */
+  readonly links: readonly RobotLink[];
   readonly deleted: boolean;
   solve(c: Case, options?: SolveOptions): Result;
   /** q (and qd, qdd below) as in a Case: in model order or by joint name. */
   forwardKinematics(q: JointValues): LinkPose[];
-  /** 6 rows (linear first) x numJoints: [v; w] of the tip link's origin, base orientation. */
+  /** 6 rows (linear first) x numRates: [v; w] of the tip link's origin, base orientation. */
   tipJacobian(q: JointValues): number[][];
   /** M(q), rotor inertia included unless rotorInertia is false. */
   massMatrix(q: JointValues, options?: { rotorInertia?: boolean }): number[][];
@@ -556,6 +613,8 @@ export interface Constants {
   /** kMaxConstraintColumns: columns of all constraint blocks together. */
   readonly max_constraint_columns: number;
   readonly integrators: readonly Integrator[];
+  /** the integrators that control their own error (take rtol and atol). */
+  readonly adaptive_integrators: readonly Integrator[];
   readonly directions: readonly Direction[];
   readonly direction_modes: readonly ('free' | 'hold' | 'accelerate')[];
   readonly limit_policies: readonly LimitPolicy[];
@@ -573,6 +632,8 @@ export interface Constants {
   readonly solver_buffers: readonly string[];
   readonly simulator_buffers: readonly string[];
   readonly simulator_results: readonly string[];
+  /** the kinds of case-shaped inputs the module's C++ case parser reads for the other calls, by C ABI index. */
+  readonly input_kinds: readonly string[];
 }
 
 export default function createAchd(moduleOverrides?: object): Promise<Achd>;

@@ -6,7 +6,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { DIRECTIONS } from './settings.js';
-import { visualObject } from './visual_meshes.js';
+import { placementMatrix, visualObject } from './visual_meshes.js';
 
 export const DIRECTION_COLORS = {
   x: '#d9443a', y: '#2e9e4f', z: '#2f6fdf', rx: '#e58a1f', ry: '#1a9aa0', rz: '#8b4fd1',
@@ -25,11 +25,7 @@ function webglAvailable() {
 }
 
 // Pose of a link as a THREE.Matrix4 from {position:[3], rotation:[9 row-major]}.
-export function poseMatrix(link, out = new THREE.Matrix4()) {
-  const r = link.rotation;
-  const p = link.position;
-  return out.set(r[0], r[1], r[2], p[0], r[3], r[4], r[5], p[1], r[6], r[7], r[8], p[2], 0, 0, 0, 1);
-}
+export const poseMatrix = placementMatrix;
 
 export class ChainView {
   constructor(container) {
@@ -67,8 +63,7 @@ export class ChainView {
 
     this.robotGroup = new THREE.Group();
     this.scene.add(this.robotGroup);
-    this.glyphs = this.makeGlyphs();
-    this.scene.add(this.glyphs.group);
+    this.glyphs = null;  // made with the first robot: the directions are the module's (settings.js)
     this.pushLine = new THREE.Line(
       new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
       new THREE.LineBasicMaterial({ color: '#d9443a' }),
@@ -92,15 +87,19 @@ export class ChainView {
 
   // Builds the robot. links: FK output at the initial pose (root first); movable[i]:
   // whether link i hangs on a movable joint; parents[i]: the index of the link link i
-  // hangs from (-1 for the root; a chain's are i - 1); look: null, or {visuals, joints} of
-  // urdfVisuals(), locked (joint name -> value of the chain's locked side joints) and
-  // files (where meshes are read from, web/mesh_files.js). Frames the camera on the robot.
+  // hangs from (-1 for the root; a chain's are i - 1); look: null, or {frames} of
+  // linkVisuals() (web/link_visuals.js: the module's robot.links) and files (where meshes
+  // are read from, web/mesh_files.js). Frames the camera on the robot.
   // Returns a promise of the meshes' outcomes ([{filename, link, status, message}]; null
   // when another robot was set before they were all read).
   setChain(links, movable, parents, look = null) {
     if (!this.enabled) return Promise.resolve([]);
     const generation = ++this.generation;
     this.userMoved = false;
+    if (!this.glyphs) {
+      this.glyphs = this.makeGlyphs();
+      this.scene.add(this.glyphs.group);
+    }
     for (const child of [...this.robotGroup.children]) {
       child.traverse((o) => {
         o.geometry?.dispose();
@@ -120,7 +119,7 @@ export class ChainView {
     reach = Math.max(reach, 0.2);
     const radius = Math.min(0.06, Math.max(0.004, reach * 0.022));
     this.radius = radius;
-    const hasVisuals = Boolean(look?.visuals.size);
+    const hasVisuals = Boolean(look?.frames.length);
 
     const linkMaterials = [
       new THREE.MeshStandardMaterial({ color: '#9aa7b8', roughness: 0.55, metalness: 0.1 }),
@@ -175,19 +174,17 @@ export class ChainView {
     this.linkFrames = [];
     const loads = [];
     if (hasVisuals) {
-      const fkIndex = new Map(links.map((l, i) => [l.name, i]));
-      for (const [name, list] of look.visuals) {
-        const place = linkPlacement(name, fkIndex, look.joints, look.locked);
-        if (!place) continue;  // above the root: not part of the simulated robot
+      for (const place of look.frames) {
         const frame = new THREE.Group();
         frame.matrixAutoUpdate = false;
         frame.userData.link = place.fk;
-        for (const visual of list) {
+        for (const visual of place.visuals) {
           const { object, load } = visualObject(visual);
           frame.add(object);
-          if (load) loads.push({ load, link: name, fk: place.fk });
+          if (load) loads.push({ load, link: place.link, fk: place.fk });
         }
-        this.linkFrames.push({ frame, fk: place.fk, offset: place.offset });
+        const offset = place.offset ? placementMatrix(place.offset) : new THREE.Matrix4();
+        this.linkFrames.push({ frame, fk: place.fk, offset });
         this.robotGroup.add(frame);
       }
     }
@@ -352,36 +349,6 @@ export class ChainView {
     const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, point);
     return ray.intersectPlane(plane, new THREE.Vector3());
   }
-}
-
-// Where a link's visuals go: {fk: index of the FK link it is fixed to, offset: its pose in
-// that link's frame}. A link forward kinematics lists is at its own pose; a side link
-// (merged into the body it hangs from) follows the joints up to a listed link, each at
-// T(xyz) R(rpy) times its motion at the locked value (0 when not reported). null for a
-// link above the root.
-function linkPlacement(name, fkIndex, joints, locked) {
-  const offset = new THREE.Matrix4();
-  const step = new THREE.Matrix4();
-  for (let link = name, hops = 0; hops <= joints.size; hops++) {
-    if (fkIndex.has(link)) return { fk: fkIndex.get(link), offset };
-    const joint = joints.get(link);
-    if (!joint) return null;
-    const value = locked?.get(joint.name) ?? 0;
-    const axis = new THREE.Vector3().fromArray(joint.axis).normalize();
-    const motion = joint.type === 'prismatic'
-      ? new THREE.Matrix4().makeTranslation(axis.multiplyScalar(value))
-      : joint.type === 'fixed' || joint.type === 'floating' || joint.type === 'planar'
-        ? new THREE.Matrix4()
-        : new THREE.Matrix4().makeRotationAxis(axis, value);
-    step.compose(
-      new THREE.Vector3().fromArray(joint.xyz),
-      new THREE.Quaternion().setFromEuler(new THREE.Euler(joint.rpy[0], joint.rpy[1], joint.rpy[2], 'ZYX')),
-      new THREE.Vector3(1, 1, 1),
-    ).multiply(motion);
-    offset.premultiply(step);
-    link = joint.parent;
-  }
-  return null;
 }
 
 // Whether an object and all its ancestors are visible.

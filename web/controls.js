@@ -43,59 +43,8 @@ export class Controls {
     this.limits = document.getElementById('limits');
     this.limits.addEventListener('change', () => on.limits(this.limits.value));
 
-    this.rows = {};
-    const table = document.getElementById('directions');
-    for (const name of DIRECTIONS) {
-      const tr = table.insertRow();
-      const label = tr.insertCell();
-      label.className = 'name';
-      label.title = DIRECTION_TITLES[name];
-      const swatch = document.createElement('span');
-      swatch.className = 'swatch';
-      swatch.style.background = DIRECTION_COLORS[name];
-      const lostTag = document.createElement('span');
-      lostTag.className = 'lost-tag';
-      lostTag.textContent = 'lost';
-      lostTag.hidden = true;
-      label.append(swatch, name, lostTag);
-
-      const modes = document.createElement('div');
-      modes.className = 'modes';
-      const buttons = {};
-      for (const mode of ['free', 'hold', 'accel']) {
-        const b = document.createElement('button');
-        b.type = 'button';
-        b.textContent = mode;
-        b.dataset.direction = name;
-        b.dataset.mode = mode;
-        b.addEventListener('click', () => on.direction(name, mode === 'accel' ? Number(input.value) : mode));
-        buttons[mode] = b;
-        modes.append(b);
-      }
-      tr.insertCell().append(modes);
-
-      const input = document.createElement('input');
-      input.type = 'number';
-      input.step = '0.1';
-      input.value = '0';
-      input.title = DIRECTION_TITLES[name] + (name.startsWith('r') ? ' acceleration, rad/s²' : ' acceleration, m/s²');
-      input.addEventListener('change', () => {
-        const v = Number(input.value);
-        if (input.value !== '' && Number.isFinite(v)) on.direction(name, v);
-      });
-      tr.insertCell().append(input);
-
-      const yieldLabel = document.createElement('label');
-      yieldLabel.className = 'yield';
-      yieldLabel.title = `yield to push: a push moves the tip along ${name} while it is held (w_fext = 0)`;
-      const yieldBox = document.createElement('input');
-      yieldBox.type = 'checkbox';
-      yieldBox.dataset.yield = name;
-      yieldBox.addEventListener('change', () => on.yield(name, yieldBox.checked));
-      yieldLabel.append(yieldBox, ' yield');
-      tr.insertCell().append(yieldLabel);
-      this.rows[name] = { row: tr, label, lostTag, buttons, input, yieldBox };
-    }
+    this.on = on;
+    this.rows = {};  // per direction, built by offer()
 
     // Prescribed joint motion: a joint, its motion kind and the parameters that kind reads.
     this.jointSelect = document.getElementById('joint-select');
@@ -120,23 +69,79 @@ export class Controls {
     this.prescribed = {};
     this.jointQ = () => null;
 
-    this.effectBoxes = {};
-    const effects = document.getElementById('effects');
-    for (const e of EFFECTS) {
-      const label = document.createElement('label');
-      const box = document.createElement('input');
-      box.type = 'checkbox';
-      box.dataset.effect = e.key;
-      box.addEventListener('change', () => on.effect(e.key, box.checked));
-      label.append(box, ' ', e.label);
-      effects.append(label);
-      this.effectBoxes[e.key] = box;
-    }
+    this.effectBoxes = {};  // per effect, built by offer()
   }
 
   // Fills the integrator, policy and joint-limit lists with what the module offers
-  // (web/module_offer.js).
+  // (web/module_offer.js), and builds the direction rows and effect switches for the
+  // directions and effects it offers (settings.js, after adoptOffer), once.
   offer(offer) {
+    const on = this.on;
+    if (!Object.keys(this.rows).length) {
+      const table = document.getElementById('directions');
+      for (const name of DIRECTIONS) {
+        const tr = table.insertRow();
+        const label = tr.insertCell();
+        label.className = 'name';
+        label.title = DIRECTION_TITLES[name];
+        const swatch = document.createElement('span');
+        swatch.className = 'swatch';
+        swatch.style.background = DIRECTION_COLORS[name];
+        const lostTag = document.createElement('span');
+        lostTag.className = 'lost-tag';
+        lostTag.textContent = 'lost';
+        lostTag.hidden = true;
+        label.append(swatch, name, lostTag);
+
+        const modes = document.createElement('div');
+        modes.className = 'modes';
+        const buttons = {};
+        for (const mode of ['free', 'hold', 'accel']) {
+          const b = document.createElement('button');
+          b.type = 'button';
+          b.textContent = mode;
+          b.dataset.direction = name;
+          b.dataset.mode = mode;
+          b.addEventListener('click', () => on.direction(name, mode === 'accel' ? Number(input.value) : mode));
+          buttons[mode] = b;
+          modes.append(b);
+        }
+        tr.insertCell().append(modes);
+
+        const input = document.createElement('input');
+        input.type = 'number';
+        input.step = '0.1';
+        input.value = '0';
+        input.title = DIRECTION_TITLES[name] + (name.startsWith('r') ? ' acceleration, rad/s²' : ' acceleration, m/s²');
+        input.addEventListener('change', () => {
+          const v = Number(input.value);
+          if (input.value !== '' && Number.isFinite(v)) on.direction(name, v);
+        });
+        tr.insertCell().append(input);
+
+        const yieldLabel = document.createElement('label');
+        yieldLabel.className = 'yield';
+        yieldLabel.title = `yield to push: a push moves the tip along ${name} while it is held (w_fext = 0)`;
+        const yieldBox = document.createElement('input');
+        yieldBox.type = 'checkbox';
+        yieldBox.dataset.yield = name;
+        yieldBox.addEventListener('change', () => on.yield(name, yieldBox.checked));
+        yieldLabel.append(yieldBox, ' yield');
+        tr.insertCell().append(yieldLabel);
+        this.rows[name] = { row: tr, label, lostTag, buttons, input, yieldBox };
+      }
+      const effects = document.getElementById('effects');
+      for (const e of EFFECTS) {
+        const label = document.createElement('label');
+        const box = document.createElement('input');
+        box.type = 'checkbox';
+        box.dataset.effect = e.key;
+        box.addEventListener('change', () => on.effect(e.key, box.checked));
+        label.append(box, ' ', e.label);
+        effects.append(label);
+        this.effectBoxes[e.key] = box;
+      }
+    }
     this.integrator.replaceChildren(...offer.integrators.map((n) => new Option(INTEGRATOR_LABELS[n] ?? n, n)));
     this.policy.replaceChildren(...offer.policies.map((n) => new Option(POLICY_LABELS[n] ?? n, n)));
     this.limits.replaceChildren(...offer.limitPolicies.map((n) => new Option(n, n)));

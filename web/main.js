@@ -19,12 +19,12 @@ import { keepMeshes, openKeptMeshes } from './mesh_share.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
-import { DIRECTIONS, GRAVITY, checkDirection, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, parseHash } from './settings.js';
+import { DIRECTIONS, GRAVITY, adoptOffer, checkDirection, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, parseHash } from './settings.js';
 import { Simulation, jointControlOf } from './simulation.js';
 import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
 import { LINK_CHARACTERS, openSharedUrdf, shareUrdf, urdfKey } from './urdf_share.js';
-import { urdfVisuals } from './urdf_visuals.js';
+import { linkVisuals } from './link_visuals.js';
 import './accuracy_panel.js';
 
 // At most this much simulated time per frame: after a stall (a hidden tab, a slow
@@ -572,9 +572,8 @@ function showLook(sim, source) {
   let look = null;
   let problems = [];
   try {
-    look = urdfVisuals(source.text);
+    look = linkVisuals(sim.robot);
     problems = look.problems;
-    look.locked = new Map(sim.robot.lockedJoints.map((j) => [j.name, j.value]));
     look.files = source.files;
   } catch (err) {
     problems = [err.message];
@@ -830,6 +829,7 @@ async function start() {
   const [achd, { index, problems, entry, text }] = await Promise.all([loadModule(), readIndexAndRobot()]);
   page.achd = achd;
   page.offer = moduleOffer(achd);
+  adoptOffer(page.offer);
   page.index = index;
   for (const r of index.robots) robotSelect.add(new Option(r.title, r.name));
   const parsed = parseHash(location.hash, defaultSettings(entry.name, page.offer), page.offer);

@@ -61,7 +61,7 @@ export class Readouts {
     this.charts.residuals.setSeries(held.map((d) => ({ label: d, color: DIRECTION_COLORS[d] })));
     this.charts.nu.setSeries(constrained.map((d) => ({ label: d, color: DIRECTION_COLORS[d] })));
     const joints = sim.robot.jointNames.slice(0, PLOTTED_JOINTS);
-    const more = sim.robot.numJoints - joints.length;
+    const more = sim.robot.numRates - joints.length;
     this.charts.torques.setSeries(joints.map((j, i) => ({ label: i === joints.length - 1 && more ? `${j} (+${more} not plotted)` : j, color: JOINT_COLORS[i] })));
   }
 

@@ -5,10 +5,10 @@
 // Leaves this close (m) to the lowest count as feet too.
 export const FOOT_SPREAD = 0.01;
 
-// robot: an achd robot (linkNames, forwardKinematics); tree: web/urdf_tree.js's; q: the
-// start pose (the free joint's 7 numbers first). -> link names, in the robot's link order.
-export function lowestLeaves(robot, tree, q) {
-  const parents = new Set([...tree.parentOf.values()].map((p) => p.parent));
+// robot: an achd robot (links, linkNames, forwardKinematics); q: the start pose (the free
+// joint's 7 numbers first). -> link names, in the robot's link order.
+export function lowestLeaves(robot, q) {
+  const parents = new Set(robot.links.map((l) => l.parent));
   const leaves = new Set(robot.linkNames.filter((l) => !parents.has(l)));
   const heights = robot.forwardKinematics(q).filter((l) => leaves.has(l.name));
   if (!heights.length) return [];

@@ -9,23 +9,35 @@
 // robot=custom&urdf=<deflate:… or local:…, web/urdf_share.js>&root=<link>&tip=<link> (no
 // tip: the whole robot; base=floating: on a floating base, standing on its feet).
 // Values are the scene files' words (achd.constants); the simulator's option keys are
-// the same words in camelCase. Which integrators and policies exist, and the defaults,
-// are the module's (`offer`, web/module_offer.js): this file keeps no list of its own.
+// the same words in camelCase. Which directions, effects, integrators and policies exist,
+// which integrators are adaptive, gravity and the defaults are the module's (`offer`,
+// web/module_offer.js, taken by adoptOffer() once the module has loaded): this file keeps
+// no list of its own, only the words it shows for some names.
 
-export const DIRECTIONS = ['x', 'y', 'z', 'rx', 'ry', 'rz'];
+// The module's directions, the effects the page switches ({key: the simulator's option
+// key, hash: the scene files' name, label}), and its gravity: set by adoptOffer().
+export let DIRECTIONS = [];
+export let EFFECTS = [];
+export let GRAVITY = [];
+let adaptiveIntegrators = [];
 
-// Page effect toggles: `hash` is the scene files' name, `key` the simulator's.
-export const EFFECTS = [
-  { key: 'gravity', hash: 'gravity', label: 'gravity' },
-  { key: 'velocityProducts', hash: 'velocity_products', label: 'velocity products' },
-  { key: 'damping', hash: 'damping', label: 'joint damping' },
-  { key: 'friction', hash: 'friction', label: 'joint friction' },
-  { key: 'externalWrenches', hash: 'external_wrenches', label: 'external push' },
-];
+// Effects the page keeps on whatever the user picks (no switch): the rotor inertia is the
+// robot's, and constraints are what the page is about.
+const ALWAYS_ON = ['rotor_inertia', 'constraints'];
+// How the page names some effects; any other is shown by its name.
+const EFFECT_LABELS = { velocity_products: 'velocity products', damping: 'joint damping', friction: 'joint friction',
+  external_wrenches: 'external push' };
+const camelCase = (name) => name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase());
 
-// The integrators that take a relative tolerance (rtol): the error-controlled ones.
-export const ADAPTIVE_INTEGRATORS = ['dormand_prince'];
-export const GRAVITY = [0, 0, -9.81];
+// Takes what the module offers (moduleOffer(achd)): call once it has loaded, before
+// anything here or the controls are used.
+export function adoptOffer(offer) {
+  DIRECTIONS = [...offer.directions];
+  EFFECTS = offer.effects.filter((name) => !ALWAYS_ON.includes(name))
+    .map((name) => ({ key: camelCase(name), hash: name, label: EFFECT_LABELS[name] ?? name.replaceAll('_', ' ') }));
+  GRAVITY = [...offer.gravity];
+  adaptiveIntegrators = [...offer.adaptiveIntegrators];
+}
 
 // Hash words of the previous release, still read (links already shared), never written.
 const OLD_HASH_WORDS = {
@@ -94,13 +106,14 @@ export function motionInSimulatorTime(m, t0) {
   return out;
 }
 
-export const isAdaptive = (integrator) => ADAPTIVE_INTEGRATORS.includes(integrator);
+// The integrators that take a relative tolerance (rtol): the error-controlled ones.
+export const isAdaptive = (integrator) => adaptiveIntegrators.includes(integrator);
 
 // The options of robot.createSimulator for these settings, as the page creates it.
 export function simulatorOptions(s) {
   const options = {
     integrator: s.integrator,
-    effects: { ...s.effects, rotorInertia: true, constraints: true },
+    effects: { ...s.effects, ...Object.fromEntries(ALWAYS_ON.map((name) => [camelCase(name), true])) },
     gravity: GRAVITY,
     policy: s.policy,
   };

@@ -17,7 +17,7 @@
 import { DIRECTIONS, GRAVITY, motionInSimulatorTime, simulatorOptions } from './settings.js';
 import { lowestLeaves } from './robot_feet.js';
 import { startPose } from './start_pose.js';
-import { isMovable, urdfTree } from './urdf_tree.js';
+import { linkParents } from './link_visuals.js';
 
 // An own floating robot's joint PD: gains from a 5 Hz, critically damped response with
 // the torques that hold it at rest under gravity on its held feet.
@@ -72,34 +72,33 @@ export class Simulation {
     for (const key of ['mimic', 'inertia', 'srdf', 'pose']) if (source[key]) options[key] = source[key];
     this.robot = achd.loadURDF(source.text, options);
     try {
-      const tree = urdfTree(source.text);
+      // The links as the module loaded them (robot.links: parents, joints, masses).
       const names = [this.robot.root, ...this.robot.linkNames];
-      this.movable = [Boolean(this.robot.floating), ...this.robot.linkNames.map((l) => isMovable(tree, l))];
+      const jointAbove = new Map(this.robot.links.map((l) => [l.name, l.joint]));
+      this.movable = [Boolean(this.robot.floating),
+        ...this.robot.linkNames.map((l) => Boolean(jointAbove.get(l)) && jointAbove.get(l).type !== 'fixed')];
       // parents[i]: the links() index of the link link i hangs from (-1 for the root).
       const index = new Map(names.map((l, i) => [l, i]));
+      const parentOf = linkParents(this.robot);
       this.parents = names.map((l) => {
-        for (let up = tree.parentOf.get(l); up; up = tree.parentOf.get(up.parent)) {
-          if (index.has(up.parent)) return index.get(up.parent);
+        for (let up = parentOf.get(l); up !== undefined; up = parentOf.get(up)) {
+          if (index.has(up)) return index.get(up);
         }
         return -1;
       });
-      // The mass that moves: every link below the root, and the root itself when it floats.
-      const below = (link) => {
-        for (let x = link; x; x = tree.parentOf.get(x)?.parent) if (x === this.robot.root) return true;
-        return false;
-      };
-      this.mass = tree.links.filter((l) => below(l) && (l !== this.robot.root || this.robot.floating))
-        .reduce((sum, l) => sum + (tree.mass.get(l) ?? 0), 0);
+      // The mass that moves: every link the robot carries, and the root itself when it floats.
+      this.mass = this.robot.links.filter((l) => l.name !== this.robot.root || this.robot.floating)
+        .reduce((sum, l) => sum + l.mass, 0);
       const free = this.robot.floating ? 7 : 0;
       const joints = source.q0 ?? (source.pose || !this.robot.tip ? this.robot.startPose.slice(free)
         : startPose(this.robot).q);
-      const movableJoints = this.robot.numJoints - (this.robot.floating ? 6 : 0);
+      const movableJoints = this.robot.numRates - (this.robot.floating ? 6 : 0);
       if (joints.length !== movableJoints) {
         throw new Error(`q0 has ${joints.length} values, the robot ${movableJoints} joints`);
       }
       const base = this.robot.floating && !source.q0 ? this.robot.startPose.slice(0, 7) : [0, 0, 0, 0, 0, 0, 1];
       const own = this.robot.floating && !source.constraints;
-      this.defaultLinks = own ? lowestLeaves(this.robot, tree, [...base, ...joints])
+      this.defaultLinks = own ? lowestLeaves(this.robot, [...base, ...joints])
         : (source.constraints ?? []).filter((l) => this.robot.linkNames.includes(l));
       this.held = source.held ?? HELD_BY_DEFAULT;
       this.q0 = this.robot.floating ? this.floatingPose(base, joints) : [...joints];

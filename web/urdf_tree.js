@@ -1,6 +1,7 @@
-// The link tree of a URDF text, read with the browser's XML parser: enough to offer root
-// and tip choices for a user's file, to know which links hang on movable joints, and to
-// size the push spring by the chain's mass. achd (urdfdom) remains the real parser.
+// The link tree of a URDF text, read with the browser's XML parser for the URDF picker
+// (web/urdf_upload.js) alone: enough to offer root and tip choices for a user's file
+// before it is loaded. Once loaded, the page reads the robot from the module
+// (robot.links, robot.joints): achd's loader (urdfdom) is the parser.
 
 export function urdfTree(text) {
   const doc = new DOMParser().parseFromString(text, 'application/xml');
@@ -9,12 +10,6 @@ export function urdfTree(text) {
     throw new Error('not a URDF file: expected an XML document whose root element is <robot>');
   }
   const links = [...robot.children].filter((e) => e.nodeName === 'link').map((e) => e.getAttribute('name'));
-  const mass = new Map();
-  for (const e of robot.children) {
-    if (e.nodeName !== 'link') continue;
-    const m = Number(e.querySelector('inertial > mass')?.getAttribute('value'));
-    mass.set(e.getAttribute('name'), Number.isFinite(m) ? m : 0);
-  }
   // child link -> {parent link, joint type}
   const parentOf = new Map();
   for (const e of robot.children) {
@@ -23,7 +18,7 @@ export function urdfTree(text) {
     const child = e.querySelector('child')?.getAttribute('link');
     if (parent && child) parentOf.set(child, { parent, type: e.getAttribute('type') });
   }
-  return { links, mass, parentOf };
+  return { links, parentOf };
 }
 
 // Links from root to tip (root first), or null when tip does not descend from root.

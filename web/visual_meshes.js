@@ -1,8 +1,7 @@
-// three.js objects for a URDF's visuals (web/urdf_visuals.js): boxes, cylinders and
-// spheres at once, meshes once their file is read and parsed by the loaders that ship
-// with three (STL, COLLADA, OBJ). Each object sits at its visual's origin in the link
-// frame: p_link = T(xyz) R(rpy) S(scale) p_mesh, with R(rpy) = Rz(yaw) Ry(pitch) Rx(roll)
-// (URDF's fixed-axis roll, pitch, yaw).
+// three.js objects for a URDF's visuals (robot.links, web/link_visuals.js): boxes,
+// cylinders and spheres at once, meshes once their file is read and parsed by the loaders
+// that ship with three (STL, COLLADA, OBJ). Each object sits at its visual's origin in
+// the link frame: p_link = T(position) R(rotation) S(scale) p_mesh.
 import * as THREE from 'three';
 
 // Imported when a mesh of that format is first read: a robot of solids starts without them.
@@ -23,6 +22,13 @@ const DEFAULT_COLOR = [0.72, 0.75, 0.79, 1];
 // keeps its material colour and the browser fetches nothing.
 const BLANK_TEXTURE = 'data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGP4//8/AAX+Av4N70a4AAAAAElFTkSuQmCC';
 
+// A pose {position: [3], rotation: [9, row-major]} (achd's placements) as a THREE.Matrix4.
+export function placementMatrix(p, out = new THREE.Matrix4()) {
+  const r = p.rotation;
+  const x = p.position;
+  return out.set(r[0], r[1], r[2], x[0], r[3], r[4], r[5], x[1], r[6], r[7], r[8], x[2], 0, 0, 0, 1);
+}
+
 // -> {object: THREE.Group at the visual's origin, load: null for a primitive, or
 //     async (files) => {filename, status: 'loaded' | 'missing' | 'failed', message,
 //                       texturesMissing: the textures the mesh names that were not found}}
@@ -30,8 +36,7 @@ const BLANK_TEXTURE = 'data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAI
 // text alone) every mesh is missing.
 export function visualObject(visual) {
   const object = new THREE.Group();
-  object.position.fromArray(visual.xyz);
-  object.quaternion.setFromEuler(new THREE.Euler(visual.rpy[0], visual.rpy[1], visual.rpy[2], 'ZYX'));
+  placementMatrix(visual).decompose(object.position, object.quaternion, new THREE.Vector3());
   const g = visual.geometry;
   if (g.type !== 'mesh') {
     object.add(new THREE.Mesh(primitiveGeometry(g), material(visual.color)));

@@ -27,7 +27,7 @@ test('joint sliders and link names on the page', async (t) => {
   const { entry, robot } = await loadRobot(index.default);
   try {
     await t.test('one slider per joint, over the URDF limits', async () => {
-      assert.equal(await page.locator('#joint-sliders input[type=range]').count(), robot.numJoints);
+      assert.equal(await page.locator('#joint-sliders input[type=range]').count(), robot.numRates);
       for (const [j, name] of robot.jointNames.entries()) {
         const [min, max] = await sliderRange(page, name);
         assert.equal(min, robot.limits[j].lower, name);

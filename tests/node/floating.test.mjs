@@ -48,8 +48,19 @@ test('loadURDF({floating: true}) describes the free joint as `achd info --floati
     assert.deepEqual(robot.jointNames, info.joints.map((j) => j.name));
     assert.deepEqual(robot.jointTypes, info.joints.map((j) => j.type));
     assert.equal(robot.jointTypes[0], 'floating');
-    assert.equal(robot.numJoints, 6 + 12);
+    assert.equal(robot.numRates, 6 + 12);
     assert.equal(robot.numPositions, 7 + 12);
+    // numJoints is numRates' old name, kept for one release on the robot, solver and simulator.
+    assert.equal(robot.numJoints, robot.numRates);
+    const solver = robot.createSolver();
+    const sim = robot.createSimulator();
+    try {
+      assert.equal(solver.numJoints, robot.numRates);
+      assert.equal(sim.numJoints, robot.numRates);
+    } finally {
+      solver.delete();
+      sim.delete();
+    }
     // At rest with no torques the whole robot falls with g and no joint moves.
     const r = robot.solve({ q: { lf_kfe: -1.2 }, gravity: GRAVITY });
     assert.deepEqual(r.joints, info.joints.map((j) => j.name));
@@ -145,7 +156,7 @@ test('the zero-copy solver on a floating base: q has numPositions numbers, solve
   try {
     const s = robot.createSolver();
     assert.equal(s.q.length, robot.numPositions);
-    assert.equal(s.qd.length, robot.numJoints);
+    assert.equal(s.qd.length, robot.numRates);
     s.q.set([0, 0, 0.3, 0, 0, 0, 1, ...quadruped.q0]);
     s.setConstraints(quadruped.constraints.map((link) => ({ link, alpha: XYZ })));
     s.solve();

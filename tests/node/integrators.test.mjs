@@ -77,7 +77,7 @@ test('the same run as achd simulate --rtol 1e-6 --atol 1e-8: end state within 1e
     const csv = join(tmp.dir, 'traj.csv');
     const summary = JSON.parse(await runCli(nativeCli(), ['simulate', SCENE, '--out', csv, '--rtol', '1e-6', '--atol', '1e-8']));
     const last = readFileSync(csv, 'utf8').trim().split('\n').at(-1).split(',').map(Number);
-    const nj = kuka.numJoints;
+    const nj = kuka.numRates;
     assert.equal(sim.t, last[0]);
     assert.ok(relativeError(Array.from(sim.q), last.slice(1, 1 + nj)) <= 1e-9);
     assert.ok(relativeError(Array.from(sim.qd), last.slice(1 + nj, 1 + 2 * nj)) <= 1e-9);

@@ -61,7 +61,7 @@ export function choleskySolve(M, B) {
 // accelerate the tip along the constraint directions (the solver's coupling matrix).
 export function couplingMatrix(robot, q, alpha) {
   const J = robot.tipJacobian(q), M = robot.massMatrix(q);
-  const nj = robot.numJoints, nc = alpha.length;
+  const nj = robot.numRates, nc = alpha.length;
   // JtA (nj x nc) = J^T alpha
   const JtA = Array.from({ length: nj }, (_, i) =>
     alpha.map((col) => col.reduce((s, x, r) => s + J[r][i] * x, 0)));

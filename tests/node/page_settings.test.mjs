@@ -6,8 +6,8 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 
-import { EFFECTS, MOTION_PARAMETERS, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, motionInSimulatorTime, parseHash,
-  simulatorOptions } from '../../web/settings.js';
+import { DIRECTIONS, EFFECTS, GRAVITY, MOTION_PARAMETERS, adoptOffer, defaultSettings, formatHash, hashOwn, hashRobot, isAdaptive,
+  motionFrom, motionInSimulatorTime, parseHash, simulatorOptions } from '../../web/settings.js';
 import { moduleOffer } from '../../web/module_offer.js';
 import { loadAchd } from './helpers.mjs';
 
@@ -16,8 +16,34 @@ const OFFER = {
   integrators: ['explicit_euler', 'semi_implicit_euler', 'rk4', 'dormand_prince', 'implicit_euler'],
   policies: ['truncate', 'damped', 'variable_damping'],
   limitPolicies: ['ignore', 'report', 'clamp'],
+  adaptiveIntegrators: ['dormand_prince'],
+  directions: ['x', 'y', 'z', 'rx', 'ry', 'rz'],
+  effects: ['gravity', 'velocity_products', 'external_wrenches', 'damping', 'friction', 'rotor_inertia', 'constraints'],
+  gravity: [0, 0, -9.81],
   defaults: { integrator: 'dormand_prince', policy: 'variable_damping', rtol: 1e-9, limits: 'report' },
 };
+adoptOffer(OFFER);
+
+test('the page\'s directions, effect switches, gravity and adaptive integrators are the offer\'s', () => {
+  assert.deepEqual(DIRECTIONS, OFFER.directions);
+  // every effect but the two the page keeps on, under the simulator's key and the scene word
+  assert.deepEqual(EFFECTS.map((e) => [e.key, e.hash]), [['gravity', 'gravity'], ['velocityProducts', 'velocity_products'],
+    ['externalWrenches', 'external_wrenches'], ['damping', 'damping'], ['friction', 'friction']]);
+  assert.deepEqual(GRAVITY, [0, 0, -9.81]);
+  assert.equal(isAdaptive('dormand_prince'), true);
+  assert.equal(isAdaptive('rk4'), false);
+  // A module with other lists: the page follows it (no list of its own).
+  adoptOffer({ ...OFFER, directions: ['z'], effects: ['gravity', 'constraints'], gravity: [0, 0, -1.62], adaptiveIntegrators: ['rk4'] });
+  try {
+    assert.deepEqual(DIRECTIONS, ['z']);
+    assert.deepEqual(EFFECTS.map((e) => e.hash), ['gravity']);
+    assert.deepEqual(GRAVITY, [0, 0, -1.62]);
+    assert.equal(isAdaptive('rk4'), true);
+    assert.equal(isAdaptive('dormand_prince'), false);
+  } finally {
+    adoptOffer(OFFER);
+  }
+});
 
 test('the joint-limit policy: the simulator\'s default unless chosen, then in the hash and the options', () => {
   const s = defaultSettings('panda_fingers', OFFER);
@@ -40,7 +66,7 @@ test('the hash writes the scene names and reads them back', () => {
   s.directions.z = 'hold';
   const hash = formatHash(s);
   assert.equal(hash, '#robot=ur5&integrator=semi_implicit_euler&dt=0.001&policy=variable_damping' +
-    '&effects=gravity,velocity_products,damping,external_wrenches&dirs=z:hold');
+    '&effects=gravity,velocity_products,external_wrenches,damping&dirs=z:hold');
   assert.deepEqual(parseHash(hash, defaultSettings('kuka_lwr4', OFFER), OFFER), { settings: s, problems: [] });
   assert.equal(hashRobot(hash, 'kuka_lwr4'), 'ur5');
   assert.equal(hashRobot('#dt=0.001', 'kuka_lwr4'), 'kuka_lwr4');
@@ -101,13 +127,13 @@ test('a page motion starts at its given position when applied, in any simulator\
 test('the policy and the adaptive integrator\'s rtol are stored in the hash', () => {
   const s = defaultSettings('ur5', OFFER);
   assert.equal(formatHash(s), '#robot=ur5&integrator=dormand_prince&rtol=1e-9&dt=0.001&policy=variable_damping' +
-    '&effects=gravity,velocity_products,damping,friction,external_wrenches');
+    '&effects=gravity,velocity_products,external_wrenches,damping,friction');
   s.rtol = 1e-8;
   s.policy = 'damped';
   s.directions.y = 0.5;
   const hash = formatHash(s);
   assert.equal(hash, '#robot=ur5&integrator=dormand_prince&rtol=1e-8&dt=0.001&policy=damped' +
-    '&effects=gravity,velocity_products,damping,friction,external_wrenches&dirs=y:0.5');
+    '&effects=gravity,velocity_products,external_wrenches,damping,friction&dirs=y:0.5');
   assert.deepEqual(parseHash(hash, defaultSettings('kuka_lwr4', OFFER), OFFER), { settings: s, problems: [] });
   assert.deepEqual(simulatorOptions(s), {
     integrator: 'dormand_prince', policy: 'damped', rtol: 1e-8, gravity: [0, 0, -9.81],
@@ -138,7 +164,7 @@ test('hashes with the previous release\'s words still parse, as the current name
 
 // The real module: what the page offers is what achd.constants lists, with the
 // simulator's defaults, and the page's default settings create a simulator.
-test('the page offers the module\'s integrators, policies, joint-limit policies and defaults', async () => {
+test('the page offers the module\'s integrators, policies, joint-limit policies, directions, effects, gravity and defaults', async () => {
   const achd = await loadAchd();
   const k = achd.constants;
   const offer = moduleOffer(achd);
@@ -146,6 +172,10 @@ test('the page offers the module\'s integrators, policies, joint-limit policies 
     integrators: [...k.integrators],
     policies: [...k.singularity_policies],
     limitPolicies: [...k.limit_policies],
+    adaptiveIntegrators: [...k.adaptive_integrators],
+    directions: [...k.directions],
+    effects: Object.keys(k.effects),
+    gravity: [...k.simulator_options.gravity],
     defaults: { integrator: k.simulator_options.integrator, policy: k.simulator_options.solver.policy,
       rtol: k.simulator_options.rtol, limits: k.simulator_options.limits },
   });

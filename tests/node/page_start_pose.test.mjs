@@ -33,7 +33,7 @@ test('every robot starts inside its limits, away from a singularity', () => {
   for (const entry of robots()) {
     const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
     const { q, score } = startPose(robot);
-    assert.equal(q.length, robot.numJoints);
+    assert.equal(q.length, robot.numRates);
     robot.limits.forEach((l, j) => {
       const margin = Number.isFinite(l.upper - l.lower) ? 0.05 * (l.upper - l.lower) : 0;
       assert.ok(q[j] >= l.lower + margin - 1e-12 && q[j] <= l.upper - margin + 1e-12,

@@ -67,7 +67,7 @@ async function runParity(jobs, tolerance = EXACT) {
 // Random alpha until K's condition number is below 1e4 (null if none in 20 tries).
 function wellConditionedCase(r, robot, nc) {
   for (let attempt = 0; attempt < 20; ++attempt) {
-    const c = randomCase(r, robot.numJoints, robot.numLinks, nc);
+    const c = randomCase(r, robot.numRates, robot.numLinks, nc);
     if (nc === 0) return c;
     const { cond } = conditionNumber(couplingMatrix(robot, c.q, c.alpha));
     if (cond < 1e4) return c;
@@ -86,7 +86,7 @@ test('every chain robot in robots/index.json: wasm == native', async () => {
     const robot = achd.loadURDF(entry.text, { root: entry.root, tip: entry.tip });
     const base = { robot, urdf: entry.path, root: entry.root, tip: entry.tip };
     jobs.push({ ...base, c: { q: entry.q0, gravity: [0, 0, -9.81] }, what: `${entry.name} q0` });
-    for (let nc = 0; nc <= Math.min(6, robot.numJoints); ++nc) {
+    for (let nc = 0; nc <= Math.min(6, robot.numRates); ++nc) {
       const c = wellConditionedCase(r, robot, nc);
       if (c) jobs.push({ ...base, c, options: OPTION_SETS[nc % 3], what: `${entry.name} nc=${nc}` });
     }
@@ -103,7 +103,7 @@ test('random chains up to 50 joints, a few hundred cases: wasm == native', async
     const nj = seed <= 10 ? seed : 1 + Math.floor(r() * 50);
     const chain = randomChain(seed, nj);
     const robot = achd.loadURDF(chain.text, { root: chain.root, tip: chain.tip });
-    assert.equal(robot.numJoints, nj);
+    assert.equal(robot.numRates, nj);
     const urdf = scratch.write(`chain${seed}.urdf`, chain.text);
     for (let k = 0; k < 5; ++k) {
       const nc = Math.floor(r() * (Math.min(6, nj) + 1));

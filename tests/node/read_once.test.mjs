@@ -131,7 +131,7 @@ test('Map, DataView, Set, class instances and BigInt arrays are named errors, no
     throwsMessage(() => robot.forwardKinematics(value), /^q must be an array/);
   }
   throwsMessage(() => robot.solve({ q: CASE.q, gravity: new Map() }), /^gravity must be an array of 3 numbers, got a Map$/);
-  throwsMessage(() => robot.solve(new Map()), /^the case must be an object, got a Map$/);
+  throwsMessage(() => robot.solve(new Map()), /^the case must be a JSON object, got a Map$/);
   throwsMessage(() => robot.solve({ q: CASE.q, gravity: [0, 0, -9.81], f_ext: new Map() }), /^f_ext must be an array.*got a Map$/);
   const sim = robot.createSimulator();
   throwsMessage(() => sim.reset(new DataView(new ArrayBuffer(56))), /^q must be an array of 7 numbers, got a DataView$/);
@@ -142,10 +142,11 @@ test('Map, DataView, Set, class instances and BigInt arrays are named errors, no
 test('getters are refused, on array elements and on object properties', () => {
   const q = CASE.q.slice();
   Object.defineProperty(q, 2, { get: () => 0.5, enumerable: true });
-  throwsMessage(() => robot.solve({ q, gravity: [0, 0, -9.81] }), /^q\[2\] is a getter: give plain values$/);
+  throwsMessage(() => robot.solve({ q, gravity: [0, 0, -9.81] }), /^q\[2\] must be a number, got a getter \(give plain values\)$/);
   throwsMessage(() => robot.solve({ q: { get lwr_joint_1() { return 1; } }, gravity: [0, 0, -9.81] }),
-    /^q\.lwr_joint_1 is a getter/);
-  throwsMessage(() => robot.solve({ get q() { return CASE.q; }, gravity: [0, 0, -9.81] }), /^the case\.q is a getter/);
+    /^q\['lwr_joint_1'\] must be a number, got a getter/);
+  throwsMessage(() => robot.solve({ get q() { return CASE.q; }, gravity: [0, 0, -9.81] }),
+    /^q must be an array of 7 numbers or an object \{joint name: value\}, got a getter/);
   const sim = robot.createSimulator();
   throwsMessage(() => sim.setDirectionWeights('z', { get wFext() { return 0.5; } }), /wFext is a getter/);
   throwsMessage(() => sim.step(10, 1e-3, { get onProgress() { return () => {}; } }), /step options\.onProgress is a getter/);

@@ -18,7 +18,7 @@ import { mkdirSync, readdirSync, readFileSync, statSync, symlinkSync, writeFileS
 import { join } from 'node:path';
 import { test } from 'node:test';
 
-import { defaultSettings, parseHash, simulatorOptions } from '../../web/settings.js';
+import { adoptOffer, defaultSettings, parseHash, simulatorOptions } from '../../web/settings.js';
 import { moduleOffer } from '../../web/module_offer.js';
 import { loadAchd, nativeCli, repo, robots, scratchDir } from './helpers.mjs';
 
@@ -171,6 +171,7 @@ test(`every page link in README.md and the guides runs ${LINK_SECONDS} simulated
   assert.ok(links.length >= 2, `only ${links.length} page links`);
   const achd = await loadAchd();
   const offer = moduleOffer(achd);
+  adoptOffer(offer);  // as the page does once its module has loaded
   const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
   const failures = [];
   for (const link of links) {

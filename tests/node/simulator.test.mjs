@@ -103,7 +103,7 @@ for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.json')).sort()
     try {
       const steps = Math.round(Math.min(scene.duration, HORIZON[file] ?? Infinity) / sceneDt(scene));
       sim.step(steps, sceneDt(scene));
-      const native = await nativeState(file, sim.numPositions, robot.numJoints, steps);
+      const native = await nativeState(file, sim.numPositions, robot.numRates, steps);
       assert.equal(sim.t, native.t);
       const eq = relativeError(Array.from(sim.q), native.q), eqd = relativeError(Array.from(sim.qd), native.qd);
       t.diagnostic(`relative error q ${eq.toExponential(2)}, qd ${eqd.toExponential(2)}`);

@@ -164,7 +164,7 @@ test('loadURDF loads the whole tree, locks side joints and ignores side branches
   }
   const tree = achd.loadURDF(TREE_TEXT);
   assert.equal(tree.tip, null);
-  assert.equal(tree.numJoints, 5);
+  assert.equal(tree.numRates, 5);
   assert.throws(() => tree.tipJacobian([0, 0, 0.5, 0, 0]), (e) => /^tip_jacobian: the model is a tree/.test(e.message));
   tree.delete();
   const locked = achd.loadURDF(TREE_TEXT, { root: 'base', tip: 'left_foot', locked: { right_knee: 0.05 } });
@@ -204,7 +204,7 @@ test('the small tree and the tree robots of robots/index.json: wasm == native, t
     const base = { urdf: entry.path, text: entry.text, load };
     jobs.push({ ...base, c: { q: entry.q0, gravity: GRAVITY }, what: `${entry.name} q0` });
     const robot = achd.loadURDF(entry.text, load);
-    const c = randomCase(r, robot.numJoints, robot.numLinks, 0);
+    const c = randomCase(r, robot.numRates, robot.numLinks, 0);
     robot.delete();
     jobs.push({ ...base, c, what: `${entry.name} random state` });
     if (entry.constraints)

@@ -1,5 +1,5 @@
 // Copies out of wasm memory and scratch space in it.
-import { achdWasm } from './runtime.mjs';
+import { achdLastError, achdWasm } from './runtime.mjs';
 
 // Copies `n` doubles starting at byte address `ptr` into a plain array.
 export function achdCopy(ptr, n) {
@@ -30,5 +30,18 @@ export function achdWithString(text, fn) {
     return fn(p);
   } finally {
     achdWasm.module._free(p);
+  }
+}
+
+// The result object of a solve from the C++ result JSON at byte address `ptr` (null: the
+// call failed, its reason in achd_last_error()). C++ writes 17 significant digits: each
+// number reads back as the double it was.
+export function achdResultOf(ptr) {
+  if (!ptr) throw achdLastError();
+  const text = achdWasm.text.UTF8ToString(ptr);
+  try {
+    return JSON.parse(text);
+  } catch (e) {  // (a number JSON cannot hold: the solve checks for those)
+    throw new Error(`the result is not JSON: ${e.message}`);
   }
 }

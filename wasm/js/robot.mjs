@@ -1,14 +1,19 @@
 // A loaded robot (achd.loadURDF): its description, solves and algorithms.
-import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeprecated } from './constants.mjs';
+import { ACHD_OLD_INTEGRATOR_NAMES, achdConstants, achdDeepFreeze, achdDeprecated } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
 import { ACHD_SOLVER_OPTION_KEYS, achdCheckObject, achdChoice, achdDescribe, achdEffectBits, achdOptionalObject, achdPositive, achdReadNumbers, achdSolverOptions } from './validation.mjs';
-import { achdColumns, achdDriverWeights, achdJointValues, achdLinkWrenches, achdPackBlocks, achdPrescribedJoints } from './case_names.mjs';
-import { achdChunks, achdWithScratch, achdWithString } from './memory.mjs';
+import { achdJsonText } from './json_text.mjs';
+import { achdChunks, achdResultOf, achdWithScratch, achdWithString } from './memory.mjs';
 import { AchdHandle } from './handle.mjs';
 import { Solver } from './solver.mjs';
 import { Simulator } from './simulator.mjs';
 
 export class Robot extends AchdHandle {
+  // The old name of numRates, kept for one release: it counted joint rates (a floating
+  // base's free joint 6), not joints.
+  /** @deprecated numRates */
+  get numJoints() { return this.numRates; }
+
   constructor(ptr) {
     super('Robot', ptr, achdWasm.module._achd_robot_delete);
     const info = JSON.parse(achdWasm.text.UTF8ToString(achdWasm.module._achd_robot_info(ptr)));
@@ -24,10 +29,10 @@ export class Robot extends AchdHandle {
     // multiplier, offset}], q_joint = multiplier q_leader + offset in every solve.
     this.couplings = info.couplings;
     // With a floating base (options.floating) the free joint comes first in jointNames, named
-    // after the root link, with 7 of the numPositions numbers of q and 6 of the numJoints
+    // after the root link, with 7 of the numPositions numbers of q and 6 of the numRates
     // numbers of qd, qdd and the torques; without one both counts are the joints'.
     this.floating = info.floating;
-    this.numJoints = info.num_joints;
+    this.numRates = info.num_rates;
     this.numPositions = info.num_positions;
     this.numLinks = info.links.length;
     this.jointNames = info.joints.map((j) => j.name);
@@ -38,7 +43,20 @@ export class Robot extends AchdHandle {
     this.damping = info.joints.map((j) => j.damping);
     this.friction = info.joints.map((j) => j.friction);
     this.linkNames = info.links;
-    this._solver = null;  // the solver behind solve(), created on first use
+    // Each joint's numbers: {name, type, rateIndex, rateCount (in qd, qdd and the torques),
+    // positionIndex, positionCount (in q)}; a floating base's free joint has 6 rates and 7
+    // positions, every other joint one of each.
+    this.joints = achdDeepFreeze(info.joints.map((j) => ({ name: j.name, type: j.type, rateIndex: j.rate_index,
+      rateCount: j.rate_count, positionIndex: j.position_index, positionCount: j.position_count })));
+    // The links the robot carries, as its URDF has them (wasm/src/robot_links.hpp): the
+    // root, the links of linkNames, then the links merged into a body without being links
+    // of the model (a chain's side branches), each {name, frame (0: the root, 1 + its index
+    // in linkNames; a merged link: the link it rides on), parent (link name; null for the
+    // root), joint ({name, type} of the URDF joint above it, or null), body (the joint
+    // whose body it rides on, null: fixed to the root), mass (its own), offset (a merged
+    // link's pose in its frame's link, {position, rotation}, else null), visuals: [{position,
+    // rotation (in the link's frame, rotation row-major), geometry, color}]}.
+    this.links = achdDeepFreeze(info.link_details);
   }
   // robot.defaultPose: q with every joint at 0, or the middle of its limits when 0 is
   // outside them (a floating base at the identity); robot.poses: {name: q} of the SRDF's
@@ -56,11 +74,6 @@ export class Robot extends AchdHandle {
       throw new Error(`loadURDF: options.pose: the SRDF has no group_state '${pose}' (it has ${Object.keys(this.poses).map((n) => `'${n}'`).join(', ') || 'none'})`);
     this.startPose = pose === undefined ? this.defaultPose : this.poses[pose];
   }
-  delete() {
-    if (this._solver) this._solver.delete();
-    this._solver = null;
-    super.delete();
-  }
   createSolver(options) {
     if (options === undefined) options = {};  // (null: a named error)
     const o = achdCheckObject(options, 'options', ACHD_SOLVER_OPTION_KEYS);
@@ -76,58 +89,33 @@ export class Robot extends AchdHandle {
     return new Solver(this, s, mc);  // gravity: the C++ Case's default
   }
   // The case object in, the result object out (docs/design.md section 5; plain arrays:
-  // copies). q, qd, ff_torques by joint name and f_ext, f_virtual by link name as in the
-  // CLI; qdd_given by joint name or in model order (null: the torque is given); w_fext,
-  // w_ff per tip column; constraints: blocks {link (a name), alpha, beta, point, w_fext, w_ff}.
-  // Every input is read (once) and checked before anything is written to the solver.
+  // copies). The case is the CLI's: written as JSON text by the bridge (json_text.mjs,
+  // read once, what JSON cannot hold marked) and parsed, checked and solved by C++ with
+  // the CLI's case parser, whose messages name the field and the index; the result is
+  // the CLI's result JSON, each number in the fewest digits that read back as it (the
+  // same doubles as the CLI's 17 digits).
   solve(c, options) {
     this._live();
-    c = achdCheckObject(c, 'the case', ['q', 'qd', 'gravity', 'alpha', 'beta', 'f_ext', 'ff_torques', 'constraints',
-      'qdd_given', 'w_fext', 'w_ff', 'f_virtual']);
-    if (!('q' in c)) throw new Error("missing required field 'q'");
-    if (!('gravity' in c)) throw new Error("missing required field 'gravity'");
     const args = achdSolverOptions(options);
-    const nj = this.numJoints, max = achdConstants().max_constraints;
-    const q = achdJointValues(c.q, 'q', this, true);
-    const gravity = achdReadNumbers(c.gravity, 'gravity', 3);
-    const qd = c.qd === undefined ? new Float64Array(nj) : achdJointValues(c.qd, 'qd', this);
-    const ff = c.ff_torques === undefined ? new Float64Array(nj) : achdJointValues(c.ff_torques, 'ff_torques', this);
-    const tip = c.alpha === undefined ? achdColumns([], c.beta, '', max) : achdColumns(c.alpha, c.beta, '', max);
-    const nc = tip.count;
-    const w_fext = achdDriverWeights(c.w_fext, 'w_fext', nc), w_ff = achdDriverWeights(c.w_ff, 'w_ff', nc);
-    const blocks = achdPackBlocks(c.constraints === undefined ? [] : c.constraints, this, max);
-    const f_ext = c.f_ext === undefined ? null : achdLinkWrenches(c.f_ext, this, 'f_ext');
-    const f_virtual = c.f_virtual === undefined ? null : achdLinkWrenches(c.f_virtual, this, 'f_virtual');
-    const given = c.qdd_given === undefined ? null : achdPrescribedJoints(c.qdd_given, this);
-    // Read and checked: now the robot must still be there (a Proxy's trap may have deleted it).
-    this._live();
-    if (!this._solver) this._solver = this.createSolver();
-    const s = this._solver, ptr = s._ptr, names = s._bufferNames(), heap = achdWasm.module.HEAPF64;
-    const at = (name) => achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)) >> 3;
-    heap.set(q, at('q'));
-    heap.set(gravity, at('gravity'));
-    heap.set(qd, at('qd'));
-    heap.set(ff, at('ff_torques'));
-    heap.set(tip.alpha, at('alpha'));
-    heap.set(tip.beta, at('beta'));
-    heap.set(w_fext, at('w_fext'));
-    heap.set(w_ff, at('w_ff'));
-    s._setBlocks(blocks);  // (its scratch may grow the memory: HEAPF64 is read again below)
-    if (f_ext) achdWasm.module.HEAPF64.set(f_ext, at('f_ext'));
-    s.useExternalWrenches = f_ext !== null;
-    if (f_virtual) achdWasm.module.HEAPF64.set(f_virtual, at('f_virtual'));
-    s.useVirtualWrenches = f_virtual !== null;
-    if (given) achdWasm.module.HEAPF64.set(given.values, at('qdd_given'));
-    s._setPrescribedMask(given ? given.mask : new Array(nj).fill(false));
-    s.numConstraints = nc;
-    achdWasm.module._achd_solver_set_options(ptr, ...args);
-    s.solve();
-    return s.result();
+    const text = achdJsonText(c);
+    const ptr = this._live();  // (a Proxy's trap may have deleted the robot meanwhile)
+    return achdResultOf(achdWithString(text, (p) => achdWasm.module._achd_robot_solve(ptr, p, ...args)));
+  }
+  // A case-shaped input (q by joint name or in model order, f_ext by link name, ...) of
+  // `kind` (achd.constants.input_kinds) read by the C++ case parser from the bridge's
+  // JSON text: a Float64Array of n numbers.
+  _readInput(value, field, kind, n) {
+    const text = achdJsonText(value), which = achdConstants().input_kinds.indexOf(kind);
+    const ptr = this._live();
+    return achdWithString(text, (t) => achdWithString(field, (f) => achdWithScratch(n, (p) => {
+      if (achdWasm.module._achd_robot_read_input(ptr, t, f, which, 8 * p)) throw achdLastError();
+      return achdWasm.module.HEAPF64.slice(p, p + n);
+    })));
   }
   // Runs fn(p, ...) with q read (once) and written at p, the double index of scratch
   // doubles: nq for q, then `extra`.
   _withQ(q, extra, fn) {
-    const values = achdJointValues(q, 'q', this, true);
+    const values = this._readInput(q, 'q', 'joint_positions', this.numPositions);
     const ptr = this._live();
     return achdWithScratch(values.length + extra, (p) => {
       achdWasm.module.HEAPF64.set(values, p);
@@ -148,7 +136,7 @@ export class Robot extends AchdHandle {
   }
   // 6 rows (linear first) of nj numbers: [v; w] of the tip link's origin = J qd.
   tipJacobian(q) {
-    const nj = this.numJoints, nq = this.numPositions;
+    const nj = this.numRates, nq = this.numPositions;
     return this._withQ(q, 6 * nj, (ptr, p) => {
       if (achdWasm.module._achd_robot_tip_jacobian(ptr, 8 * p, 8 * (p + nq))) throw achdLastError();
       return achdChunks(Array.from(achdWasm.module.HEAPF64.subarray(p + nq, p + nq + 6 * nj)), nj);
@@ -156,7 +144,7 @@ export class Robot extends AchdHandle {
   }
   // M(q) as nj rows, rotor inertia included unless {rotorInertia: false}.
   massMatrix(q, options) {
-    const nj = this.numJoints, nq = this.numPositions;
+    const nj = this.numRates, nq = this.numPositions;
     const o = achdOptionalObject(options, 'options', ['rotorInertia']);
     const rotor = o.rotorInertia === undefined ? true : o.rotorInertia;
     if (typeof rotor !== 'boolean') throw new Error('options.rotorInertia must be true or false');
@@ -168,14 +156,14 @@ export class Robot extends AchdHandle {
   // Inverse dynamics: the joint torques for (q, qd, qdd) under gravity and f_ext (each by
   // name or in model order, as in solve()).
   rnea(q, qd, qdd, options) {
-    const nj = this.numJoints, nl = this.numLinks;
+    const nj = this.numRates, nl = this.numLinks;
     const o = achdOptionalObject(options, 'options', ['gravity', 'f_ext', 'effects', 'frictionVelocity']);
     const k = achdConstants();
     const effects = achdEffectBits(o.effects, k.options.effects, 'options.effects');
     const fv = achdPositive(o.frictionVelocity, k.options.friction_velocity, 'options.frictionVelocity');
-    const qdValues = achdJointValues(qd, 'qd', this), qddValues = achdJointValues(qdd, 'qdd', this);
-    const gravity = achdReadNumbers(o.gravity === undefined ? k.case_gravity : o.gravity, 'gravity', 3);
-    const f_ext = o.f_ext === undefined ? null : achdLinkWrenches(o.f_ext, this);
+    const qdValues = this._readInput(qd, 'qd', 'joint_rates', nj), qddValues = this._readInput(qdd, 'qdd', 'joint_rates', nj);
+    const gravity = this._readInput(o.gravity === undefined ? k.case_gravity : o.gravity, 'gravity', 'vector3', 3);
+    const f_ext = o.f_ext === undefined ? null : this._readInput(o.f_ext, 'f_ext', 'link_wrenches', 6 * nl);
     const nq = this.numPositions;  // q first, then qd, qdd and the torques (nj each)
     return this._withQ(q, 3 * nj + 3 + 6 * nl, (ptr, p) => {
       const v = p + nq, g = v + 3 * nj, f = g + 3, heap = achdWasm.module.HEAPF64;

@@ -17,9 +17,14 @@ function achdShowRef(x) {
 
 // Time stepping; q, qd, ff_torques, f_ext are views on the simulator's state.
 export class Simulator extends AchdHandle {
+  // The old name of numRates, kept for one release: it counted joint rates (a floating
+  // base's free joint 6), not joints.
+  /** @deprecated numRates */
+  get numJoints() { return this.numRates; }
+
   constructor(robot, ptr) {
     super('Simulator', ptr, achdWasm.module._achd_sim_delete);
-    this.numJoints = robot.numJoints;
+    this.numRates = robot.numRates;
     this.numPositions = robot.numPositions;  // q's length (7 + joints with a floating base)
     this.numLinks = robot.numLinks;
     this._robot = robot;
@@ -31,7 +36,7 @@ export class Simulator extends AchdHandle {
   _bufferOf(ptr, index) { return achdWasm.module._achd_sim_buffer(ptr, index); }
   _bufferNames() { return achdConstants().simulator_buffers; }
   _layout() {
-    return [['q', this.numPositions], ['qd', this.numJoints], ['t', 1], ['ff_torques', this.numJoints],
+    return [['q', this.numPositions], ['qd', this.numRates], ['t', 1], ['ff_torques', this.numRates],
       ['f_ext', 6 * this.numLinks]];
   }
   get q() { return this._view('q'); }
@@ -91,7 +96,7 @@ export class Simulator extends AchdHandle {
   get substeps() { return achdWasm.module._achd_sim_substeps(this._live()); }
   get rejectedSubsteps() { return achdWasm.module._achd_sim_rejected_substeps(this._live()); }
   reset(q, qd) {
-    const n = this.numJoints, nq = this.numPositions;
+    const n = this.numRates, nq = this.numPositions;
     const q0 = achdReadNumbers(q, 'q', nq), qd0 = qd === undefined ? new Float64Array(n) : achdReadNumbers(qd, 'qd', n);
     const ptr = this._live();
     achdWithScratch(nq + n, (p) => {
@@ -174,13 +179,13 @@ export class Simulator extends AchdHandle {
   }
   // The joint PD controller: every solve adds kp (target - q) - kd qd to ff_torques.
   // target: a pose as q (numPositions numbers, default the current q); kp, kd: one number
-  // for every joint (0 on a floating base's free joint) or numJoints numbers.
+  // for every joint (0 on a floating base's free joint) or numRates numbers.
   // Or gains from frequency (Hz) and dampingRatio (default 1), and feedforward 'hold'
   // (JointControl in C++).
   setJointControl(control) {
     const c = achdOptionalObject(control, 'setJointControl: the control {target, kp, kd} or {target, frequency, dampingRatio, feedforward}',
       ['target', 'kp', 'kd', 'frequency', 'dampingRatio', 'feedforward']);
-    const n = this.numJoints, nq = this.numPositions;
+    const n = this.numRates, nq = this.numPositions;
     const byFrequency = c.frequency !== undefined;
     if (byFrequency && (c.kp !== undefined || c.kd !== undefined))
       throw new Error('setJointControl: give kp and kd, or frequency and dampingRatio, not both');
@@ -250,8 +255,8 @@ export class Simulator extends AchdHandle {
   _rateIndex(i) { return this._robot.floating && i > 0 ? i + 5 : i; }
   _jointIndex(joint, what) {
     const index = typeof joint === 'string' ? this._rateIndex(this._jointNames.indexOf(joint)) : joint;
-    if (!Number.isInteger(index) || index < 0 || index >= this.numJoints)
-      throw new Error(`${what}: unknown joint ${achdShowRef(joint)} (index 0..${this.numJoints - 1} or a joint name)`);
+    if (!Number.isInteger(index) || index < 0 || index >= this.numRates)
+      throw new Error(`${what}: unknown joint ${achdShowRef(joint)} (index 0..${this.numRates - 1} or a joint name)`);
     return index;
   }
   // Held-direction residuals (m or rad) of a link (omitted: the tip); null for directions
@@ -320,10 +325,10 @@ export class Simulator extends AchdHandle {
     return achdCopy(achdWasm.module._achd_sim_result(this._live(), achdConstants().simulator_results.indexOf(name)), n);
   }
   nu() { return this._result('nu', achdWasm.module._achd_sim_nu_size(this._live())); }
-  joint_torques() { return this._result('joint_torques', this.numJoints); }
-  qdd() { return this._result('qdd', this.numJoints); }
+  joint_torques() { return this._result('joint_torques', this.numRates); }
+  qdd() { return this._result('qdd', this.numRates); }
   // per joint: a prescribed joint's torque (its trajectory's acceleration needs it), 0 for the others.
-  prescribed_torques() { return this._result('prescribed_torques', this.numJoints); }
+  prescribed_torques() { return this._result('prescribed_torques', this.numRates); }
   jointTorques() {
     achdDeprecated('Simulator.jointTorques()', 'Simulator.joint_torques()');
     return this.joint_torques();

@@ -2,40 +2,42 @@
 import { achdConstants } from './constants.mjs';
 import { achdLastError, achdSigmaMin, achdWasm } from './runtime.mjs';
 import { achdDescribe, achdReadArray, achdSolverOptions } from './validation.mjs';
-import { achdChunks, achdCopy, achdWithScratch } from './memory.mjs';
-import { achdJointSlot, achdNoJoint, achdPackBlocks } from './case_names.mjs';
+import { achdResultOf, achdWithScratch, achdWithString } from './memory.mjs';
+import { achdJsonText } from './json_text.mjs';
 import { AchdHandle } from './handle.mjs';
 
 // The zero-copy solver: write the views, call solve(), read the views.
 export class Solver extends AchdHandle {
+  // The old name of numRates, kept for one release: it counted joint rates (a floating
+  // base's free joint 6), not joints.
+  /** @deprecated numRates */
+  get numJoints() { return this.numRates; }
+
   constructor(robot, ptr, maxConstraints) {
     super('Solver', ptr, achdWasm.module._achd_solver_delete);
-    this.numJoints = robot.numJoints;
+    this.numRates = robot.numRates;
     this.numLinks = robot.numLinks;
     this.maxConstraints = maxConstraints;
-    // The names results carry and blocks are given by (case_names.mjs reads them).
     this.numPositions = robot.numPositions;
-    this._names = { root: robot.root, tip: robot.tip, floating: robot.floating, numJoints: robot.numJoints,
-      numPositions: robot.numPositions, jointNames: robot.jointNames, linkNames: robot.linkNames,
-      lockedJoints: robot.lockedJoints, couplings: robot.couplings };
+    this._joints = robot.joints;  // their rates, for setPrescribed by name
+    this._couplings = robot.couplings.length;
     this._nc = 0;
     this._blocks = 0;
     this._blockColumns = 0;
-    this._blockOwners = [];
     this._external = false;
     this._virtual = false;
-    this._prescribed = new Array(robot.numJoints).fill(false);
+    this._prescribed = new Array(robot.numRates).fill(false);
   }
   _bufferOf(ptr, index) { return achdWasm.module._achd_solver_buffer(ptr, index); }
   _bufferNames() { return achdConstants().solver_buffers; }
   _layout() {
-    const nj = this.numJoints, nl = this.numLinks, mc = this.maxConstraints;
+    const nj = this.numRates, nl = this.numLinks, mc = this.maxConstraints;
     return [['q', this.numPositions], ['qd', nj], ['ff_torques', nj], ['gravity', 3], ['alpha', 6 * mc], ['beta', mc],
       ['f_ext', 6 * nl], ['qdd', nj], ['nu', this._nc + this._blockColumns], ['joint_torques', nj], ['constraint_torques', nj],
       ['total_torques', nj], ['link_accelerations', 6 * (nl + 1)], ['constraint_wrench', 6],
       ['constraint_wrenches', 6 * this._blocks], ['qdd_given', nj], ['w_fext', mc], ['w_ff', mc],
       ['f_virtual', 6 * nl], ['prescribed_torques', nj], ['virtual_torques', nj],
-      ['coupling_forces', this._names.couplings.length]];
+      ['coupling_forces', this._couplings]];
   }
   get q() { return this._view('q'); }
   get qd() { return this._view('qd'); }
@@ -75,22 +77,18 @@ export class Solver extends AchdHandle {
     this._nc = nc;
     this._buffer = null;  // the nu view's length changed
   }
-  // Constraint blocks on links, [{link (a name), alpha: [6-vectors], beta, point}], for the
-  // solves that follow, after the tip's numConstraints columns in nu (copied in; within
-  // the solver's storage, so a solve never allocates).
+  // Constraint blocks on links, [{link (a name), alpha: [6-vectors], beta, point, w_fext,
+  // w_ff}], for the solves that follow, after the tip's numConstraints columns in nu: a
+  // case's "constraints", parsed by the C++ case parser from the bridge's JSON text and
+  // copied into the solver's storage, so a solve never allocates.
   setConstraints(blocks) {
-    this._setBlocks(achdPackBlocks(blocks, this._names, achdConstants().max_constraints));
-  }
-  // Blocks packed by achdPackBlocks ({packed, count, columns}) into the solver.
-  _setBlocks(blocks) {
+    const text = achdJsonText(blocks);
     const ptr = this._live();
-    achdWithScratch(blocks.packed.length, (p) => {
-      achdWasm.module.HEAPF64.set(blocks.packed, p);
-      if (achdWasm.module._achd_solver_set_blocks(ptr, blocks.count, 8 * p)) throw achdLastError();
+    achdWithString(text, (p) => {
+      if (achdWasm.module._achd_solver_set_constraints(ptr, p)) throw achdLastError();
     });
-    this._blocks = blocks.count;
-    this._blockColumns = blocks.columns;
-    this._blockOwners = blocks.owners;  // who owns each block column of nu: 'link NAME'
+    this._blocks = achdWasm.module._achd_solver_num_blocks(ptr);
+    this._blockColumns = achdWasm.module._achd_solver_block_columns(ptr);
     this._buffer = null;  // the nu and constraint_wrenches views' lengths changed
   }
   get numBlocks() { this._live(); return this._blocks; }
@@ -110,7 +108,7 @@ export class Solver extends AchdHandle {
   // joint names (a floating base's free joint: its six rates), or one boolean per joint
   // rate in model order; [] for none.
   setPrescribed(joints) {
-    const names = this._names, nj = names.numJoints;
+    const nj = this.numRates;
     const list = achdReadArray(joints, 'setPrescribed', 'an array of joint names or of booleans');
     const mask = new Array(nj).fill(false);
     if (list.length && typeof list[0] === 'boolean') {
@@ -122,9 +120,9 @@ export class Solver extends AchdHandle {
     } else {
       list.forEach((name, i) => {
         if (typeof name !== 'string') throw new Error(`setPrescribed: entry ${i} must be a joint name, got ${achdDescribe(name)}`);
-        const slot = achdJointSlot(names, name, false);
-        if (!slot) throw new Error(`setPrescribed: ${achdNoJoint(names, name)}`);
-        mask.fill(true, slot.start, slot.start + slot.count);
+        const joint = this._joints.find((j) => j.name === name);
+        if (!joint) throw new Error(`setPrescribed: ${this._noJoint(name)}`);
+        mask.fill(true, joint.rateIndex, joint.rateIndex + joint.rateCount);
       });
     }
     this._setPrescribedMask(mask);
@@ -139,6 +137,11 @@ export class Solver extends AchdHandle {
     this._prescribed = mask;
   }
   get prescribed() { this._live(); return this._prescribed.slice(); }
+  // Why `name` names none of the model's movable joints, in the case parser's words.
+  _noJoint(name) {
+    const ptr = this._live();
+    return achdWithString(name, (p) => achdWasm.text.UTF8ToString(achdWasm.module._achd_solver_no_joint(ptr, p)));
+  }
   setOptions(options) {
     const args = achdSolverOptions(options);
     achdWasm.module._achd_solver_set_options(this._live(), ...args);
@@ -148,43 +151,8 @@ export class Solver extends AchdHandle {
     if (achdWasm.module._achd_solver_solve(this._ptr === 0 ? this._live() : this._ptr)) throw achdLastError();
   }
   // The outputs of the last solve as plain arrays (the result object of docs/design.md
-  // section 5; a copy).
+  // section 5, as robot.solve() and the CLI give it; a copy).
   result() {
-    const ptr = this._live();
-    const nj = this.numJoints, nc = achdWasm.module._achd_solver_nu_size(ptr);
-    const rows = achdWasm.module._achd_solver_dropped_rows(ptr), cols = achdWasm.module._achd_solver_dropped_cols(ptr);
-    const names = this._bufferNames();
-    const copy = (name, n) => achdCopy(achdWasm.module._achd_solver_buffer(ptr, names.indexOf(name)), n);
-    const model = this._names;
-    const out = {
-      joints: model.jointNames.slice(),
-      links: [model.root, ...model.linkNames],
-      qdd: copy('qdd', nj),
-      constraint_torques: copy('constraint_torques', nj),
-      total_torques: copy('total_torques', nj),
-      nu: copy('nu', nc),
-      joint_torques: copy('joint_torques', nj),
-      constraint_wrench: copy('constraint_wrench', 6),
-      constraint_wrenches: achdChunks(copy('constraint_wrenches', 6 * this._blocks), 6),
-      link_accelerations: achdChunks(copy('link_accelerations', 6 * (this.numLinks + 1)), 6),
-      rank: achdWasm.module._achd_solver_rank(ptr),
-      sigma_min: achdSigmaMin(ptr),
-      dropped: rows ? achdChunks(copy('dropped', rows * cols), rows) : [],
-    };
-    // As the CLI prints them: virtual_torques with virtual wrenches, prescribed_torques
-    // (null where the torque was given) with a prescribed joint.
-    if (this._virtual) out.virtual_torques = copy('virtual_torques', nj);
-    if (this._prescribed.includes(true)) {
-      const torques = copy('prescribed_torques', nj);
-      out.prescribed_torques = torques.map((x, i) => (this._prescribed[i] ? x : null));
-    }
-    // Coupled joints: their forces follow the constraint columns' in nu, each entry named.
-    if (model.couplings.length) {
-      out.nu_owners = nc ? [...new Array(this._nc).fill('tip'), ...this._blockOwners] : [];
-      out.nu = out.nu.concat(copy('coupling_forces', model.couplings.length));
-      for (const c of model.couplings) out.nu_owners.push(`coupling ${c.joint}`);
-    }
-    if (model.lockedJoints.length) out.locked_joints = model.lockedJoints.map((j) => ({ name: j.name, value: j.value }));
-    return out;
+    return achdResultOf(achdWasm.module._achd_solver_result(this._live()));
   }
 }

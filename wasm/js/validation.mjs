@@ -1,5 +1,6 @@
-// Checks of the values users pass (vectors, option objects, names), with the messages
-// of the C++ side (tools/case_json.cpp).
+// Checks of the values users pass to the API's own calls (option objects, the
+// simulator's vectors, names); a case and its fields are C++'s (json_text.mjs), with the
+// CLI's messages, which those of the vectors here follow.
 //
 // Every input is read once: an array's length and each element are read one time into a
 // copy (a typed array's elements straight from its memory), an object's own properties
@@ -17,12 +18,8 @@ import { achdConstants, achdEffectBitsByKey } from './constants.mjs';
 // API comes near: the largest, f_ext of a 10,000-link tree, has 60,000 numbers).
 export const ACHD_MAX_INPUT_LENGTH = 1 << 24;
 
-const ACHD_TYPED_ARRAYS = [Float64Array, Float32Array, Int32Array, Uint32Array, Int16Array, Uint16Array,
+export const ACHD_TYPED_ARRAYS = [Float64Array, Float32Array, Int32Array, Uint32Array, Int16Array, Uint16Array,
   Int8Array, Uint8Array, Uint8ClampedArray];
-
-export function achdIsArrayLike(v) {
-  return Array.isArray(v) || (ArrayBuffer.isView(v) && !(v instanceof DataView));
-}
 
 // An object literal or Object.create(null): what name-keyed inputs and options must be.
 export function achdIsPlainObject(v) {
@@ -104,16 +101,6 @@ export function achdReadNumbers(value, field, n, count = `${n} values`, expected
   });
   const out = new Float64Array(n);
   for (let i = 0; i < n; ++i) out[i] = achdFiniteNumber(a[i], `${field}[${i}]`);
-  return out;
-}
-
-// A list of `count` 6-vectors (alpha columns, f_ext wrenches), read once, flat.
-export function achdReadSpatialList(value, field, count, what) {
-  const list = achdReadArray(value, field, `an array of 6-element ${what}`, (length) => {
-    if (length !== count) throw new Error(`${field}: expected ${count} ${what}, got ${length}`);
-  });
-  const out = new Float64Array(6 * count);
-  list.forEach((v, k) => out.set(achdReadNumbers(v, `${field}[${k}]`, 6), 6 * k));
   return out;
 }
 

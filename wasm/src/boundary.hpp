@@ -39,6 +39,12 @@ inline constexpr const char* kSimulatorResultNames[] = {"nu", "joint_torques", "
 static_assert(sizeof kSimulatorResultNames / sizeof kSimulatorResultNames[0] == kNumSimulatorResults,
               "one name per SimulatorResult");
 
+// achd_robot_read_input(robot, text, field, kind, out): the case-shaped inputs of the JS
+// API's other calls, each read as the case parser reads that field.
+enum InputKind { kInputJointPositions, kInputJointRates, kInputLinkWrenches, kInputVector3, kNumInputKinds };
+inline constexpr const char* kInputKindNames[] = {"joint_positions", "joint_rates", "link_wrenches", "vector3"};
+static_assert(sizeof kInputKindNames / sizeof kInputKindNames[0] == kNumInputKinds, "one name per InputKind");
+
 // JSON objects with the option structs' fields under their snake_case names and enum
 // values as their names (achd/names.hpp); effects as the bit mask.
 std::string describe(const Options& o);

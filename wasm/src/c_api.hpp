@@ -8,7 +8,9 @@
 #include <string>
 
 #include <emscripten/emscripten.h>
+#include <nlohmann/json_fwd.hpp>
 
+#include "achd/data.hpp"
 #include "achd/model.hpp"
 
 #define ACHD_EXPORT extern "C" EMSCRIPTEN_KEEPALIVE
@@ -20,9 +22,16 @@ namespace achd::wasm {
 struct Robot {
   std::shared_ptr<const Model> model;
   std::string info;  // JSON description read once by the wrapper (names, limits, ...)
+  // robot.solve (case_api.cpp): its outputs, made on first use, and its last result text.
+  std::unique_ptr<Data> data;
+  std::string result;
 };
 
 void set_last_error(const char* message);
+
+// The JSON text of a case-shaped input written by the JS bridge (wasm/js/json_text.mjs),
+// parsed, the values JSON cannot hold marked (foreign_values.hpp), for the case parser.
+nlohmann::json json_from_bridge(const char* text);
 
 // Runs f(); on an exception stores its message and returns 1.
 template <typename F>

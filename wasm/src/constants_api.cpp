@@ -51,6 +51,13 @@ std::string constants() {
     s += (first ? "" : ",") + quoted(integrator_name(i));
     first = false;
   }
+  s += "],\"adaptive_integrators\":[";
+  first = true;
+  for (Integrator i : kIntegrators) {
+    if (!integrator_is_adaptive(i)) continue;
+    s += (first ? "" : ",") + quoted(integrator_name(i));
+    first = false;
+  }
   s += "],\"directions\":[";
   for (int k = 0; k < kNumDirections; ++k) s += (k ? "," : "") + quoted(direction_name(k));
   s += "],\"direction_modes\":" + names(kDirectionModeNames) +
@@ -62,7 +69,7 @@ std::string constants() {
   s += ",\"options\":" + describe(Options()) + ",\"simulator_options\":" + describe(SimulatorOptions());
   s += ",\"solver_buffers\":" + names(kSolverBufferNames) +
        ",\"simulator_buffers\":" + names(kSimulatorBufferNames) +
-       ",\"simulator_results\":" + names(kSimulatorResultNames) + "}";
+       ",\"simulator_results\":" + names(kSimulatorResultNames) + ",\"input_kinds\":" + names(kInputKindNames) + "}";
   return s;
 }
 

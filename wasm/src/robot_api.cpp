@@ -5,6 +5,7 @@
 
 #include "achd/achd.hpp"
 #include "c_api.hpp"
+#include "robot_links.hpp"
 
 namespace achd::wasm {
 namespace {
@@ -32,30 +33,34 @@ std::string number(double x) {
   return buf;
 }
 
-// {"root", "tip" (null for a tree), "floating", "num_joints" (joint rates: qd's length),
+// {"root", "tip" (null for a tree), "floating", "num_rates" (joint rates: qd's length),
 // "num_positions" (q's), "joints": [{name, type, lower, upper, velocity, effort, damping,
-// friction}] (a floating base's free joint once, type "floating"), "links": [names after
-// the root], "locked_joints": [{name, value}], "couplings": [{joint, leader, multiplier,
-// offset}] (Model::couplings), "warnings": [the loader's, Model::warnings]}
-std::string describe(const Model& m) {
+// friction, rate_index, rate_count, position_index, position_count}] (a floating base's
+// free joint once, type "floating", 6 rates and 7 positions from 0; every other joint one
+// of each), "links": [names after the root], "link_details": describe_links(),
+// "locked_joints": [{name, value}], "couplings": [{joint, leader, multiplier, offset}]
+// (Model::couplings), "warnings": [the loader's, Model::warnings]}
+std::string describe(const Model& m, const std::string& urdf_text) {
   std::string s = "{\"root\":" + quoted(m.root_name) + ",\"tip\":" + (m.has_tip() ? quoted(m.tip_name) : "null") +
                   ",\"floating\":" + (m.floating ? "true" : "false") +
-                  ",\"num_joints\":" + std::to_string(m.num_rates()) +
+                  ",\"num_rates\":" + std::to_string(m.num_rates()) +
                   ",\"num_positions\":" + std::to_string(m.num_positions()) + ",\"joints\":[";
   if (m.floating)
     s += "{\"name\":" + quoted(m.root_name) + ",\"type\":\"floating\",\"lower\":-1e300,\"upper\":1e300,"
-         "\"velocity\":0,\"effort\":0,\"damping\":0,\"friction\":0}";
+         "\"velocity\":0,\"effort\":0,\"damping\":0,\"friction\":0,\"rate_index\":0,\"rate_count\":6,"
+         "\"position_index\":0,\"position_count\":7}";
   for (int j = m.free_joint_rates(); j < m.num_rates(); ++j) {
     const Body& b = m.bodies[j];
     s += std::string(s.back() == '[' ? "" : ",") + "{\"name\":" + quoted(b.joint_name) + ",\"type\":" +
          quoted(joint_type_name(b.type)) + ",\"lower\":" + number(b.limits.lower) +
          ",\"upper\":" + number(b.limits.upper) + ",\"velocity\":" + number(b.limits.velocity) +
          ",\"effort\":" + number(b.limits.effort) + ",\"damping\":" + number(b.damping) +
-         ",\"friction\":" + number(b.friction) + "}";
+         ",\"friction\":" + number(b.friction) + ",\"rate_index\":" + std::to_string(j) +
+         ",\"rate_count\":1,\"position_index\":" + std::to_string(m.position_index(j)) + ",\"position_count\":1}";
   }
   s += "],\"links\":[";
   for (int l = 0; l < m.num_links(); ++l) s += (l ? "," : "") + quoted(m.links[l].name);
-  s += "],\"locked_joints\":[";
+  s += "],\"link_details\":" + describe_links(m, urdf_text) + ",\"locked_joints\":[";
   for (size_t k = 0; k < m.locked_joints.size(); ++k)
     s += std::string(k ? "," : "") + "{\"name\":" + quoted(m.locked_joints[k].name) +
          ",\"value\":" + number(m.locked_joints[k].value) + "}";
@@ -105,7 +110,7 @@ ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char
       name.clear();
     }
     auto model = std::make_shared<const achd::Model>(achd::load_urdf_string(xml, root, tip, options));
-    robot = new Robot{model, achd::wasm::describe(*model)};
+    robot = new Robot{model, achd::wasm::describe(*model, xml), nullptr, {}};
   });
   return robot;
 }

@@ -3,9 +3,12 @@
 #include <cstddef>
 #include <limits>
 
+#include <nlohmann/json.hpp>
+
 #include "achd/achd.hpp"
 #include "boundary.hpp"
 #include "c_api.hpp"
+#include "case_json.hpp"
 
 namespace achd::wasm {
 
@@ -114,34 +117,29 @@ ACHD_EXPORT int achd_solver_set_num_constraints(Solver* s, int nc) {
   });
 }
 
-// The constraint blocks of the solves that follow (Case::constraints), `count` blocks
-// packed in `packed`, each [link index, columns k, point x y z, alpha (6 k, column by
-// column), beta (k), w_fext (k), w_ff (k)] (the JS wrapper has checked the names and
-// shapes). Within the reserved storage: no allocation.
-ACHD_EXPORT int achd_solver_set_blocks(Solver* s, int count, const double* packed) {
+// The constraint blocks of the solves that follow (Case::constraints): a case's
+// "constraints" as the bridge's JSON text (wasm/js/json_text.mjs), parsed by the case
+// parser (achd::cli::constraint_blocks) and copied into the solver's reserved blocks, so
+// that a solve never allocates.
+ACHD_EXPORT int achd_solver_set_constraints(Solver* s, const char* text) {
   return achd::wasm::guarded([&] {
-    if (count < 0 || count > achd::kMaxConstraintColumns)
+    achd::Case parsed;
+    achd::cli::constraint_blocks(achd::wasm::json_from_bridge(text), *s->model, parsed);
+    const std::vector<achd::ConstraintBlock>& given = parsed.constraints;
+    if (given.size() > static_cast<size_t>(achd::kMaxConstraintColumns))
       throw achd::Error("constraints: at most " + std::to_string(achd::kMaxConstraintColumns) + " blocks, got " +
-                        std::to_string(count));
+                        std::to_string(given.size()));
     std::vector<achd::ConstraintBlock>& blocks = s->c.constraints;
-    blocks.resize(static_cast<size_t>(count));
-    for (achd::ConstraintBlock& b : blocks) {
-      b.link = static_cast<int>(*packed++);
-      const int k = static_cast<int>(*packed++);
-      if (k < 0 || k > achd::kMaxConstraints)
-        throw achd::Error("constraints: a block has at most " + std::to_string(achd::kMaxConstraints) + " columns");
-      b.point = achd::Vector3(packed);
-      packed += 3;
-      b.alpha = Eigen::Map<const Eigen::MatrixXd>(packed, 6, k);
-      packed += 6 * k;
-      b.beta = Eigen::Map<const Eigen::VectorXd>(packed, k);
-      packed += k;
-      b.w_fext = Eigen::Map<const Eigen::VectorXd>(packed, k);
-      packed += k;
-      b.w_ff = Eigen::Map<const Eigen::VectorXd>(packed, k);
-      packed += k;
-    }
+    blocks.resize(given.size());
+    for (size_t b = 0; b < given.size(); ++b) blocks[b] = given[b];
   });
+}
+
+// The constraint columns of the blocks (their entries in nu, after the tip's).
+ACHD_EXPORT int achd_solver_block_columns(const Solver* s) {
+  int columns = 0;
+  for (const achd::ConstraintBlock& b : s->c.constraints) columns += static_cast<int>(b.alpha.cols());
+  return columns;
 }
 
 ACHD_EXPORT int achd_solver_num_blocks(const Solver* s) { return static_cast<int>(s->c.constraints.size()); }
@@ -188,9 +186,29 @@ ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) {
   achd::wasm::guarded([&] { out = achd::sigma_min(s->data); });
   return out;
 }
-ACHD_EXPORT int achd_solver_nu_size(const Solver* s) { return static_cast<int>(s->data.nu.size()); }
-ACHD_EXPORT int achd_solver_dropped_rows(const Solver* s) { return static_cast<int>(s->data.dropped.rows()); }
-ACHD_EXPORT int achd_solver_dropped_cols(const Solver* s) { return static_cast<int>(s->data.dropped.cols()); }
+
+// solver.result(): the outputs of the last solve as the CLI writes them
+// (achd::cli::result_json); valid until the next call, or null with the reason in
+// achd_last_error() (sigma_min beyond the range of a double, blocks set after the solve).
+ACHD_EXPORT const char* achd_solver_result(const Solver* s) {
+  static std::string json;
+  const char* out = nullptr;
+  achd::wasm::guarded([&] {
+    if (s->data.constraint_wrenches.size() != s->c.constraints.size())
+      throw achd::Error("result(): the constraint blocks changed after the last solve (call solve() first)");
+    json = achd::cli::result_json(*s->model, s->data, s->c, achd::cli::Digits::Shortest);
+    out = json.c_str();
+  });
+  return out;
+}
+
+// Why `name` is not a movable joint of the solver's model, as the case parser says it
+// (achd::cli::no_joint). Valid until the next call.
+ACHD_EXPORT const char* achd_solver_no_joint(const Solver* s, const char* name) {
+  static std::string message;
+  message = achd::cli::no_joint(*s->model, name);
+  return message.c_str();
+}
 
 // The options the solver holds, as achd::wasm::describe writes them (for the tests that
 // compare the wrapper's choices with the C++ defaults); valid until the next call.

@@ -73,5 +73,8 @@ static_assert(static_cast<int>(MotionKind::Constant) == 0 && static_cast<int>(Mo
 inline constexpr Integrator kIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler,
                                               Integrator::RK4, Integrator::DormandPrince,
                                               Integrator::ImplicitEuler};
+// Whether an integrator controls its own error (takes SimulatorOptions::rtol and atol,
+// steps in substeps of its own choosing) rather than taking fixed steps of dt.
+constexpr bool integrator_is_adaptive(Integrator integrator) { return integrator == Integrator::DormandPrince; }
 
 }  // namespace achd

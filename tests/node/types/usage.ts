@@ -10,7 +10,7 @@ declare const urdf: string;
 export async function usage(): Promise<void> {
   const achd: Achd = await createAchd();
   const robot: Robot = achd.loadURDF(urdf, { root: 'base', tip: 'tool' });
-  const q = new Float64Array(robot.numJoints);
+  const q = new Float64Array(robot.numRates);
 
   // The copying solve: the case in, the result (snake_case fields) out.
   const r: Result = robot.solve({ q, gravity: [0, 0, -9.81], alpha: [[0, 0, 1, 0, 0, 0]], beta: [0] },
