@@ -52,14 +52,11 @@ test('loadURDF({floating: true}) describes the free joint as `achd info --floati
     assert.equal(robot.numPositions, 7 + 12);
     // numJoints is numRates' old name, kept for one release on the robot, solver and simulator.
     assert.equal(robot.numJoints, robot.numRates);
-    const solver = robot.createSolver();
-    const sim = robot.createSimulator();
+    const oldNames = [robot.createSolver(), robot.createSimulator()];
     try {
-      assert.equal(solver.numJoints, robot.numRates);
-      assert.equal(sim.numJoints, robot.numRates);
+      for (const o of oldNames) assert.equal(o.numJoints, robot.numRates);
     } finally {
-      solver.delete();
-      sim.delete();
+      for (const o of oldNames) o.delete();
     }
     // At rest with no torques the whole robot falls with g and no joint moves.
     const r = robot.solve({ q: { lf_kfe: -1.2 }, gravity: GRAVITY });
