@@ -5,33 +5,11 @@
 
 #include "achd/achd.hpp"
 #include "c_api.hpp"
+#include "json_out.hpp"
 #include "robot_links.hpp"
 
 namespace achd::wasm {
 namespace {
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (static_cast<unsigned char>(ch) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
 
 // {"root", "tip" (null for a tree), "floating", "num_rates" (joint rates: qd's length),
 // "num_positions" (q's), "joints": [{name, type, lower, upper, velocity, effort, damping,

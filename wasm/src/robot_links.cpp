@@ -10,6 +10,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "achd/error.hpp"
+#include "json_out.hpp"
 
 namespace achd::wasm {
 namespace {
@@ -23,31 +24,6 @@ class Quiet : public console_bridge::OutputHandler {
   Quiet& operator=(const Quiet&) = delete;
   void log(const std::string&, console_bridge::LogLevel, const char*, int) override {}
 };
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (static_cast<unsigned char>(ch) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-// A finite number as JSON; a number that is not finite cannot be handed to JS.
-std::string number(double x) {
-  if (!std::isfinite(x)) throw Error("a number that is not finite");
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
 
 std::string numbers(std::initializer_list<double> xs) {
   std::string s = "[";
