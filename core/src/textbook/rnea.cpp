@@ -83,6 +83,9 @@ void rnea(const Model& model, ChainWorkspace& ws, const Eigen::VectorXd& q, cons
     if (b.parent >= 0) f[b.parent] += force_shift(f[i], r[i]);
   }
   if (floating) free_joint_torques_to_public(X0[kFreeJointBodies - 1].R, tau.data(), tau.data());
+  // Finite inputs can still overflow (gravity of 1e308 times a mass): a named error, never
+  // an Inf or NaN handed on.
+  if (!tau.allFinite()) throw Error("rnea: the torques are not finite (the inputs overflow)");
 }
 
 Eigen::VectorXd rnea(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,

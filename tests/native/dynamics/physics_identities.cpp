@@ -256,6 +256,10 @@ TEST(ReferenceDynamics, WorkspaceFormsCheckTheirArguments) {
   EXPECT_EQ(message([&] { tip_jacobian(b.model, qb, ws, M); }),
             "tip_jacobian: the workspace was made for a model with 3 joints, this one has 5");
   EXPECT_EQ(message([&] { crba(a.model, ws, qa, {}, M); }), "");
+  // Finite inputs whose torques overflow are named, not handed on as Inf or NaN.
+  EXPECT_EQ(message([&] { rnea(a.model, ws, qa, qa, qa, Vector3(1e308, 1e308, 1e308), {}, {}, tau); }),
+            "rnea: the torques are not finite (the inputs overflow)");
+  EXPECT_EQ(message([&] { rnea(a.model, ws, qa, qa, qa, Vector3(5e-324, 0, 0), {}, {}, tau); }), "");
 }
 
 // Transform's two maps are each other's duals: moving a motion m and a force f from a
