@@ -2,6 +2,8 @@
 // timed side by side in one run (interleaved rounds, medians of per-round ratios):
 //   - the quadruped holding its four feet in 3D (m = 12) over its unconstrained solve;
 //   - the dual-arm torso holding both hands in 6D (m = 12) over its unconstrained solve;
+//   - the quadruped's feet held pairwise together (relative blocks, m = 6) over two of its
+//     feet held (m = 6);
 //   - with a floating base: the quadruped on its four feet in 3D and the humanoid (30
 //     joints) on its two soles in 6D (m = 12 each), over their unconstrained solves;
 //   - a random tree of 200 bodies over one of 100, both with four blocks of 3 columns
@@ -95,6 +97,21 @@ int main() {
     lines.push_back({name + " holding " + std::to_string(links.size()) + " links (m = " +
                          std::to_string(constrained.num_constraints()) + ") / unconstrained",
                      "<= 2", side_by_side(m, constrained, m, free), 2});
+  }
+
+  // Relative blocks: the quadruped's front feet held together in 3D and its hind feet
+  // likewise (two relative blocks, m = 6) over its two front feet held in 3D (two blocks
+  // on one link each, m = 6). (Six relative columns between the front feet alone would be
+  // singular: no joint of this quadruped turns one foot about z relative to the other.)
+  {
+    const nlohmann::json e = entry("quadruped");
+    const Model m = load_urdf_string(read(robots + "/../" + e["urdf"].get<std::string>()), e["root"], "");
+    const Case free = robot_case(m, e, rng), absolute = held(m, free, {"lf_foot", "rf_foot"}, 3);
+    Case relative = held(m, free, {"lf_foot", "lh_foot"}, 3);
+    relative.constraints[0].link_b = m.link_index("rf_foot");
+    relative.constraints[1].link_b = m.link_index("rh_foot");
+    lines.push_back({"quadruped, feet held pairwise together (two relative blocks, m = 6) / two feet held (m = 6)",
+                     "<= 1.5", side_by_side(m, relative, m, absolute), 1.5});
   }
 
   // Floating bases (a free joint above the root link): the quadruped on its four feet in 3D

@@ -186,14 +186,15 @@ void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, 
 }  // namespace
 
 void constraint_blocks(const json& cs, const Model& model, Case& c) {
-  if (!cs.is_array()) throw Error("constraints must be an array of blocks {link, alpha, beta, point}" + got(cs));
+  if (!cs.is_array())
+    throw Error("constraints must be an array of blocks {link, alpha, beta, point, link_b, point_b}" + got(cs));
   for (size_t b = 0; b < cs.size(); ++b) {
     const json& j = cs[b];
     const std::string where = at("constraints", b);
-    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point}" + got(j));
+    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point, link_b, point_b}" + got(j));
     for (const auto& item : j.items())
       if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point" &&
-          item.key() != "w_fext" && item.key() != "w_ff")
+          item.key() != "w_fext" && item.key() != "w_ff" && item.key() != "link_b" && item.key() != "point_b")
         throw Error(where + ": unknown field '" + printable(item.key()) + "'");
     if (!j.contains("link")) throw Error(where + ": missing required field 'link'");
     if (!j.contains("alpha")) throw Error(where + ": missing required field 'alpha'");
@@ -205,6 +206,20 @@ void constraint_blocks(const json& cs, const Model& model, Case& c) {
     columns(j, where + ".", block.alpha, block.beta, true);
     driver_weights(j, where + ".", static_cast<int>(block.alpha.cols()), block.w_fext, block.w_ff);
     if (given(j, "point")) block.point = vector(j["point"], where + ".point", 3);
+    // a relative block: alpha^T (a_A - a_B) = beta, B the link named by link_b
+    if (given(j, "link_b")) {
+      if (!j["link_b"].is_string()) throw Error(where + ".link_b must be a link name" + got(j["link_b"]));
+      const std::string name_b = j["link_b"].get<std::string>();
+      block.link_b = model.link_index(name_b);
+      if (block.link_b < 0) throw Error(where + ".link_b: " + no_link(model, name_b));
+      if (block.link_b == block.link)
+        throw Error(where + ".link_b: the block would hold link '" + printable(name) +
+                    "' relative to itself; name another link or leave link_b out");
+    }
+    if (given(j, "point_b")) {
+      if (block.link_b < 0) throw Error(where + ".point_b: given without link_b (the second link it is a point of)");
+      block.point_b = vector(j["point_b"], where + ".point_b", 3);
+    }
     c.constraints.push_back(block);
   }
 }

@@ -76,6 +76,11 @@ export interface ConstraintBlock {
   beta?: Vec;
   /** where the constraint acts, in the link's frame; default its origin. */
   point?: Vec;
+  /** a second link: the block then constrains alpha^T (a_P - a_Q) = beta, a_Q this link's
+   *  acceleration at point_b (the robot receives -alpha nu at P and +alpha nu at Q). */
+  link_b?: string;
+  /** where the block acts on link_b, in its frame; default its origin (only with link_b). */
+  point_b?: Vec;
   /** driver priorities per alpha column, each in [0, 1] (default 1): see Case.w_fext, Case.w_ff. */
   w_fext?: Vec;
   w_ff?: Vec;

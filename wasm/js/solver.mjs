@@ -77,8 +77,8 @@ export class Solver extends AchdHandle {
     this._nc = nc;
     this._buffer = null;  // the nu view's length changed
   }
-  // Constraint blocks on links, [{link (a name), alpha: [6-vectors], beta, point, w_fext,
-  // w_ff}], for the solves that follow, after the tip's numConstraints columns in nu: a
+  // Constraint blocks on links, [{link (a name), alpha: [6-vectors], beta, point, link_b,
+  // point_b, w_fext, w_ff}], for the solves that follow, after the tip's numConstraints columns in nu: a
   // case's "constraints", parsed by the C++ case parser from the bridge's JSON text and
   // copied into the solver's storage, so a solve never allocates.
   setConstraints(blocks) {

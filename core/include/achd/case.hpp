@@ -25,9 +25,15 @@ using ConstraintVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxConstra
 // the link at `point` (linear part: of the point; base axes, as link_accelerations but
 // taken at the point) must satisfy alpha^T a_P = beta, column by column; the force
 // alpha nu acts at the point. Columns are oriented like the base, as Case::alpha.
+// A relative block names a second link B (link_b >= 0): alpha^T (a_P - a_Q) = beta, with
+// a_Q the acceleration of link B at point_b; the robot receives -alpha nu at P and
+// +alpha nu at Q (a cut loop, or two bodies held together), and joint_torques =
+// ff - sum_k (J_P,k - J_Q,k)^T alpha_k nu_k.
 struct ConstraintBlock {
   int link = 0;                      // Model::links index of the constrained link
   Vector3 point = Vector3::Zero();   // where the constraint acts, in the link's frame
+  int link_b = -1;                   // -1: none (relative to the world); else link B's index
+  Vector3 point_b = Vector3::Zero(); // where it acts on link B, in link B's frame
   ConstraintMatrix alpha = ConstraintMatrix(6, 0);  // unit constraint forces, columns
   ConstraintVector beta = ConstraintVector(0);      // one per column of alpha
   ConstraintVector w_fext, w_ff;  // driver priorities per column (Case::w_fext, w_ff)

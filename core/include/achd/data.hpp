@@ -23,6 +23,12 @@ struct ConstraintSource {
   int block = -1;   // its index in Case::constraints, -1 for the tip's
   int ez = 0;       // where its EZ_i start in Data::Workspace::ez
   Vector3 arm = Vector3::Zero();  // from the body's origin to the point it acts at, base axes
+  // A relative block's second link: its body, the arm to its point, and where the two
+  // paths to the base meet (their lowest common ancestor, -1: the base). For a block on
+  // one link, body_b = meet = body: its path is the body and its ancestors.
+  bool relative = false;
+  int body_b = -1, meet = -1;
+  Vector3 arm_b = Vector3::Zero();
 };
 
 using CouplingMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraintColumns,

@@ -13,6 +13,15 @@
 // the constraint torque of joint i is -S_i^T E nu = -sum_{s: i in P_s} EZ_s,i^T nu_s.
 // With one block on a chain's tip this is KDL's sweep. Cost: O(m d) for the columns and
 // the torques, O(m^2 d) for K, d the depth of the tree.
+//
+// A relative block (alpha^T (a_P - a_Q) = beta, P on body b_s, Q on body b'_s) has two
+// legs: E_s at b_s as above, and its opposite -E_s, moved to Q, at b'_s. Each rolls by
+// eq. (c) to the bodies' lowest common ancestor c_s (the base, if none), where the two
+// forces stand at one origin and add up; the sum rolls on from c_s as one column. Its
+// path P_s is the union of the two legs and the trunk from c_s: the ancestors of b_s and
+// b'_s. Eqs. (d) and (e) and the constraint torques hold over that path unchanged, and
+// P_s ∩ P_t is the union of the ancestors of the common ancestors of each end of s with
+// each end of t.
 #include "constraint_sweep.hpp"
 
 #include <algorithm>
@@ -77,20 +86,42 @@ const ConstraintVector& beta_of(const Case& c, const ConstraintSource& s) {
   return s.block < 0 ? c.beta : c.constraints[s.block].beta;
 }
 
-// Appends the source of `columns` columns acting on link `link` at `point` (its frame).
-void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int link, const Vector3& point,
-                int block, int& m, int& ez) {
-  Data::Workspace& w = d.workspace;
+// The lowest common ancestor of bodies a and b (-1: the base). Parents come before their
+// children, so the larger index is never an ancestor of the smaller.
+int common_ancestor(const Model& model, int a, int b) {
+  while (a != b) {
+    if (a > b) a = model.bodies[a].parent;
+    else b = model.bodies[b].parent;
+  }
+  return a;
+}
+
+// The arm from the origin of the body link `link` rides on (the root's, for a link fixed
+// to it) to `point` of the link (its frame), in base axes.
+Vector3 arm_of(const Model& model, const Data& d, int link, const Vector3& point) {
   const Link& l = model.links[link];
+  const Vector3 in_body = point.isZero(0) ? l.offset.p : Vector3(l.offset.p + l.offset.R * point);
+  return l.body < 0 ? in_body : Vector3(d.X0[l.body].R * in_body);
+}
+
+// Appends the source of `columns` columns acting on link `link` at `point` (its frame),
+// relative to link `link_b` at `point_b` when link_b >= 0.
+void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int link, const Vector3& point,
+                int link_b, const Vector3& point_b, int block, int& m, int& ez) {
+  Data::Workspace& w = d.workspace;
   ConstraintSource s;
-  s.body = l.body;
+  s.body = s.body_b = s.meet = model.links[link].body;
   s.column = m;
   s.columns = static_cast<int>(alpha.cols());
   s.block = block;
   s.ez = ez;
-  // the arm from the body's origin (the root's, for a link fixed to it) to the point
-  const Vector3 in_body = point.isZero(0) ? l.offset.p : Vector3(l.offset.p + l.offset.R * point);
-  s.arm = s.body < 0 ? in_body : Vector3(d.X0[s.body].R * in_body);
+  s.arm = arm_of(model, d, link, point);
+  if (link_b >= 0) {
+    s.relative = true;
+    s.body_b = model.links[link_b].body;
+    s.meet = common_ancestor(model, s.body, s.body_b);
+    s.arm_b = arm_of(model, d, link_b, point_b);
+  }
   // E = alpha s moved from the point to the body's origin: [f; n + arm x f]
   for (int k = 0; k < s.columns; ++k) {
     const double scale = column_scale(alpha.col(k).data());
@@ -116,8 +147,16 @@ void roll_to_base(const Model& model, Data& d, const ConstraintSource& s) {
   UnitConstraintForces<NC> E(column);
   double* ez = w.ez.data() + s.ez;
   const int last = last_body(d);
-  for (int i = s.body; i >= last; i = model.bodies[i].parent)
-    E.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
+  auto pass = [&](UnitConstraintForces<NC>& F, int i) {
+    F.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
+  };
+  if (s.relative) {  // the two legs to where they meet, then as one
+    UnitConstraintForces<NC> B = E.opposite_moved(s.arm_b - s.arm);
+    for (int i = s.body; i > s.meet && i >= last; i = model.bodies[i].parent) pass(E, i);
+    for (int i = s.body_b; i > s.meet && i >= last; i = model.bodies[i].parent) pass(B, i);
+    E.add(B);
+  }
+  for (int i = s.meet; i >= last; i = model.bodies[i].parent) pass(E, i);
   E.store(column);
 }
 
@@ -129,8 +168,7 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
   CouplingSums<NC> sums;
   const double* ez = w.ez.data() + s.ez;
   int depth = 0;
-  const int last = last_body(d);
-  for (int i = s.body; i >= last; i = model.bodies[i].parent) w.path[depth++] = i;
+  for_each_on_path(model, s, last_body(d), [&](int i) { w.path[depth++] = i; });
   while (depth > 0) {
     const int i = w.path[--depth];
     double known = w.u[i] * w.Dinv[i];
@@ -142,16 +180,6 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
   return sums.store(d.K, d.G0, s.column);
 }
 
-// The lowest common ancestor of bodies a and b (-1: the base). Parents come before their
-// children, so the larger index is never an ancestor of the smaller.
-int common_ancestor(const Model& model, int a, int b) {
-  while (a != b) {
-    if (a > b) a = model.bodies[a].parent;
-    else b = model.bodies[b].parent;
-  }
-  return a;
-}
-
 // The off-diagonal block K_st (and K_ts) of two sources: over the common part of their
 // paths. Returns its finite probe.
 double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
@@ -161,12 +189,27 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
   for (int k = 0; k < s.columns; ++k)
     for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) = 0;
   const int last = last_body(d);
-  for (int i = common_ancestor(model, s.body, t.body); i >= last; i = model.bodies[i].parent) {
+  auto add = [&](int i) {
     const double* es = w.ez.data() + s.ez + i * ss;
     const double* et = w.ez.data() + t.ez + i * st;
     for (int k = 0; k < s.columns; ++k) {
       const double a = es[k] * w.Dinv[i];
       for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) += a * et[l];
+    }
+  };
+  if (!s.relative && !t.relative) {
+    for (int i = common_ancestor(model, s.body, t.body); i >= last; i = model.bodies[i].parent) add(i);
+  } else {
+    // P_s ∩ P_t: the ancestors of the common ancestor of each end of s with each end of t,
+    // each body once (a path stops where it reaches one already walked)
+    const int ends_s[2] = {s.body, s.body_b}, ends_t[2] = {t.body, t.body_b};
+    int tops[4], n = 0;
+    for (int x = 0; x < (s.relative ? 2 : 1); ++x)
+      for (int y = 0; y < (t.relative ? 2 : 1); ++y) tops[n++] = common_ancestor(model, ends_s[x], ends_t[y]);
+    for (int k = 0; k < n; ++k) {
+      int walked = -1;  // the lowest body of this path already walked
+      for (int j = 0; j < k; ++j) walked = std::max(walked, common_ancestor(model, tops[k], tops[j]));
+      for (int i = tops[k]; i > walked && i >= last; i = model.bodies[i].parent) add(i);
     }
   }
   for (int k = 0; k < s.columns; ++k)
@@ -183,9 +226,8 @@ void add_constraint_torques(const Model& model, Data& d, const ConstraintSource&
   const Data::Workspace& w = d.workspace;
   const ConstraintMagnitudes<NC> nu(d.nu.data() + s.column);
   const double* ez = w.ez.data() + s.ez;
-  const int last = last_body(d);
-  for (int i = s.body; i >= last; i = model.bodies[i].parent)
-    d.constraint_torques[i] -= nu.dot(ez + i * ez_stride<NC>());
+  for_each_on_path(model, s, last_body(d),
+                   [&](int i) { d.constraint_torques[i] -= nu.dot(ez + i * ez_stride<NC>()); });
 }
 
 }  // namespace
@@ -197,10 +239,13 @@ int constraint_sources(const Model& model, Data& d, const Case& c) {
   d.E.resize(6, m);
   w.alpha_scale.resize(m);
   int column = 0, ez = 0;
-  if (c.alpha.cols()) add_source(model, d, c.alpha, model.num_links() - 1, Vector3::Zero(), -1, column, ez);
+  if (c.alpha.cols())
+    add_source(model, d, c.alpha, model.num_links() - 1, Vector3::Zero(), -1, Vector3::Zero(), -1, column, ez);
   for (size_t b = 0; b < c.constraints.size(); ++b) {
     const ConstraintBlock& block = c.constraints[b];
-    if (block.alpha.cols()) add_source(model, d, block.alpha, block.link, block.point, static_cast<int>(b), column, ez);
+    if (block.alpha.cols())
+      add_source(model, d, block.alpha, block.link, block.point, block.link_b, block.point_b, static_cast<int>(b),
+                 column, ez);
   }
   return m;
 }
@@ -229,9 +274,11 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
   const bool gravity = o.effects & kGravity, physical = o.convention == Convention::Physical;
   w.rhs.resize(d.E.cols());
   for (const ConstraintSource& s : w.sources) {
-    // kappa at the point: what its acceleration would be with qdd = 0 and no gravity
+    // kappa at the point: what its acceleration would be with qdd = 0 and no gravity (a
+    // relative block: at P less at Q)
     Vector6 kappa = Vector6::Zero();
     if (moving && s.body >= 0) kappa = motion_shift(d.kappa[s.body], s.arm);
+    if (moving && s.relative && s.body_b >= 0) kappa -= motion_shift(d.kappa[s.body_b], s.arm_b);
     const ConstraintMatrix& alpha = alpha_of(c, s);
     const ConstraintVector& beta = beta_of(c, s);
     for (int k = 0; k < s.columns; ++k) {
@@ -241,7 +288,8 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
       if (moving) r += (alpha.col(k) * scale).dot(kappa);
       if (gravity) {
         if (!w.free_joint_step) r -= d.E.col(col).head<3>().dot(c.gravity);  // else E_0 = 0
-        if (physical) r += (alpha.col(k).head<3>() * scale).dot(c.gravity);
+        // (alpha_lin^T g, which a relative block has at both points: it cancels)
+        if (physical && !s.relative) r += (alpha.col(k).head<3>() * scale).dot(c.gravity);
       }
       w.rhs[col] = r;
     }
@@ -293,6 +341,14 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
     for (int i = s.body; i >= 0; i = model.bodies[i].parent) {
       const JointSubspace S = body_subspace(model, d, i);
       d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
+      probe += d.joint_torques[i] * 0.0;
+    }
+    if (!s.relative) continue;
+    // the opposite wrench at Q: tau_i += z_i . (n + (q - p_i) x f) or z_i . f
+    const Vector3 q = s.body_b < 0 ? s.arm_b : Vector3(d.X0[s.body_b].p + s.arm_b);
+    for (int i = s.body_b; i >= 0; i = model.bodies[i].parent) {
+      const JointSubspace S = body_subspace(model, d, i);
+      d.joint_torques[i] += S.rotational ? S.z.dot(n + (q - d.X0[i].p).cross(f)) : S.z.dot(f);
       probe += d.joint_torques[i] * 0.0;
     }
   }

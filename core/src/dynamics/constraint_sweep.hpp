@@ -9,6 +9,18 @@
 
 namespace achd {
 
+// Calls f(i) for every body i >= last on source s's path to the base: a relative block's
+// two legs up to where they meet, then the trunk from there (a block on one link: the
+// trunk from its body).
+template <class F>
+inline void for_each_on_path(const Model& model, const ConstraintSource& s, int last, F f) {
+  if (s.relative) {
+    for (int i = s.body; i > s.meet && i >= last; i = model.bodies[i].parent) f(i);
+    for (int i = s.body_b; i > s.meet && i >= last; i = model.bodies[i].parent) f(i);
+  }
+  for (int i = s.meet; i >= last; i = model.bodies[i].parent) f(i);
+}
+
 // After the poses: the blocks with columns into data.workspace.sources (the tip's first),
 // each column scaled by its power of two (alpha_scale), and E = alpha s moved from each
 // block's point to its body's origin. Returns the number of columns, m. `tip`: whether

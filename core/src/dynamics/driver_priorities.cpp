@@ -25,6 +25,7 @@
 // is not cancelled by the constraint).
 #include "driver_priorities.hpp"
 
+#include "constraint_sweep.hpp"
 #include "joint_subspace.hpp"
 
 namespace achd {
@@ -90,11 +91,11 @@ void weigh_drivers(const Model& model, Data& d, const Case& c, const Options& o,
     for (int k = 0; k < s.columns; ++k) {
       // y_f,k and y_ff,k: sum over the path of EZ_i,k u_i / D_i for each driver alone
       double yf = 0, yff = 0;
-      for (int i = s.body; i >= 0; i = model.bodies[i].parent) {
+      for_each_on_path(model, s, 0, [&](int i) {
         const double ez = w.ez[s.ez + i * stride + k];
         yf += ez * w.driver_qdd[2 * i];
         yff += ez * w.driver_qdd[2 * i + 1];
-      }
+      });
       w.rhs[s.column + k] -= (1 - weight(wf, k)) * yf + (1 - weight(wff, k)) * yff;
     }
   }

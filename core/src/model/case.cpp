@@ -97,8 +97,10 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
   for (const ConstraintBlock& b : c.constraints) {
     const Eigen::Index k = b.alpha.cols();
     if (b.link < 0 || b.link >= model.num_links() || k > kMaxConstraints || b.beta.size() != k) return false;
+    if (b.link_b < -1 || b.link_b >= model.num_links() || b.link_b == b.link) return false;
     if (!weights_valid(b.w_fext, k) || !weights_valid(b.w_ff, k)) return false;
-    s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k);
+    s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k) +
+         (b.link_b >= 0 ? finite_probe(b.point_b.data(), 3) : 0.0);
   }
   return s == 0 && c.num_constraints() <= capacity && c.constraints.size() <= static_cast<size_t>(capacity);
 }
@@ -142,6 +144,17 @@ void check_blocks(const Model& model, const Case& c) {
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(block.point[k]))
         throw Error(field + "point[" + std::to_string(k) + "] (link '" + model.links[block.link].name +
+                    "') is not finite");
+    if (block.link_b < -1 || block.link_b >= model.num_links())
+      throw Error(field + "link_b: " + std::to_string(block.link_b) +
+                  " is not a link index of the model (0 to " + std::to_string(model.num_links() - 1) +
+                  ") nor -1 (none)");
+    if (block.link_b == block.link)
+      throw Error(field + "link_b: the block would hold link '" + model.links[block.link].name +
+                  "' relative to itself; name another link or none");
+    for (int k = 0; block.link_b >= 0 && k < 3; ++k)
+      if (!std::isfinite(block.point_b[k]))
+        throw Error(field + "point_b[" + std::to_string(k) + "] (link '" + model.links[block.link_b].name +
                     "') is not finite");
     check_columns(block.alpha, block.beta, field);
     check_weights(block.w_fext, static_cast<int>(block.alpha.cols()), field + "w_fext");

@@ -128,6 +128,9 @@ struct Column {
   Vector3 point;
   Vector6 alpha;
   double beta;
+  bool relative = false;  // alpha^T (a_P - a_Q) = beta: the opposite column at Q on body_b
+  int body_b = -1;
+  Vector3 point_b = Vector3::Zero();
 };
 
 // The solve of a validated case (a floating base's in the solver's coordinates).
@@ -227,31 +230,45 @@ ReferenceSolution solve(const Model& model, const Case& c, const Options& o) {
   // ---- the constraint columns: the tip's, then each block's ----
   std::vector<Column> columns;
   if (o.effects & kConstraints) {
-    auto add_block = [&](int link, const Vector3& point, const ConstraintMatrix& alpha,
-                         const ConstraintVector& beta) {
+    // a point of a link in base coordinates
+    auto at = [&](int link, const Vector3& point) {
       const Link& l = model.links[link];
-      const Pose at = l.body < 0 ? Pose{} : X0[l.body];
-      const Vector3 p = at.p + at.R * (l.offset.p + l.offset.R * point);
-      for (Eigen::Index k = 0; k < alpha.cols(); ++k)
-        columns.push_back({l.body, p, alpha.col(k), beta[k]});
+      const Pose X = l.body < 0 ? Pose{} : X0[l.body];
+      return Vector3(X.p + X.R * (l.offset.p + l.offset.R * point));
     };
-    if (c.alpha.cols()) add_block(model.num_links() - 1, Vector3::Zero(), c.alpha, c.beta);
-    for (const ConstraintBlock& b : c.constraints) add_block(b.link, b.point, b.alpha, b.beta);
+    auto add_block = [&](int link, const Vector3& point, const ConstraintMatrix& alpha,
+                         const ConstraintVector& beta, int link_b, const Vector3& point_b) {
+      for (Eigen::Index k = 0; k < alpha.cols(); ++k) {
+        Column col{model.links[link].body, at(link, point), alpha.col(k), beta[k]};
+        if (link_b >= 0) {
+          col.relative = true;
+          col.body_b = model.links[link_b].body;
+          col.point_b = at(link_b, point_b);
+        }
+        columns.push_back(col);
+      }
+    };
+    if (c.alpha.cols()) add_block(model.num_links() - 1, Vector3::Zero(), c.alpha, c.beta, -1, Vector3::Zero());
+    for (const ConstraintBlock& b : c.constraints) add_block(b.link, b.point, b.alpha, b.beta, b.link_b, b.point_b);
   }
   const int m = static_cast<int>(columns.size());
 
   // E0_i: the columns on body i itself, moved from their points to its origin; E_i: E0_i
   // plus the children's reduced columns (filled by the sweep). Columns of blocks outside
-  // the subtree stay zero. E_base collects the columns at the base's origin.
+  // the subtree stay zero. E_base collects the columns at the base's origin. A relative
+  // column stands at both of its points: alpha at P, -alpha at Q.
   std::vector<Matrix6X> E0(n, Matrix6X::Zero(6, m));
   Matrix6X E_base = Matrix6X::Zero(6, m);
+  auto place = [&](int j, int body, const Vector3& point, const Vector6& alpha) {
+    if (body < 0)  // a link fixed to the root: the column is on the base
+      E_base.col(j) += force_transform(Matrix3::Identity(), -point) * alpha;
+    else
+      E0[body].col(j) += force_transform(X0[body].R, X0[body].p - point) * alpha;
+  };
   for (int j = 0; j < m; ++j) {
     const Column& col = columns[j];
-    if (col.body < 0)  // a link fixed to the root: the column is on the base
-      E_base.col(j) = force_transform(Matrix3::Identity(), -col.point) * col.alpha;
-    else
-      E0[col.body].col(j) =
-          force_transform(X0[col.body].R, X0[col.body].p - col.point) * col.alpha;
+    place(j, col.body, col.point, col.alpha);
+    if (col.relative) place(j, col.body_b, col.point_b, -col.alpha);
   }
 
   // ---- the constraint sweep, inward (nothing to sweep without columns) ----
@@ -283,7 +300,8 @@ ReferenceSolution solve(const Model& model, const Case& c, const Options& o) {
   for (int j = 0; j < m; ++j) {
     rhs[j] += E_base.col(j).dot(a0);
     double beta = columns[j].beta;
-    if (gravity && physical) beta -= columns[j].alpha.head<3>().dot(c.gravity);
+    // (a relative column sees g at both points: it cancels)
+    if (gravity && physical && !columns[j].relative) beta -= columns[j].alpha.head<3>().dot(c.gravity);
     rhs[j] -= beta;
   }
   // nu = K^+ rhs, the pseudo-inverse by K's eigen-decomposition (K is symmetric positive

@@ -134,7 +134,7 @@ TEST_F(CliTrees, BadBlocksAndNamesAreNamed) {
        "constraints[0].point: expected 3 values, got 2"},
       {{{"constraints", {{{"link", "lwr_link_3"}, {"alpha", {col, col, col, col, col, col, col}}}}}},
        "constraints[0].alpha: at most 6 constraints, got 7"},
-      {{{"constraints", json::array({1})}}, "constraints[0] must be an object {link, alpha, beta, point}"},
+      {{{"constraints", json::array({1})}}, "constraints[0] must be an object {link, alpha, beta, point, link_b, point_b}"},
       {{{"constraints", 1}}, "constraints must be an array of blocks"},
       {{{"q", {{"lwr_joint_9", 1}}}}, "q: no movable joint 'lwr_joint_9' between the root and the tip"},
       {{{"qd", {{"lwr_joint_2", "fast"}}}}, "qd['lwr_joint_2'] must be a number"},

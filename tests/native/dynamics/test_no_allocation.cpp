@@ -151,6 +151,11 @@ TEST(NoAllocation, HybridDynamicsWithConstraintBlocksUpToTheCapacity) {
       for (achd::ConstraintBlock& b : c.constraints) {
         b.link = static_cast<int>(rng() % m.num_links());
         b.point = achd::Vector3::NullaryExpr([&] { return U(rng); });
+        // every other block relative to a second link (two legs rolled and met)
+        if ((&b - c.constraints.data()) % 2 && m.num_links() > 1) {
+          b.link_b = (b.link + 1 + static_cast<int>(rng() % (m.num_links() - 1))) % m.num_links();
+          b.point_b = achd::Vector3::NullaryExpr([&] { return U(rng); });
+        }
         b.alpha = achd::ConstraintMatrix::NullaryExpr(6, columns, [&] { return U(rng); });
         b.beta = achd::ConstraintVector::NullaryExpr(columns, [&] { return U(rng); });
         // driver priorities on every other block (driver_priorities.cpp runs)

@@ -200,16 +200,22 @@ Eigen::MatrixXd stacked_constraint_jacobian(const Model& model, const Case& c) {
   const std::vector<FrameMotion> frames = reference_motion(model, c.q, zero, zero);
   Eigen::MatrixXd A(c.num_constraints(), n);
   int row = 0;
-  // alpha^T J at a point P of link l: v_P = v_l + w x r = v_l - [r]x w, r = R_l P.
-  auto add = [&](int link, const Vector3& point, const ConstraintMatrix& alpha) {
+  // J at a point P of link l: v_P = v_l + w x r = v_l - [r]x w, r = R_l P.
+  auto jacobian = [&](int link, const Vector3& point) {
     Eigen::MatrixXd J = reference_link_jacobian(model, c.q, link);
     const Vector3 r = frames[link].R * point;
     J.topRows<3>() -= skew(r) * J.bottomRows<3>();
+    return J;
+  };
+  // alpha^T J_P, or alpha^T (J_P - J_Q) for a relative block
+  auto add = [&](int link, const Vector3& point, const ConstraintMatrix& alpha, int link_b, const Vector3& point_b) {
+    Eigen::MatrixXd J = jacobian(link, point);
+    if (link_b >= 0) J -= jacobian(link_b, point_b);
     A.middleRows(row, alpha.cols()) = alpha.transpose() * J;
     row += static_cast<int>(alpha.cols());
   };
-  if (c.alpha.cols()) add(model.num_links() - 1, Vector3::Zero(), c.alpha);
-  for (const ConstraintBlock& b : c.constraints) add(b.link, b.point, b.alpha);
+  if (c.alpha.cols()) add(model.num_links() - 1, Vector3::Zero(), c.alpha, -1, Vector3::Zero());
+  for (const ConstraintBlock& b : c.constraints) add(b.link, b.point, b.alpha, b.link_b, b.point_b);
   return A;
 }
 

@@ -91,8 +91,8 @@ void prescribe_random_joints(std::mt19937& rng, const Model& model, Case& c, dou
 // reference_kinematics.hpp). 1 without constraints, infinity when K is singular.
 double tree_coupling_condition(const Model& model, const Case& c);
 
-// A[k] = alpha_k^T J_k at the block's point: the tip's columns, then each block's (the rows
-// of nu), from reference_link_jacobian. nc x nj.
+// A[k] = alpha_k^T J_k at the block's point (a relative block: alpha_k^T (J_P - J_Q)): the
+// tip's columns, then each block's (the rows of nu), from reference_link_jacobian. nc x nj.
 Eigen::MatrixXd stacked_constraint_jacobian(const Model& model, const Case& c);
 
 // Calls f(tree, rng) for `num_trees` random trees drawn from `seed`: the first with one

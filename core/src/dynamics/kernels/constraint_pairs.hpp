@@ -40,6 +40,28 @@ struct UnitConstraintForces {
       }
   }
 
+  // A relative block's columns at its second point from those at its first: the opposite
+  // forces, their moments taken about a point `d` further (rows 3..5 += d x rows 0..2):
+  //   E_b = -[f; n + d x f],  d = arm_b - arm (both bodies' origins in base axes).
+  UnitConstraintForces opposite_moved(const Vector3& d) const {
+    UnitConstraintForces o = *this;
+    const Pair d0 = splat(d[0]), d1 = splat(d[1]), d2 = splat(d[2]), minus = splat(-1);
+    for (int j = 0; j < NP; ++j) {
+      Pair* e = o.E[j];
+      e[3] += d1 * e[2] - d2 * e[1];
+      e[4] += d2 * e[0] - d0 * e[2];
+      e[5] += d0 * e[1] - d1 * e[0];
+      for (int row = 0; row < 6; ++row) e[row] = e[row] * minus;
+    }
+    return o;
+  }
+
+  // Where a relative block's two legs meet: their forces at one origin add up.
+  void add(const UnitConstraintForces& other) {
+    for (int j = 0; j < NP; ++j)
+      for (int row = 0; row < 6; ++row) E[j][row] += other.E[j][row];
+  }
+
   // One body of Vereshchagin's eq. (c), with U = IA S and Dinv = 1 / D of the body and r
   // its shift from the parent's origin:
   //   EZ = E^T S (written to ez, 2 NP doubles);  E <- E - U EZ^T / D;
