@@ -257,7 +257,7 @@ const SHELL_CHECKS = [
   },
   {
     // The fixed-base quadruped: the solve holds the four feet, the legs still.
-    signature: /achd solve robots\/quadruped\.urdf --case -/,
+    signature: /achd info robots\/quadruped\.urdf\n\.\/build\/achd solve robots\/quadruped\.urdf --case -/,
     check([info, result]) {
       assert.equal(info.joints.length, 12);
       assert.equal(info.tip, null);
@@ -265,6 +265,20 @@ const SHELL_CHECKS = [
       assert.equal(result.constraint_wrenches.length, 4);
       assert.equal(result.rank, 12);
       assert.ok(Math.max(...result.qdd.map(Math.abs)) < 1e-9, `qdd ${result.qdd}`);
+    },
+  },
+  {
+    // The relative block: the two front feet keep together (equal accelerations) while the
+    // legs move, held by one pair of forces.
+    signature: /"link_b": "rf_foot"/,
+    check([result]) {
+      assert.equal(result.rank, 3);
+      assert.equal(result.nu.length, 3);
+      assert.equal(result.constraint_wrenches.length, 1);
+      const a = (foot) => result.link_accelerations[result.links.indexOf(foot)];
+      const lf = a('lf_foot'), rf = a('rf_foot');
+      assert.ok(Math.hypot(lf[0] - rf[0], lf[1] - rf[1], lf[2] - rf[2]) < 1e-9, `${lf} vs ${rf}`);
+      assert.ok(Math.hypot(lf[0], lf[1], lf[2]) > 0.1, `the feet move together: ${lf}`);
     },
   },
   {
