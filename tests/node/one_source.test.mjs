@@ -67,7 +67,7 @@ test('what a JSON round trip would change is a named error naming the field and 
   const solver = kuka.createSolver();
   throwsMessage(() => solver.setConstraints([{ link: entry.tip, alpha: [[0, 0, 1, 0, 0, Infinity]] }]),
     /^constraints\[0\]\.alpha\[0\]\[5\] is not finite$/);
-  throwsMessage(() => solver.setConstraints(new Set()), /^constraints must be an array of blocks \{link, alpha, beta, point\}, got a Set$/);
+  throwsMessage(() => solver.setConstraints(new Set()), /^constraints must be an array of blocks \{link, alpha, beta, point, link_b, point_b\}, got a Set$/);
   throwsMessage(() => solver.setPrescribed(['nope']), /^setPrescribed: no movable joint 'nope' between the root and the tip$/);
   solver.delete();
 });

@@ -98,7 +98,7 @@ int common_ancestor(const Model& model, int a, int b) {
 
 // The arm from the origin of the body link `link` rides on (the root's, for a link fixed
 // to it) to `point` of the link (its frame), in base axes.
-Vector3 arm_of(const Model& model, const Data& d, int link, const Vector3& point) {
+__attribute__((always_inline)) inline Vector3 arm_of(const Model& model, const Data& d, int link, const Vector3& point) {
   const Link& l = model.links[link];
   const Vector3 in_body = point.isZero(0) ? l.offset.p : Vector3(l.offset.p + l.offset.R * point);
   return l.body < 0 ? in_body : Vector3(d.X0[l.body].R * in_body);
@@ -140,23 +140,33 @@ void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int 
 // free-joint step the root's children (free_joint_constraints.cpp takes the free joint).
 inline int last_body(const Data& d) { return d.workspace.free_joint_step ? kFreeJointBodies : 0; }
 
+// A relative block's two legs, E from P's body and its opposite from Q's, each rolled to
+// where they meet, then added into E. (Kept out of roll_to_base, so that a block on one
+// link rolls through the one loop it always had.)
+template <int NC>
+__attribute__((noinline)) void roll_legs(const Model& model, Data& d, const ConstraintSource& s,
+                                         UnitConstraintForces<NC>& E) {
+  Data::Workspace& w = d.workspace;
+  double* ez = w.ez.data() + s.ez;
+  const int last = last_body(d);
+  UnitConstraintForces<NC> B = E.opposite_moved(s.arm_b - s.arm);
+  for (int i = s.body; i > s.meet && i >= last; i = model.bodies[i].parent)
+    E.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
+  for (int i = s.body_b; i > s.meet && i >= last; i = model.bodies[i].parent)
+    B.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
+  E.add(B);
+}
+
 template <int NC>
 void roll_to_base(const Model& model, Data& d, const ConstraintSource& s) {
   Data::Workspace& w = d.workspace;
   double* column = d.E.col(s.column).data();
   UnitConstraintForces<NC> E(column);
+  if (s.relative) roll_legs<NC>(model, d, s, E);  // the two legs to where they meet, then as one
   double* ez = w.ez.data() + s.ez;
   const int last = last_body(d);
-  auto pass = [&](UnitConstraintForces<NC>& F, int i) {
-    F.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
-  };
-  if (s.relative) {  // the two legs to where they meet, then as one
-    UnitConstraintForces<NC> B = E.opposite_moved(s.arm_b - s.arm);
-    for (int i = s.body; i > s.meet && i >= last; i = model.bodies[i].parent) pass(E, i);
-    for (int i = s.body_b; i > s.meet && i >= last; i = model.bodies[i].parent) pass(B, i);
-    E.add(B);
-  }
-  for (int i = s.meet; i >= last; i = model.bodies[i].parent) pass(E, i);
+  for (int i = s.meet; i >= last; i = model.bodies[i].parent)
+    E.pass_to_parent(body_subspace(model, d, i), w.U[i], w.Dinv[i], d.r[i], ez + i * ez_stride<NC>());
   E.store(column);
 }
 
@@ -230,6 +240,27 @@ void add_constraint_torques(const Model& model, Data& d, const ConstraintSource&
                    [&](int i) { d.constraint_torques[i] -= nu.dot(ez + i * ez_stride<NC>()); });
 }
 
+// kappa -= kappa at a relative block's second point Q. (Out of line: the blocks on one
+// link never come here.)
+__attribute__((noinline)) void subtract_kappa_b(const Data& d, const ConstraintSource& s, Vector6& kappa) {
+  if (s.body_b >= 0) kappa -= motion_shift(d.kappa[s.body_b], s.arm_b);
+}
+
+// The opposite wrench [f; n] of a relative block at its second point Q, along Q's path:
+// tau_i += z_i . (n + (q - p_i) x f) (revolute) or z_i . f (prismatic). Returns its finite
+// probe.
+__attribute__((noinline)) double add_opposite_wrench(const Model& model, Data& d, const ConstraintSource& s,
+                                                     const Vector3& f, const Vector3& n) {
+  double probe = 0;
+  const Vector3 q = s.body_b < 0 ? s.arm_b : Vector3(d.X0[s.body_b].p + s.arm_b);
+  for (int i = s.body_b; i >= 0; i = model.bodies[i].parent) {
+    const JointSubspace S = body_subspace(model, d, i);
+    d.joint_torques[i] += S.rotational ? S.z.dot(n + (q - d.X0[i].p).cross(f)) : S.z.dot(f);
+    probe += d.joint_torques[i] * 0.0;
+  }
+  return probe;
+}
+
 }  // namespace
 
 int constraint_sources(const Model& model, Data& d, const Case& c) {
@@ -278,9 +309,11 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
     // relative block: at P less at Q)
     Vector6 kappa = Vector6::Zero();
     if (moving && s.body >= 0) kappa = motion_shift(d.kappa[s.body], s.arm);
-    if (moving && s.relative && s.body_b >= 0) kappa -= motion_shift(d.kappa[s.body_b], s.arm_b);
+    if (moving && s.relative) subtract_kappa_b(d, s, kappa);
     const ConstraintMatrix& alpha = alpha_of(c, s);
     const ConstraintVector& beta = beta_of(c, s);
+    // alpha_lin^T g: a relative block sees g at both of its points, where it cancels
+    const bool gravity_at_point = physical && !s.relative;
     for (int k = 0; k < s.columns; ++k) {
       const int col = s.column + k;
       const double scale = w.alpha_scale[col];
@@ -288,8 +321,7 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
       if (moving) r += (alpha.col(k) * scale).dot(kappa);
       if (gravity) {
         if (!w.free_joint_step) r -= d.E.col(col).head<3>().dot(c.gravity);  // else E_0 = 0
-        // (alpha_lin^T g, which a relative block has at both points: it cancels)
-        if (physical && !s.relative) r += (alpha.col(k).head<3>() * scale).dot(c.gravity);
+        if (gravity_at_point) r += (alpha.col(k).head<3>() * scale).dot(c.gravity);
       }
       w.rhs[col] = r;
     }
@@ -343,14 +375,7 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
       d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
       probe += d.joint_torques[i] * 0.0;
     }
-    if (!s.relative) continue;
-    // the opposite wrench at Q: tau_i += z_i . (n + (q - p_i) x f) or z_i . f
-    const Vector3 q = s.body_b < 0 ? s.arm_b : Vector3(d.X0[s.body_b].p + s.arm_b);
-    for (int i = s.body_b; i >= 0; i = model.bodies[i].parent) {
-      const JointSubspace S = body_subspace(model, d, i);
-      d.joint_torques[i] += S.rotational ? S.z.dot(n + (q - d.X0[i].p).cross(f)) : S.z.dot(f);
-      probe += d.joint_torques[i] * 0.0;
-    }
+    if (s.relative) probe += add_opposite_wrench(model, d, s, f, n);
   }
   return probe;
 }

@@ -65,8 +65,11 @@ struct UnitConstraintForces {
   // One body of Vereshchagin's eq. (c), with U = IA S and Dinv = 1 / D of the body and r
   // its shift from the parent's origin:
   //   EZ = E^T S (written to ez, 2 NP doubles);  E <- E - U EZ^T / D;
-  // then E moves to the parent's origin (rows 3..5 += r x rows 0..2).
-  void pass_to_parent(const JointSubspace& S, const Vector6& U, double Dinv, const Vector3& r, double* ez) {
+  // then E moves to the parent's origin (rows 3..5 += r x rows 0..2). Always inlined: with
+  // a relative block's legs it has three callers, and a call per body would cost more
+  // than its body.
+  __attribute__((always_inline)) void pass_to_parent(const JointSubspace& S, const Vector6& U, double Dinv,
+                                                    const Vector3& r, double* ez) {
     const int o = S.first_row();
     const Pair z0 = splat(S.z[0]), z1 = splat(S.z[1]), z2 = splat(S.z[2]), Dinv2 = splat(Dinv);
     const Pair r0 = splat(r[0]), r1 = splat(r[1]), r2 = splat(r[2]);
