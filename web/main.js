@@ -598,6 +598,13 @@ async function keepOwnMeshes(key, source, meshes) {
   }
 }
 
+// Where the link keeps the SRDF an own URDF came with, in words (empty without one).
+function srdfNote(srdf) {
+  if (!srdf) return '';
+  return srdf.form === 'link' ? ' Its SRDF\'s poses travel in the link too.'
+    : ` Its SRDF's poses are kept in this browser's storage (${srdf.ref}): the link has them in this browser only.`;
+}
+
 // What the link keeps of an own URDF's meshes, in words (empty without meshes).
 function meshesNote({ named, files, bytes, error }, key) {
   if (!named) return '';
@@ -621,7 +628,7 @@ function showShareNote(source) {
         'the address opens it in any browser.'
         : `${name} is kept in this browser's storage and this page's link names it (${s.ref}): the address ` +
           `reopens it in this browser only (compressed it takes ${s.characters} characters, more than the ` +
-          `${LINK_CHARACTERS} a link carries).`) + meshesNote(s.meshes, s.key);
+          `${LINK_CHARACTERS} a link carries).`) + srdfNote(s.srdf) + meshesNote(s.meshes, s.key);
 }
 
 // The robot's size for the arrows' scale: the farthest link origin from the root at the
