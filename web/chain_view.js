@@ -21,8 +21,10 @@ const VIEW_FROM = new THREE.Vector3(0.55, -0.75, 0.37).normalize();
 // The framed box's corners lie within this fraction of the canvas's half-width and
 // half-height from its middle: a margin of a tenth of the canvas on each side.
 const FRAME_FILL = 0.8;
-// The sphere a robot on a fixed base swings in may reach this fraction: up to the edge.
-const SWING_FILL = 1;
+// The sphere a robot on a fixed base swings in may reach this fraction of the canvas's
+// half-sizes: a little past its edges, since an arm reaches that sphere only where it is
+// stretched out, rarely across the view.
+const SWING_FILL = 1.15;
 // A robot smaller than this across (m) is framed as a box this large around its middle.
 const MIN_FRAMED = 0.1;
 
@@ -92,8 +94,6 @@ export class ChainView {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
-    // A canvas of another shape frames the robot again, unless the user has moved the camera.
-    if (this.framed && !this.userMoved) this.frameCamera();
   }
 
   // Builds the robot. links: FK output at the initial pose (root first); movable[i]:
@@ -230,8 +230,8 @@ export class ChainView {
   // the stick figure), from just as far as puts every corner of that box within
   // FRAME_FILL of the canvas's half-width and half-height: a 0.4 m quadruped and a 1.7 m
   // humanoid fill the view alike. A robot on a fixed base swings about its root: the
-  // sphere about the root through the box's farthest corner is framed with it, up to the
-  // canvas's edges (SWING_FILL). The robot's box is kept (this.framed).
+  // sphere about the root through the box's farthest corner is framed with it, up to a
+  // little past the canvas's edges (SWING_FILL). The robot's box is kept (this.framed).
   frameCamera() {
     this.robotGroup.updateMatrixWorld(true);
     const box = visibleBox(this.robotGroup);
@@ -250,8 +250,8 @@ export class ChainView {
     const fills = points.map(() => FRAME_FILL);
     // A fixed base: the robot swings about its root, never farther from it than the box's
     // farthest corner is now; that sphere is framed too (its outline, as the points on it
-    // along the camera's axes), up to the canvas's edges, so that a falling arm stays in
-    // view.
+    // along the camera's axes), up to a little past the canvas's edges, so that a falling
+    // arm stays in view.
     const links = this.lastUpdate?.[0];
     if (links && !this.floating) {
       const root = new THREE.Vector3().fromArray(links[0].position);
