@@ -16,6 +16,17 @@ const AXES = {
   rx: new THREE.Vector3(1, 0, 0), ry: new THREE.Vector3(0, 1, 0), rz: new THREE.Vector3(0, 0, 1),
 };
 const UP = new THREE.Vector3(0, 1, 0);  // three's cylinders are built along +y
+// The camera looks from the front right and above, along -VIEW_FROM.
+const VIEW_FROM = new THREE.Vector3(0.55, -0.75, 0.37).normalize();
+// The framed box's corners lie within this fraction of the canvas's half-width and
+// half-height from its middle: a margin of a tenth of the canvas on each side.
+const FRAME_FILL = 0.8;
+// The sphere a robot on a fixed base swings in may reach this fraction of the canvas's
+// half-sizes: a little past its edges, since an arm reaches that sphere only where it is
+// stretched out, rarely across the view.
+const SWING_FILL = 1.15;
+// A robot smaller than this across (m) is framed as a box this large around its middle.
+const MIN_FRAMED = 0.1;
 
 // Checked up front: three logs a console error when it cannot get a context, and a
 // machine without WebGL should get a message in the view instead.
@@ -96,6 +107,7 @@ export class ChainView {
     if (!this.enabled) return Promise.resolve([]);
     const generation = ++this.generation;
     this.userMoved = false;
+    this.floating = Boolean(movable[0]);  // the root moves: a floating base
     if (!this.glyphs) {
       this.glyphs = this.makeGlyphs();
       this.scene.add(this.glyphs.group);
@@ -206,37 +218,75 @@ export class ChainView {
         else mesh.visible = true;
       }
     }
+    // The stick figure standing in for missing meshes is placed before it is framed.
+    if (this.lastUpdate) this.update(...this.lastUpdate);
     this.robotGroup.updateMatrixWorld(true);
     if (!this.userMoved) this.frameCamera();
     return outcomes.map(({ fk, ...o }) => o);
   }
 
-  // Aims the camera, from the front right and above, at the sphere a freely swinging
-  // robot stays in: around the root (a little above or below it, toward the robot's
-  // middle), of the largest distance from the root to a corner of the box around what is
-  // shown of the robot.
+  // Aims the camera, from the front right and above (along -VIEW_FROM), at the box around
+  // the robot as it stands now (its link origins and what is shown of it: its visuals, or
+  // the stick figure), from just as far as puts every corner of that box within
+  // FRAME_FILL of the canvas's half-width and half-height: a 0.4 m quadruped and a 1.7 m
+  // humanoid fill the view alike. A robot on a fixed base swings about its root: the
+  // sphere about the root through the box's farthest corner is framed with it, up to a
+  // little past the canvas's edges (SWING_FILL). The robot's box is kept (this.framed).
   frameCamera() {
     this.robotGroup.updateMatrixWorld(true);
     const box = visibleBox(this.robotGroup);
-    if (box.isEmpty()) box.setFromCenterAndSize(new THREE.Vector3(), new THREE.Vector3(0.2, 0.2, 0.2));
-    let reach = 0.05;
-    for (const x of [box.min.x, box.max.x]) {
-      for (const y of [box.min.y, box.max.y]) {
-        for (const z of [box.min.z, box.max.z]) reach = Math.max(reach, Math.hypot(x, y, z));
+    const point = new THREE.Vector3();
+    for (const l of this.lastUpdate?.[0] ?? []) box.expandByPoint(point.fromArray(l.position));
+    if (box.isEmpty()) box.setFromCenterAndSize(new THREE.Vector3(), new THREE.Vector3());
+    const size = box.getSize(new THREE.Vector3());
+    const across = Math.max(size.x, size.y, size.z);
+    if (across < MIN_FRAMED) box.expandByScalar((MIN_FRAMED - across) / 2);
+    // The camera's axes: right and up on the canvas, VIEW_FROM toward the camera.
+    const right = new THREE.Vector3(0, 0, 1).cross(VIEW_FROM).normalize();
+    const up = VIEW_FROM.clone().cross(right);
+    // Points to frame, each with the fraction of the canvas's half-sizes it may reach.
+    const points = [0, 1, 2, 3, 4, 5, 6, 7].map((k) => new THREE.Vector3(k & 1 ? box.max.x : box.min.x,
+      k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z));
+    const fills = points.map(() => FRAME_FILL);
+    // A fixed base: the robot swings about its root, never farther from it than the box's
+    // farthest corner is now; that sphere is framed too (its outline, as the points on it
+    // along the camera's axes), up to a little past the canvas's edges, so that a falling
+    // arm stays in view.
+    const links = this.lastUpdate?.[0];
+    if (links && !this.floating) {
+      const root = new THREE.Vector3().fromArray(links[0].position);
+      const reach = Math.max(...points.map((p) => p.distanceTo(root)));
+      for (const axis of [right, up, VIEW_FROM]) {
+        for (const sign of [1, -1]) {
+          points.push(root.clone().addScaledVector(axis, sign * reach));
+          fills.push(SWING_FILL);
+        }
       }
     }
-    const middle = box.getCenter(new THREE.Vector3()).z;
-    const target = new THREE.Vector3(0, 0, THREE.MathUtils.clamp(middle, -0.25 * reach, 0.25 * reach));
-    const halfFov = THREE.MathUtils.degToRad(this.camera.fov / 2);
-    const halfAngle = Math.min(halfFov, Math.atan(Math.tan(halfFov) * this.camera.aspect));
-    const distance = (0.85 * reach) / Math.sin(halfAngle);
+    const framing = new THREE.Box3().setFromPoints(points);
+    const target = framing.getCenter(new THREE.Vector3());
+    const tanY = Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2));
+    const tanX = tanY * this.camera.aspect;
+    // A corner at (x, y) on the canvas's axes and w toward the camera from the target is
+    // inside when |x| <= FRAME_FILL (distance - w) tanX, and likewise for y.
+    let distance = 0;
+    points.forEach((p, k) => {
+      const corner = p.clone().sub(target);
+      const w = corner.dot(VIEW_FROM);
+      distance = Math.max(distance, w + Math.abs(corner.dot(right)) / (fills[k] * tanX),
+        w + Math.abs(corner.dot(up)) / (fills[k] * tanY));
+    });
     this.controls.target.copy(target);
-    this.camera.position.copy(target).add(new THREE.Vector3(0.55, -0.75, 0.37).normalize().multiplyScalar(distance));
+    this.camera.position.copy(target).addScaledVector(VIEW_FROM, distance);
     this.camera.near = distance / 100;
     this.camera.far = distance * 50;
     this.camera.updateProjectionMatrix();
     this.controls.update();
-    this.grid.scale.setScalar(Math.max(reach, 0.25) / 2);
+    this.camera.updateMatrixWorld();
+    this.framed = box;
+    // The floor grid (0.1 m squares, scaled with the robot) reaches past the robot.
+    const reach = Math.max(...[framing.min, framing.max].flatMap((a) => [framing.min, framing.max].map((b) => Math.hypot(a.x, b.y))));
+    this.grid.scale.setScalar(Math.max(1.25 * reach, 0.25) / 2);
   }
 
   // One glyph group per direction, in a unit frame at the selected link, scaled with the robot.
@@ -274,6 +324,7 @@ export class ChainView {
   // coordinates, or null.
   update(links, directions, push, selected = links.length - 1, at = links[selected].position) {
     if (!this.enabled || !this.segments) return;
+    this.lastUpdate = [links, directions, push, selected, at];
     const a = new THREE.Vector3();
     const b = new THREE.Vector3();
     this.segments.forEach((mesh) => {

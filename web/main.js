@@ -19,11 +19,13 @@ import { keepMeshes, openKeptMeshes } from './mesh_share.js';
 import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
-import { DIRECTIONS, GRAVITY, adoptOffer, checkDirection, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, parseHash } from './settings.js';
+import { DIRECTIONS, GRAVITY, adoptOffer, checkDirection, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, parseHash,
+  sameOwn } from './settings.js';
 import { Simulation, jointControlOf } from './simulation.js';
 import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
-import { LINK_CHARACTERS, openSharedUrdf, shareUrdf, urdfKey } from './urdf_share.js';
+import { LINK_CHARACTERS, openSharedSrdf, openSharedUrdf, shareSrdf, shareUrdf, urdfKey } from './urdf_share.js';
+import { srdfGroupStates } from './srdf_poses.js';
 import { linkVisuals } from './link_visuals.js';
 import './accuracy_panel.js';
 
@@ -102,24 +104,31 @@ window.achdDemo = {
       share: page.share && { ...page.share },
       warnings: [...page.sim.robot.warnings],
       floating: page.sim.robot.floating,
+      pose: page.sim.pose,
     };
   },
-  // The robot shown as it was loaded: {name, text (its URDF), root, tip, q0 (start pose)}.
+  // The robot shown as it was loaded: {name, text (its URDF), root, tip, q0 (start pose),
+  // and loadURDF's other options: floating, mimic, inertia, srdf (text), pose (the pose
+  // chosen last; null for none)}.
   robotSource() {
     if (!page.sim) throw new Error('achdDemo.robotSource: no robot loaded yet (await achdDemo.ready)');
     const s = page.sim.source;
     return { name: s.name, title: s.fileName ?? robotSelect.selectedOptions[0]?.text ?? s.name, text: s.text,
-      root: page.sim.robot.root, tip: page.sim.robot.tip, q0: [...page.sim.q0] };
+      root: page.sim.robot.root, tip: page.sim.robot.tip, q0: [...page.sim.q0], floating: page.sim.robot.floating,
+      mimic: s.mimic ?? null, inertia: s.inertia ?? null, srdf: s.srdf ?? null, pose: page.sim.pose };
   },
-  // The 3D view's camera (column-major 4x4 matrices as three.js stores them) and the
-  // canvas's size in CSS pixels and its place on the page, or null without WebGL.
+  // The 3D view's camera (column-major 4x4 matrices as three.js stores them), the
+  // canvas's size in CSS pixels and its place on the page, and the box the camera framed
+  // last ({min, max}, world, m: web/chain_view.js's frameCamera), or null without WebGL.
   camera() {
     if (!view.enabled) return null;
     const rect = view.renderer.domElement.getBoundingClientRect();
+    view.camera.updateMatrixWorld();
     return {
       projection: [...view.camera.projectionMatrix.elements],
       worldInverse: [...view.camera.matrixWorldInverse.elements],
       rect: { left: rect.left, top: rect.top, width: rect.width, height: rect.height },
+      box: view.framed && { min: [...view.framed.min], max: [...view.framed.max] },
     };
   },
   // A direction of the selected link (selectLink chooses it; a chain starts with its tip).
@@ -195,6 +204,11 @@ window.achdDemo = {
     if (!Number.isInteger(n) || n < 1) throw new Error(`achdDemo.step: n must be a positive integer, got ${n}`);
     if (!page.sim) throw new Error('achdDemo.step: no robot loaded yet (await achdDemo.ready)');
     stepSimulation(n);
+  },
+  // Starts again from the SRDF pose `name` (null: none), as the pose list does.
+  choosePose(name) {
+    if (!page.sim) throw new Error('achdDemo.choosePose: no robot loaded yet (await achdDemo.ready)');
+    choosePose(name);
   },
   // Puts the robot at rest at q (an array in joint order), paused, as the sliders do.
   setPose(q) {
@@ -300,6 +314,17 @@ const upload = new UrdfUpload({
 });
 const robotSelect = document.getElementById('robot-select');
 robotSelect.addEventListener('change', () => selectRobot(robotSelect.value));
+// The SRDF poses of the robot shown (robot.poses): choosing one starts again from it.
+const NO_POSE = '';
+const poseSelect = document.getElementById('pose-select');
+poseSelect.addEventListener('change', () => {
+  try {
+    choosePose(poseSelect.value === NO_POSE ? null : poseSelect.value);
+  } catch (err) {
+    showError(`could not choose the pose: ${err.message}`);
+    showPoses();
+  }
+});
 
 function setPlaying(on) {
   page.playing = on;
@@ -364,6 +389,46 @@ function setPrescribed(joint, params) {
     throw err;
   }
   controls.show(page.settings, page.playing);
+}
+
+// The pose list: robot.poses of the robot shown (hidden when its SRDF gave none, or it
+// came without one), the pose it started from chosen.
+function showPoses() {
+  const names = Object.keys(page.sim.robot.poses);
+  poseSelect.replaceChildren(new Option('none (joints at 0 or mid-limits)', NO_POSE),
+    ...names.map((name) => new Option(name, name)));
+  poseSelect.value = page.sim.pose ?? NO_POSE;
+  document.getElementById('pose-select-label').hidden = !names.length;
+}
+
+// Starts again from an SRDF pose (null: none) as if the robot had been loaded in it
+// (web/simulation.js, choosePose): its directions the robot's defaults, no prescribed
+// joints, the time, events and plots cleared; playing or paused as before. The link
+// names the pose.
+function choosePose(name) {
+  const sim = page.sim;
+  push.release();
+  page.pushedLink = null;
+  page.scriptedPush = null;
+  sim.choosePose(name);
+  page.settings.link = sim.selected === sim.robot.tip ? null : sim.selected;
+  showSelected();
+  controls.setJoints(sim.robot.floating ? sim.robot.jointNames.slice(1) : sim.robot.jointNames, jointPosition);
+  clearRun();
+  setPlaying(page.playing);
+  page.links = sim.links();
+  arrows.setRobot(reachOf(page.links), Math.hypot(...GRAVITY) * Math.max(sim.mass, MIN_MASS));
+  sliders.show(sim.q);
+  showPoses();
+  if (page.settings.own) page.settings.own = { ...page.settings.own, pose: sim.pose };
+  writeHash();
+}
+
+// A joint's position now (controls.setJoints reads where a prescribed motion starts).
+function jointPosition(joint) {
+  if (!page.sim) return null;
+  const j = page.sim.robot.jointNames.indexOf(joint);
+  return page.sim.sim.q[page.sim.robot.floating ? j + 6 : j];
 }
 
 // Back to the start pose, toggles kept (a held direction holds where the tip is then);
@@ -453,11 +518,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   showSelected();
   page.scriptedPush = null;
   const movableJoints = sim.robot.floating ? sim.robot.jointNames.slice(1) : sim.robot.jointNames;
-  controls.setJoints(movableJoints, (joint) => {
-    if (!page.sim) return null;
-    const j = page.sim.robot.jointNames.indexOf(joint);
-    return page.sim.sim.q[page.sim.robot.floating ? j + 6 : j];
-  });
+  controls.setJoints(movableJoints, jointPosition);
   clearRun();
   setPlaying(true);
   page.links = sim.links();
@@ -470,6 +531,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   arrows.setRobot(reachOf(page.links), Math.hypot(...GRAVITY) * Math.max(sim.mass, MIN_MASS));
   torqueBars.setRobot(sim.robot);
   sliders.setRobot(sim.robot, sim.q);
+  showPoses();
   if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
     robotSelect.add(new Option(`own URDF`, CUSTOM));
   }
@@ -504,11 +566,15 @@ function shareOwn(sim, source, looked) {
   page.share = null;
   showShareNote(source);
   shareUrdf(source.text).then(async (share) => {
+    // Its SRDF (cut to its group_states) goes the same way, so that the link's robot has
+    // the same poses to choose from.
+    if (source.srdf) share.srdf = await shareSrdf(srdfGroupStates(source.srdf));
     const meshes = await looked;
     if (page.sim !== sim || !meshes) return;
     share.meshes = await keepOwnMeshes(share.key, source, meshes);
     if (page.sim !== sim) return;
-    page.settings.own = { ref: share.ref, root: sim.robot.root, tip: sim.robot.tip, floating: sim.robot.floating };
+    page.settings.own = { ref: share.ref, root: sim.robot.root, tip: sim.robot.tip, floating: sim.robot.floating,
+      mimic: source.mimic ?? null, inertia: source.inertia ?? null, srdf: share.srdf?.ref ?? null, pose: sim.pose };
     page.share = share;
     writeHash();
     showShareNote(source);
@@ -530,6 +596,13 @@ async function keepOwnMeshes(key, source, meshes) {
   } catch (err) {
     return { ...kept, error: err.message };
   }
+}
+
+// Where the link keeps the SRDF an own URDF came with, in words (empty without one).
+function srdfNote(srdf) {
+  if (!srdf) return '';
+  return srdf.form === 'link' ? ' Its SRDF\'s poses travel in the link too.'
+    : ` Its SRDF's poses are kept in this browser's storage (${srdf.ref}): the link has them in this browser only.`;
 }
 
 // What the link keeps of an own URDF's meshes, in words (empty without meshes).
@@ -555,7 +628,7 @@ function showShareNote(source) {
         'the address opens it in any browser.'
         : `${name} is kept in this browser's storage and this page's link names it (${s.ref}): the address ` +
           `reopens it in this browser only (compressed it takes ${s.characters} characters, more than the ` +
-          `${LINK_CHARACTERS} a link carries).`) + meshesNote(s.meshes, s.key);
+          `${LINK_CHARACTERS} a link carries).`) + srdfNote(s.srdf) + meshesNote(s.meshes, s.key);
 }
 
 // The robot's size for the arrows' scale: the farthest link origin from the root at the
@@ -753,18 +826,20 @@ window.addEventListener('hashchange', () => {
   if (!otherLink) page.sim?.rebuild();
   controls.show(page.settings, page.playing);
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
-  if (robot === CUSTOM && linked && linked.ref !== page.settings.own?.ref) openLinkedUrdf(linked);
+  if (robot === CUSTOM && linked && !sameOwn(linked, page.settings.own)) openLinkedUrdf(linked);
   else if (robot !== page.settings.robot || otherLink) selectRobot(robot, { keepDirections: true });
   else writeHash();
 });
 
-// The source of the own URDF a link names (urdf=, root=, tip=), with the mesh files this
-// browser keeps for it (web/mesh_share.js; none in another browser). Throws when the URDF
-// cannot be had; storage that cannot be read leaves the meshes out (meshesUnread says why).
+// The source of the own URDF a link names (urdf=, root=, tip=, base=, and the loader's
+// options mimic=, inertia=, srdf=, pose=), with the mesh files this browser keeps for it
+// (web/mesh_share.js; none in another browser). Throws when the URDF or its SRDF cannot
+// be had; storage that cannot be read leaves the meshes out (meshesUnread says why).
 async function linkedSource(own) {
   const text = await openSharedUrdf(own.ref);
+  const srdf = own.srdf ? await openSharedSrdf(own.srdf) : undefined;
   const source = { name: CUSTOM, text, root: own.root, tip: own.tip, floating: own.floating, fileName: LINKED_NAME,
-    files: null };
+    files: null, mimic: own.mimic ?? undefined, inertia: own.inertia ?? undefined, srdf, pose: own.pose ?? undefined };
   try {
     source.files = await openKeptMeshes(await urdfKey(text));
   } catch (err) {

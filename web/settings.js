@@ -7,7 +7,9 @@
 // `yield` are the selected link's: a chain's tip, or the link `link=` names (a tree's
 // other default links are held as the robot list holds them). An own URDF is
 // robot=custom&urdf=<deflate:… or local:…, web/urdf_share.js>&root=<link>&tip=<link> (no
-// tip: the whole robot; base=floating: on a floating base, standing on its feet).
+// tip: the whole robot; base=floating: on a floating base, standing on its feet) and the
+// other options the page gave loadURDF: mimic=, inertia=, srdf=<deflate:… or local:…, the
+// SRDF's group_states> and pose=<its group_state the robot starts from>.
 // Values are the scene files' words (achd.constants); the simulator's option keys are
 // the same words in camelCase. Which directions, effects, integrators and policies exist,
 // which integrators are adaptive, gravity and the defaults are the module's (`offer`,
@@ -70,7 +72,8 @@ export function defaultSettings(robot, offer) {
     // joint name -> {motion, position, velocity, amplitude, frequency, phase} in page time
     prescribed: {},
     // an own URDF's place in the link: {ref (urdf=), root, tip (null: the whole robot),
-    // floating}, or null
+    // floating, mimic, inertia, srdf (srdf=: its SRDF's ref), pose} (OWN_OPTIONS: absent
+    // or null when not given), or null
     own: null,
   };
 }
@@ -132,6 +135,17 @@ export function checkDirection(name, mode) {
   }
 }
 
+// The loadURDF options of an own URDF that the link carries besides urdf=, root=, tip=
+// and base=, under their loadURDF names (srdf: the ref of its SRDF, web/urdf_share.js).
+export const OWN_OPTIONS = ['mimic', 'inertia', 'srdf', 'pose'];
+
+// Whether two own URDFs of links ({ref, root, tip, floating, ...OWN_OPTIONS}) are the same
+// robot set up the same way.
+export function sameOwn(a, b) {
+  if (!a || !b) return a === b;
+  return ['ref', 'root', 'tip', 'floating', ...OWN_OPTIONS].every((k) => (a[k] ?? null) === (b[k] ?? null));
+}
+
 export function formatHash(s) {
   const params = new URLSearchParams();
   params.set('robot', s.robot);
@@ -140,6 +154,7 @@ export function formatHash(s) {
     params.set('root', s.own.root);
     if (s.own.tip) params.set('tip', s.own.tip);
     if (s.own.floating) params.set('base', 'floating');
+    for (const key of OWN_OPTIONS) if (s.own[key]) params.set(key, s.own[key]);
   }
   params.set('integrator', s.integrator);
   if (isAdaptive(s.integrator)) params.set('rtol', String(s.rtol));
@@ -162,12 +177,14 @@ export function hashRobot(hash, fallback) {
   return new URLSearchParams(hash.replace(/^#/, '')).get('robot') ?? fallback;
 }
 
-// The own URDF a hash names, {ref, root, tip (null: the whole robot), floating} (urdf= and
-// root= given), or null.
+// The own URDF a hash names, {ref, root, tip (null: the whole robot), floating, mimic,
+// inertia, srdf, pose (each only when given)} (urdf= and root= given), or null.
 export function hashOwn(hash) {
   const params = new URLSearchParams(hash.replace(/^#/, ''));
   const [ref, root, tip] = ['urdf', 'root', 'tip'].map((k) => params.get(k));
-  return ref !== null && root !== null ? { ref, root, tip, floating: params.get('base') === 'floating' } : null;
+  if (ref === null || root === null) return null;
+  return { ref, root, tip, floating: params.get('base') === 'floating',
+    ...Object.fromEntries(OWN_OPTIONS.filter((k) => params.has(k)).map((k) => [k, params.get(k)])) };
 }
 
 // Reads a hash over the defaults, taking only names the module offers; returns the

@@ -89,24 +89,15 @@ export class Simulation {
       // The mass that moves: every link the robot carries, and the root itself when it floats.
       this.mass = this.robot.links.filter((l) => l.name !== this.robot.root || this.robot.floating)
         .reduce((sum, l) => sum + l.mass, 0);
-      const free = this.robot.floating ? 7 : 0;
-      const joints = source.q0 ?? (source.pose || !this.robot.tip ? this.robot.startPose.slice(free)
-        : startPose(this.robot).q);
-      const movableJoints = this.robot.numRates - (this.robot.floating ? 6 : 0);
-      if (joints.length !== movableJoints) {
-        throw new Error(`q0 has ${joints.length} values, the robot ${movableJoints} joints`);
-      }
-      const base = this.robot.floating && !source.q0 ? this.robot.startPose.slice(0, 7) : [0, 0, 0, 0, 0, 0, 1];
-      const own = this.robot.floating && !source.constraints;
-      this.defaultLinks = own ? lowestLeaves(this.robot, [...base, ...joints])
-        : (source.constraints ?? []).filter((l) => this.robot.linkNames.includes(l));
+      // The SRDF pose the robot starts from (a name of robot.poses), or null.
+      this.pose = source.pose || null;
       this.held = source.held ?? HELD_BY_DEFAULT;
-      this.q0 = this.robot.floating ? this.floatingPose(base, joints) : [...joints];
-      this.control = source.jointControl ?? (own ? OWN_CONTROL : null);
+      this.place();
+      this.control = source.jointControl ?? (this.own ? OWN_CONTROL : null);
       this.settings = settings;
       this.sets = new Map();  // link name -> {directions, yielding}, the selected one's in settings
       this.points = new Map();  // link name -> [x, y, z] in its frame, where its directions act (default: origin)
-      this.selected = this.robot.tip ?? this.defaultLinks[0] ?? this.robot.linkNames.at(-1);
+      this.selected = this.firstSelected();
       this.tOffset = 0;
       this.sim = null;
       this.solver = null;
@@ -118,6 +109,65 @@ export class Simulation {
     this.stepWindow = { ms: 0, steps: 0 };
     this.stepMicros = null;
     this.solveMicros = null;
+  }
+
+  // The start pose q0 and the default links: the SRDF pose this.pose names, else the
+  // source's q0, else (a chain) a pose inside the limits away from a singularity or (a
+  // tree) robot.defaultPose; a floating base stands on its default links (an own one: its
+  // lowest leaf links at that pose).
+  place() {
+    const source = this.source;
+    const free = this.robot.floating ? 7 : 0;
+    const named = this.pose === null ? null : this.robot.poses[this.pose];
+    if (this.pose !== null && !named) {
+      const names = Object.keys(this.robot.poses);
+      throw new Error(`no pose "${this.pose}" (${names.length ? `the SRDF has ${names.join(', ')}` : 'no SRDF poses'})`);
+    }
+    const joints = named ? named.slice(free)
+      : source.q0 ?? (this.robot.tip ? startPose(this.robot).q : this.robot.defaultPose.slice(free));
+    const movableJoints = this.robot.numRates - (this.robot.floating ? 6 : 0);
+    if (joints.length !== movableJoints) {
+      throw new Error(`q0 has ${joints.length} values, the robot ${movableJoints} joints`);
+    }
+    const base = !this.robot.floating ? null : named ? named.slice(0, 7)
+      : source.q0 ? [0, 0, 0, 0, 0, 0, 1] : this.robot.defaultPose.slice(0, 7);
+    this.own = this.robot.floating && !source.constraints;
+    this.defaultLinks = this.own ? lowestLeaves(this.robot, [...base, ...joints])
+      : (source.constraints ?? []).filter((l) => this.robot.linkNames.includes(l));
+    this.q0 = this.robot.floating ? this.floatingPose(base, joints) : [...joints];
+  }
+
+  // The link whose directions the controls show first: a chain's tip, else the first
+  // default link.
+  firstSelected() {
+    return this.robot.tip ?? this.defaultLinks[0] ?? this.robot.linkNames.at(-1);
+  }
+
+  // Starts again from the SRDF pose `name` (null: from the start pose without one), as if
+  // the robot had been loaded in it: the start pose, the default links (an own floating
+  // robot's feet at that pose, on the ground) with their default directions and the PD
+  // controller's target and hold torques are that pose's; prescribed joints are released,
+  // the page's time starts at 0. Throws (nothing changed) on a name robot.poses has not.
+  choosePose(name) {
+    const previous = this.pose;
+    this.pose = name;
+    try {
+      this.place();
+    } catch (err) {
+      this.pose = previous;
+      this.place();
+      throw err;
+    }
+    this.source.pose = name ?? undefined;
+    this.settings.prescribed = {};
+    this.points.clear();
+    this.sets.clear();
+    this.selected = this.firstSelected();
+    this.defaultDirections();
+    this.tOffset = 0;
+    this.controlTarget = null;
+    this.build(this.q0, null);
+    this.tOffset = 0;
   }
 
   // A floating base's full q for the joints' q: the root at base ([x, y, z, qx, qy, qz,

@@ -13,3 +13,22 @@ export function srdfPoses(text) {
   const poses = [...robot.children].filter((e) => e.nodeName === 'group_state').map((e) => e.getAttribute('name'));
   return { robot: robot.getAttribute('name'), poses: [...new Set(poses)] };
 }
+
+// The part of an SRDF that achd reads (its <robot name> and <group_state> elements, with
+// their joints), as the text a page's link carries: an SRDF's collision pairs can make it
+// many times longer. The poses read from it are those read from the whole file.
+export function srdfGroupStates(text) {
+  const doc = new DOMParser().parseFromString(text, 'application/xml');
+  const robot = doc.documentElement;
+  if (doc.querySelector('parsererror') || robot.nodeName !== 'robot') {
+    throw new Error('not an SRDF file: expected an XML document whose root element is <robot>');
+  }
+  const out = document.implementation.createDocument(null, 'robot', null);
+  const name = robot.getAttribute('name');
+  if (name !== null) out.documentElement.setAttribute('name', name);
+  for (const state of [...robot.children].filter((e) => e.nodeName === 'group_state')) {
+    out.documentElement.append('\n  ', out.importNode(state, true));
+  }
+  out.documentElement.append('\n');
+  return new XMLSerializer().serializeToString(out);
+}

@@ -3,7 +3,9 @@
 // which opens it in any browser. A longer one is kept in this browser's localStorage under
 // its hash, and the link names it: urdf=local:<first 16 hex digits of its SHA-256>, which
 // reopens it in this browser only. Its mesh files are never in the link: they are kept in
-// this browser's IndexedDB under the same key (web/mesh_share.js).
+// this browser's IndexedDB under the same key (web/mesh_share.js). The SRDF an own URDF
+// was loaded with goes the same way (srdf=deflate:… or srdf=local:…), cut to its
+// group_states, the only part achd reads (web/srdf_poses.js).
 
 import { inflatedSize } from './deflate_size.js';
 
@@ -14,7 +16,8 @@ export const LINK_CHARACTERS = 8000;
 // file (64 MiB). A link of a few hundred KB can expand to gigabytes; decompression stops
 // as soon as the text passes this, instead of filling the tab's memory.
 export const URDF_LIMIT_BYTES = 64 * 1024 * 1024;
-const STORAGE_PREFIX = 'achd:urdf:';
+// Where localStorage keeps a text of each kind the link names.
+const STORAGE_PREFIX = { URDF: 'achd:urdf:', SRDF: 'achd:srdf:' };
 const CARRIED = 'deflate:';
 const KEPT = 'local:';
 
@@ -28,11 +31,25 @@ export async function urdfKey(text) {
 // compressed text in base64url, key: urdfKey(text)}. Throws when the URDF is too long for
 // a link and the browser's storage refuses it.
 export async function shareUrdf(text) {
+  return shareText(text, 'URDF');
+}
+
+// The same for an SRDF's text (kept under the SHA-256 of the text given).
+export async function shareSrdf(text) {
+  return shareText(text, 'SRDF');
+}
+
+// The text a srdf= value names; throws an Error saying why it cannot be had.
+export async function openSharedSrdf(ref) {
+  return openShared(ref, 'SRDF');
+}
+
+async function shareText(text, kind) {
   const packed = toBase64url(await transform(new TextEncoder().encode(text), new CompressionStream('deflate-raw')));
   const key = await urdfKey(text);
   if (packed.length <= LINK_CHARACTERS) return { ref: CARRIED + packed, form: 'link', characters: packed.length, key };
   try {
-    localStorage.setItem(STORAGE_PREFIX + key, text);
+    localStorage.setItem(STORAGE_PREFIX[kind] + key, text);
   } catch (err) {
     throw new Error(`it is too long for a link (${packed.length} characters compressed, at most ${LINK_CHARACTERS}) ` +
       `and this browser's storage refused it (${err.name}): it cannot be shared by link`);
@@ -42,6 +59,10 @@ export async function shareUrdf(text) {
 
 // The URDF text a urdf= value names; throws an Error saying why it cannot be had.
 export async function openSharedUrdf(ref) {
+  return openShared(ref, 'URDF');
+}
+
+async function openShared(ref, kind) {
   if (ref.startsWith(CARRIED)) {
     let bytes;
     try {
@@ -54,30 +75,30 @@ export async function openSharedUrdf(ref) {
       } catch {
         size = 0;
       }
-      if (size > URDF_LIMIT_BYTES) throw new TooLarge(tooLargeMessage(URDF_LIMIT_BYTES));
-      bytes = await inflateBounded(packed, URDF_LIMIT_BYTES);
+      if (size > URDF_LIMIT_BYTES) throw new TooLarge(tooLargeMessage(URDF_LIMIT_BYTES, kind));
+      bytes = await inflateBounded(packed, URDF_LIMIT_BYTES, kind);
     } catch (err) {
       if (err instanceof TooLarge) throw new Error(err.message);
-      throw new Error(`the URDF carried in the link is damaged (${err.message}); was the link cut short?`);
+      throw new Error(`the ${kind} carried in the link is damaged (${err.message}); was the link cut short?`);
     }
     return new TextDecoder().decode(bytes);
   }
   if (ref.startsWith(KEPT)) {
     const key = ref.slice(KEPT.length);
-    const text = localStorage.getItem(STORAGE_PREFIX + key);
+    const text = localStorage.getItem(STORAGE_PREFIX[kind] + key);
     if (text === null) {
-      throw new Error(`the own URDF of this link (${ref}) is not in this browser's storage: such a link reopens ` +
-        'a URDF only in the browser that loaded it; load the file here');
+      throw new Error(`the own ${kind} of this link (${ref}) is not in this browser's storage: such a link reopens ` +
+        `a ${kind} only in the browser that loaded it; load the file here`);
     }
     return text;
   }
-  throw new Error(`urdf= must start with ${CARRIED} or ${KEPT}, got "${ref.slice(0, 20)}"`);
+  throw new Error(`${kind.toLowerCase()}= must start with ${CARRIED} or ${KEPT}, got "${ref.slice(0, 20)}"`);
 }
 
 class TooLarge extends Error {}
 
-function tooLargeMessage(limit) {
-  return `the URDF carried in the link expands past the ${limit / (1024 * 1024)} MiB limit of a URDF file; ` +
+function tooLargeMessage(limit, kind) {
+  return `the ${kind} carried in the link expands past the ${limit / (1024 * 1024)} MiB limit of a URDF file; ` +
     'it was not opened';
 }
 
@@ -85,7 +106,7 @@ function tooLargeMessage(limit) {
 // is cancelled (which stops the decompressor) and TooLarge says so, the chunks read so far
 // left to the garbage collector. (inflatedSize has refused such a link before; this bound
 // holds whatever the count made of the stream.)
-async function inflateBounded(bytes, limit) {
+async function inflateBounded(bytes, limit, kind) {
   const reader = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw')).getReader();
   const chunks = [];
   let total = 0;
@@ -96,7 +117,7 @@ async function inflateBounded(bytes, limit) {
     if (total > limit) {
       chunks.length = 0;
       await reader.cancel().catch(() => {});
-      throw new TooLarge(tooLargeMessage(limit));
+      throw new TooLarge(tooLargeMessage(limit, kind));
     }
     chunks.push(value);
   }

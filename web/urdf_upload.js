@@ -40,10 +40,13 @@ export class UrdfUpload {
     }
     this.form.addEventListener('submit', (e) => {
       e.preventDefault();
+      // Without a pose chosen, the SRDF of the URDF's robot (or the first) still comes
+      // along: its poses can be chosen once the robot is loaded.
       const pose = this.pose.value === NO_POSE ? null : this.poses[Number(this.pose.value)];
       onLoad({ text: this.text, fileName: this.fileName, files: this.files, root: this.root.value,
         tip: this.whole.value === 'chain' ? this.tip.value : null, floating: this.base.value === 'floating',
-        mimic: this.mimic.value, inertia: this.inertia.value, srdf: pose?.srdf, pose: pose?.name });
+        mimic: this.mimic.value, inertia: this.inertia.value, srdf: pose?.srdf ?? this.srdfOrder[0]?.text,
+        pose: pose?.name });
     });
     document.getElementById('urdf-cancel').addEventListener('click', () => {
       this.form.hidden = true;
@@ -137,6 +140,7 @@ export class UrdfUpload {
   offerPoses() {
     const name = new DOMParser().parseFromString(this.text, 'application/xml').documentElement.getAttribute('name');
     const srdfs = [...this.srdfs].sort((a, b) => Number(b.robot === name) - Number(a.robot === name));
+    this.srdfOrder = srdfs;
     this.poses = srdfs.flatMap((s) => s.poses.map((pose) => ({ srdf: s.text, name: pose, path: s.path })));
     const several = srdfs.length > 1;
     this.pose.replaceChildren(new Option('none (joints at 0 or mid-limits)', NO_POSE),

@@ -21,7 +21,9 @@
 //   docs/screenshots/own_robot.png solo12 loaded whole from example-robot-data's solo_description
 //                                 folder (two URDFs, an SRDF), floating, in the SRDF's standing
 //                                 pose, on its four held feet (no meshes in that copy: stick
-//                                 figure, the note names them)
+//                                 figure, the note names them); own_robot_form.png its load
+//                                 form; own_robot_pose.png the same robot started again from
+//                                 the SRDF's straight_standing pose with the pose list
 // Usage: node tests/browser/screenshots.mjs [name...]   (after the wasm build; names: the
 // files' without .png, all of them when none is given)
 import { mkdir } from 'node:fs/promises';
@@ -200,6 +202,14 @@ if (want('own_robot')) {
     await page.waitForTimeout(2500);
     await page.evaluate(() => window.achdDemo.pause());
     await page.screenshot({ path: new URL('own_robot.png', out).pathname });
+    // Then started again from the SRDF's other pose with the pose list, the list in view.
+    await page.locator('#pose-select').selectOption('straight_standing');
+    await page.evaluate(() => window.achdDemo.play());
+    await page.waitForTimeout(1500);
+    await page.evaluate(() => window.achdDemo.pause());
+    await page.locator('#pose-select').scrollIntoViewIfNeeded();
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: new URL('own_robot_pose.png', out).pathname });
     if (own.consoleErrors.length) throw new Error(`console errors: ${own.consoleErrors.join('\n')}`);
   } finally {
     await own.close();
