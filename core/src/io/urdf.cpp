@@ -112,7 +112,8 @@ class Walk {
     const int body = parent.body;
     const Matrix6 inertia = child_inertia(j);
     Placed child;
-    if (j.type == urdf::Joint::FIXED || options_.locked.count(j.name)) {  // (a movable one locked)
+    double held = 0;
+    if (j.type == urdf::Joint::FIXED || locked_value(j, held)) {  // (a movable one locked)
       child = Placed{body, rigid_offset(j, parent)};  // the child rides on the parent's body
       add_inertia(j, child, inertia);
     } else {
@@ -163,21 +164,48 @@ class Walk {
   }
 
  private:
+  // Whether movable joint j is held by options.locked, and where: named there, or (coupled
+  // <mimic> joints) following a leader that is held, at multiplier * leader + offset, so
+  // that holding a hand's leader holds its coupled fingers with it and keeps the coupling.
+  bool locked_value(const urdf::Joint& j, double& value, int depth = 0) const {
+    const auto given = options_.locked.find(j.name);
+    if (given != options_.locked.end()) {
+      value = given->second;
+      return true;
+    }
+    // (a chain of leaders longer than the file's joints is a cycle of <mimic>s)
+    if (!j.mimic || options_.mimic != MimicJoints::Couple || depth > static_cast<int>(urdf_.joints_.size()))
+      return false;
+    const auto leader = urdf_.getJoint(j.mimic->joint_name);
+    double leader_value = 0;
+    if (!leader || leader->type == urdf::Joint::FIXED || !locked_value(*leader, leader_value, depth + 1)) return false;
+    value = j.mimic->multiplier * leader_value + j.mimic->offset;
+    return true;
+  }
+
   // The frame of j's child link relative to the body its parent link rides on, j fixed or
-  // (if movable) locked at its options.locked value or 0, listed in Model::locked_joints.
+  // (if movable) locked at its options.locked value (or its held leader's, locked_value) or
+  // 0, listed in Model::locked_joints.
   Transform rigid_offset(const urdf::Joint& j, const Placed& parent) {
     Transform X = origin(j, parent);
     if (j.type == urdf::Joint::FIXED) return X;
     const std::string where = "joint '" + j.name + "'";
     Matrix3 R_axis;
     const Body b = make_body(j, X, parent.body, R_axis);
-    const auto given = options_.locked.find(j.name);
-    const double value = given == options_.locked.end() ? 0.0 : given->second;
-    if (!std::isfinite(value)) throw Error("locked " + where + ": value is not finite");
+    double value = 0;
+    const bool given = locked_value(j, value);
+    const bool named = options_.locked.count(j.name) > 0;
+    if (!std::isfinite(value))
+      throw Error("locked " + where + ": value is not finite" +
+                  (named || !given ? "" : " (it follows joint '" + j.mimic->joint_name + "', which is held)"));
     if (value < b.limits.lower || value > b.limits.upper)
       throw Error("locked " + where + ": value " + inertia_number(value) + " is outside its limits [" +
                   inertia_number(b.limits.lower) + ", " + inertia_number(b.limits.upper) + "]" +
-                  (given == options_.locked.end() ? " (give it a value with --lock " + j.name + "=VALUE)" : ""));
+                  (!given ? " (give it a value with --lock " + j.name + "=VALUE)"
+                   : named ? ""
+                           : " (it follows joint '" + j.mimic->joint_name + "', which is held: " +
+                                 inertia_number(j.mimic->multiplier) + " times its value plus " +
+                                 inertia_number(j.mimic->offset) + ")"));
     X = joint_transform(b, value) * Transform{R_axis.transpose(), Vector3::Zero()};
     if (!X.p.allFinite()) throw Error(where + ": origin overflows: its locked position is not finite");
     model_.locked_joints.push_back({j.name, value});
