@@ -167,20 +167,40 @@ class Walk {
   // Whether movable joint j is held by options.locked, and where: named there, or (coupled
   // <mimic> joints) following a leader that is held, at multiplier * leader + offset, so
   // that holding a hand's leader holds its coupled fingers with it and keeps the coupling.
-  bool locked_value(const urdf::Joint& j, double& value, int depth = 0) const {
-    const auto given = options_.locked.find(j.name);
-    if (given != options_.locked.end()) {
-      value = given->second;
-      return true;
+  // Walks up the leaders without recursing (a file may chain many <mimic>s; a cycle of
+  // them, or a leader that is missing or fixed, ends the walk: not held), and remembers
+  // what it found for each joint on the way.
+  bool locked_value(const urdf::Joint& j, double& value) {
+    if (options_.locked.empty()) return false;
+    std::vector<const urdf::Joint*> followers;  // j and the leaders up to the end
+    std::set<std::string> seen;
+    bool held = false;
+    double v = 0;
+    for (const urdf::Joint* at = &j;;) {
+      const auto given = options_.locked.find(at->name);
+      if (given != options_.locked.end()) {
+        held = true;
+        v = given->second;
+        break;
+      }
+      const auto known = held_.find(at->name);
+      if (known != held_.end()) {
+        held = known->second.first;
+        v = known->second.second;
+        break;
+      }
+      if (!at->mimic || options_.mimic != MimicJoints::Couple || !seen.insert(at->name).second) break;
+      followers.push_back(at);
+      const auto leader = urdf_.getJoint(at->mimic->joint_name);
+      if (!leader || leader->type == urdf::Joint::FIXED) break;
+      at = leader.get();
     }
-    // (a chain of leaders longer than the file's joints is a cycle of <mimic>s)
-    if (!j.mimic || options_.mimic != MimicJoints::Couple || depth > static_cast<int>(urdf_.joints_.size()))
-      return false;
-    const auto leader = urdf_.getJoint(j.mimic->joint_name);
-    double leader_value = 0;
-    if (!leader || leader->type == urdf::Joint::FIXED || !locked_value(*leader, leader_value, depth + 1)) return false;
-    value = j.mimic->multiplier * leader_value + j.mimic->offset;
-    return true;
+    for (auto it = followers.rbegin(); it != followers.rend(); ++it) {
+      if (held) v = (*it)->mimic->multiplier * v + (*it)->mimic->offset;
+      held_[(*it)->name] = {held, held ? v : 0.0};
+    }
+    value = v;
+    return held;
   }
 
   // The frame of j's child link relative to the body its parent link rides on, j fixed or
@@ -252,6 +272,7 @@ class Walk {
   Model& model_;
   std::map<std::string, Placed> placed_;  // by link name
   std::vector<const urdf::Joint*> mimics_;  // movable <mimic> joints placed as bodies
+  std::map<std::string, std::pair<bool, double>> held_;  // locked_value's findings, by joint
 };
 
 // Every link below `from` in depth-first order (a link, then each child joint's subtree in

@@ -270,7 +270,8 @@ TEST(RealRobotsOptions, AHeldLeaderHoldsItsFollowerAtItsCoupledPosition) {
   EXPECT_EQ(follows, 1);
 }
 
-// <mimic>s that follow each other round a cycle: looking for a held leader ends.
+// <mimic>s that follow each other round a cycle, or in a long chain: looking for a held
+// leader ends.
 TEST(RealRobotsOptions, ACycleOfMimicsEndsTheSearchForAHeldLeader) {
   const std::string link = R"(<inertial><mass value="1"/><origin xyz="0.2 0 0"/>
       <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>)";
@@ -284,6 +285,34 @@ TEST(RealRobotsOptions, ACycleOfMimicsEndsTheSearchForAHeldLeader) {
   held.locked = {{"jb", 0.5}};  // ja follows jb: held with it, nothing is left to move
   const std::string why = string_error(xml, held);
   EXPECT_TRUE(contains(why, "has no movable joint")) << why;
+  // A chain of 5000 joints, each following the one before it (q_k = q_(k-1) + 1e-4), the
+  // first held at 0.25: all held, each where the chain of couplings puts it, and one
+  // joint of its own left to move; the walk up the leaders neither recurses nor repeats.
+  std::string chain = R"(<robot name="r"><link name="base"/>)" + std::string("<link name=\"l0\">") + link + "</link>";
+  std::string joints;
+  for (int k = 1; k <= 5000; ++k) {
+    const std::string me = std::to_string(k), before = std::to_string(k - 1);
+    chain += "<link name=\"l" + me + "\">" + link + "</link>";
+    joints += "<joint name=\"j" + me + "\" type=\"continuous\"><parent link=\"l" + before + "\"/><child link=\"l" + me +
+              "\"/><origin xyz=\"0.1 0 0\"/><axis xyz=\"0 0 1\"/>" +
+              (k > 1 ? "<mimic joint=\"j" + before + "\" multiplier=\"1\" offset=\"0.0001\"/>" : std::string()) +
+              "</joint>";
+  }
+  chain += R"(<link name="free">)" + link + R"(</link><joint name="free_joint" type="continuous"><parent link="base"/>
+    <child link="free"/><axis xyz="0 1 0"/></joint><joint name="j0" type="fixed"><parent link="base"/><child link="l0"/></joint>)" +
+           joints + "</robot>";
+  UrdfOptions first_held;
+  first_held.locked = {{"j1", 0.25}};
+  const Model long_chain = load_urdf_string(chain, "", "", first_held);
+  ASSERT_EQ(long_chain.num_rates(), 1);
+  ASSERT_EQ(long_chain.locked_joints.size(), 5000u);
+  double expected = 0.25;
+  for (int k = 1; k <= 5000; ++k) {
+    const LockedJoint& l = long_chain.locked_joints[k - 1];
+    ASSERT_EQ(l.name, "j" + std::to_string(k));
+    if (k > 1) expected = expected + 0.0001;
+    ASSERT_EQ(l.value, expected) << l.name;
+  }
   // Neither held: the search ends; the load ends (loaded or refused, not hung).
   try {
     load_urdf_string(xml, "", "", {});
