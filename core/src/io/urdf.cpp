@@ -20,6 +20,7 @@
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
 #include "console_capture.hpp"
+#include "coupled_joints.hpp"
 #include "free_motions.hpp"
 #include "link_inertia.hpp"
 #include "read_text_file.hpp"
@@ -112,7 +113,8 @@ class Walk {
     const int body = parent.body;
     const Matrix6 inertia = child_inertia(j);
     Placed child;
-    if (j.type == urdf::Joint::FIXED || options_.locked.count(j.name)) {  // (a movable one locked)
+    double held = 0;
+    if (j.type == urdf::Joint::FIXED || locked_value(j, held)) {  // (a movable one locked)
       child = Placed{body, rigid_offset(j, parent)};  // the child rides on the parent's body
       add_inertia(j, child, inertia);
     } else {
@@ -163,21 +165,68 @@ class Walk {
   }
 
  private:
+  // Whether movable joint j is held by options.locked, and where: named there, or (coupled
+  // <mimic> joints) following a leader that is held, at multiplier * leader + offset, so
+  // that holding a hand's leader holds its coupled fingers with it and keeps the coupling.
+  // Walks up the leaders without recursing (a file may chain many <mimic>s; a cycle of
+  // them, or a leader that is missing or fixed, ends the walk: not held), and remembers
+  // what it found for each joint on the way.
+  bool locked_value(const urdf::Joint& j, double& value) {
+    if (options_.locked.empty()) return false;
+    std::vector<const urdf::Joint*> followers;  // j and the leaders up to the end
+    std::set<std::string> seen;
+    bool held = false;
+    double v = 0;
+    for (const urdf::Joint* at = &j;;) {
+      const auto given = options_.locked.find(at->name);
+      if (given != options_.locked.end()) {
+        held = true;
+        v = given->second;
+        break;
+      }
+      const auto known = held_.find(at->name);
+      if (known != held_.end()) {
+        held = known->second.first;
+        v = known->second.second;
+        break;
+      }
+      if (!at->mimic || options_.mimic != MimicJoints::Couple || !seen.insert(at->name).second) break;
+      followers.push_back(at);
+      const auto leader = urdf_.getJoint(at->mimic->joint_name);
+      if (!leader || leader->type == urdf::Joint::FIXED) break;
+      at = leader.get();
+    }
+    for (auto it = followers.rbegin(); it != followers.rend(); ++it) {
+      if (held) v = (*it)->mimic->multiplier * v + (*it)->mimic->offset;
+      held_[(*it)->name] = {held, held ? v : 0.0};
+    }
+    value = v;
+    return held;
+  }
+
   // The frame of j's child link relative to the body its parent link rides on, j fixed or
-  // (if movable) locked at its options.locked value or 0, listed in Model::locked_joints.
+  // (if movable) locked at its options.locked value (or its held leader's, locked_value) or
+  // 0, listed in Model::locked_joints.
   Transform rigid_offset(const urdf::Joint& j, const Placed& parent) {
     Transform X = origin(j, parent);
     if (j.type == urdf::Joint::FIXED) return X;
     const std::string where = "joint '" + j.name + "'";
     Matrix3 R_axis;
     const Body b = make_body(j, X, parent.body, R_axis);
-    const auto given = options_.locked.find(j.name);
-    const double value = given == options_.locked.end() ? 0.0 : given->second;
-    if (!std::isfinite(value)) throw Error("locked " + where + ": value is not finite");
+    double value = 0;
+    const bool given = locked_value(j, value);
+    const bool named = options_.locked.count(j.name) > 0;
+    if (!std::isfinite(value))
+      throw Error("locked " + where + ": value is not finite" +
+                  (named || !given ? "" : " (it follows joint '" + j.mimic->joint_name + "', which is held)"));
     if (value < b.limits.lower || value > b.limits.upper)
       throw Error("locked " + where + ": value " + inertia_number(value) + " is outside its limits [" +
                   inertia_number(b.limits.lower) + ", " + inertia_number(b.limits.upper) + "]" +
-                  (given == options_.locked.end() ? " (give it a value with --lock " + j.name + "=VALUE)" : ""));
+                  (!given ? " (give it a value with --lock " + j.name + "=VALUE)"
+                   : named ? ""
+                           : " (it follows joint '" + j.mimic->joint_name + "', which is held: " +
+                                 inertia_number(j.mimic->multiplier) + " times its value plus " +
+                                 inertia_number(j.mimic->offset) + ")"));
     X = joint_transform(b, value) * Transform{R_axis.transpose(), Vector3::Zero()};
     if (!X.p.allFinite()) throw Error(where + ": origin overflows: its locked position is not finite");
     model_.locked_joints.push_back({j.name, value});
@@ -224,6 +273,7 @@ class Walk {
   Model& model_;
   std::map<std::string, Placed> placed_;  // by link name
   std::vector<const urdf::Joint*> mimics_;  // movable <mimic> joints placed as bodies
+  std::map<std::string, std::pair<bool, double>> held_;  // locked_value's findings, by joint
 };
 
 // Every link below `from` in depth-first order (a link, then each child joint's subtree in
@@ -296,8 +346,17 @@ void finish(Model& model, const UrdfOptions& options) {
   if (model.num_rates() == 0 && !model.has_tip())
     throw Error("the tree below '" + model.root_name + "' has no movable joint; load it with a floating base "
                 "(CLI --floating, JS {floating: true}) to move it as a free body");
-  if (options.inertia == InertiaPolicy::Repair) repair_joints_moving_nothing(model);
-  validate(model);
+  if (options.inertia == InertiaPolicy::Repair) {
+    repair_joints_moving_nothing(model);
+    validate(model);
+    return;
+  }
+  try {
+    validate(model);
+  } catch (const Error&) {
+    check_coupled_joints_move_something(model);  // (a better message for a coupled joint)
+    throw;
+  }
 }
 
 Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
