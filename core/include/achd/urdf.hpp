@@ -31,7 +31,8 @@ struct UrdfOptions {
   MimicJoints mimic = MimicJoints::Couple;
   SideBranches side_branches = SideBranches::Merge;
   // Positions (rad or m) of movable joints held fixed (Model::locked_joints): any joint of
-  // the tree or chain named here, and a chain's side joints (locked at 0 unless named).
+  // the tree or chain named here, the <mimic> joints that follow one (at multiplier * value
+  // + offset, unless named too), and a chain's side joints (locked at 0 unless named).
   // Naming a joint that is not a movable joint of what is loaded is an error.
   std::map<std::string, double> locked;
   // A floating base: a free joint between the world and the root link (Model::floating),
