@@ -25,7 +25,6 @@ import { Simulation, jointControlOf } from './simulation.js';
 import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
 import { LINK_CHARACTERS, openSharedSrdf, openSharedUrdf, shareSrdf, shareUrdf, urdfKey } from './urdf_share.js';
-import { srdfGroupStates } from './srdf_poses.js';
 import { linkVisuals } from './link_visuals.js';
 import './accuracy_panel.js';
 
@@ -566,9 +565,9 @@ function shareOwn(sim, source, looked) {
   page.share = null;
   showShareNote(source);
   shareUrdf(source.text).then(async (share) => {
-    // Its SRDF (cut to its group_states) goes the same way, so that the link's robot has
-    // the same poses to choose from.
-    if (source.srdf) share.srdf = await shareSrdf(srdfGroupStates(source.srdf));
+    // Its SRDF (cut to its group_states by the picker; a link's own is cut already) goes
+    // the same way, so that the link's robot has the same poses to choose from.
+    if (source.srdf) share.srdf = await shareSrdf(source.srdfShared ?? source.srdf);
     const meshes = await looked;
     if (page.sim !== sim || !meshes) return;
     share.meshes = await keepOwnMeshes(share.key, source, meshes);

@@ -4,11 +4,12 @@
 // or a chain (root and tip from the file's links, the longest chain preselected), a fixed
 // or floating base, the mimic and inertia options and, when an .srdf file came along, its
 // named poses; it hands the choice to `onLoad({text, fileName, files, root, tip (null: the
-// whole robot), floating, mimic, inertia, srdf (text), pose})`, files being the
+// whole robot), floating, mimic, inertia, srdf (text), srdfShared (the part of it a share
+// link carries: its group_states), pose})`, files being the
 // PickedFiles its meshes are looked up in (web/mesh_files.js). A URDF whose movable
 // joints all lie on one chain is offered as that chain, a branching one whole.
 import { PickedFiles, droppedFiles, pickedFiles } from './mesh_files.js';
-import { srdfPoses } from './srdf_poses.js';
+import { srdfGroupStates, srdfPoses } from './srdf_poses.js';
 import { chainLinks, isMovable, longestChain, urdfTree } from './urdf_tree.js';
 import { URDF_LIMIT_BYTES } from './urdf_share.js';
 
@@ -43,9 +44,10 @@ export class UrdfUpload {
       // Without a pose chosen, the SRDF of the URDF's robot (or the first) still comes
       // along: its poses can be chosen once the robot is loaded.
       const pose = this.pose.value === NO_POSE ? null : this.poses[Number(this.pose.value)];
+      const srdf = pose?.srdf ?? this.srdfOrder[0]?.text;
       onLoad({ text: this.text, fileName: this.fileName, files: this.files, root: this.root.value,
         tip: this.whole.value === 'chain' ? this.tip.value : null, floating: this.base.value === 'floating',
-        mimic: this.mimic.value, inertia: this.inertia.value, srdf: pose?.srdf ?? this.srdfOrder[0]?.text,
+        mimic: this.mimic.value, inertia: this.inertia.value, srdf, srdfShared: srdf && srdfGroupStates(srdf),
         pose: pose?.name });
     });
     document.getElementById('urdf-cancel').addEventListener('click', () => {
