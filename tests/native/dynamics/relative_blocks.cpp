@@ -9,6 +9,7 @@
 //   (1e-10);
 // - the fast path (hybrid_dynamics) equals pv_reference (1e-12), on fixed and floating
 //   bases (the free joint's 6-DoF step takes the two legs' sum at the root);
+// - driver weights pass each driver's share through along a relative column (1e-8);
 // - naming the links the other way round with -alpha changes nothing, and a block
 //   relative to a link fixed to the base is the block on one link.
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "random_chain.hpp"
@@ -252,6 +254,45 @@ TEST(RelativeBlocks, NamingTheLinksTheOtherWayRoundChangesNothing) {
     worst = std::max(worst, e);
   });
   std::printf("  %d trees: (P, Q, alpha) vs (Q, P, -alpha) %.3g\n", cases, worst);
+  EXPECT_GE(cases, kRelativeTrees * 3 / 4);
+}
+
+// Driver priorities on relative blocks: with weights w in [0, 1] on every column,
+//   alpha_k^T (a_P - a_Q) = beta_k + (1 - w_fext,k) (A M^-1 J^T f_ext)_k + (1 - w_ff,k) (A M^-1 ff)_k,
+// A the stacked alpha^T (J_P - J_Q), M the public CRBA, J^T f_ext from link_jacobian.
+TEST(RelativeBlocks, DriverWeightsPassTheirShareThrough) {
+  std::mt19937 rng(2708);
+  double worst = 0;
+  const Options o = all_effects();
+  const int cases = for_relative_cases(2708, kRelativeTrees, [&](const Model& m, const Case& given) {
+    Case c = given;
+    Eigen::VectorXd wf(c.num_constraints()), wff(c.num_constraints());
+    int row = 0;
+    for (ConstraintBlock& b : c.constraints) {
+      b.w_fext = ConstraintVector::NullaryExpr(b.alpha.cols(), [&] { return uniform(rng, 0, 1); });
+      b.w_ff = ConstraintVector::NullaryExpr(b.alpha.cols(), [&] { return uniform(rng, 0, 1); });
+      wf.segment(row, b.alpha.cols()) = b.w_fext;
+      wff.segment(row, b.alpha.cols()) = b.w_ff;
+      row += static_cast<int>(b.alpha.cols());
+    }
+    Data d(m);
+    hybrid_dynamics(m, d, c, o);
+    const Eigen::MatrixXd A = stacked_constraint_jacobian(m, c);
+    const Eigen::LDLT<Eigen::MatrixXd> M(crba(m, c.q, o));
+    Eigen::VectorXd JTf = Eigen::VectorXd::Zero(m.num_rates());
+    for (int l = 0; l < m.num_links(); ++l) JTf += link_jacobian(m, c.q, l, Vector3::Zero()).transpose() * c.f_ext[l];
+    const Eigen::VectorXd yf = A * M.solve(JTf), yff = A * M.solve(c.ff_torques);
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(wf.size());
+    const Eigen::VectorXd expected =
+        stacked_beta(c) + (ones - wf).cwiseProduct(yf) + (ones - wff).cwiseProduct(yff);
+    const Eigen::VectorXd got = constraint_accelerations(c, reference_motion(m, c.q, c.qd, d.qdd));
+    const double scale = std::max({1.0, expected.cwiseAbs().maxCoeff(), yf.cwiseAbs().maxCoeff(),
+                                   yff.cwiseAbs().maxCoeff()});
+    const double e = (got - expected).cwiseAbs().maxCoeff() / scale;
+    EXPECT_LE(e, 1e-8);
+    worst = std::max(worst, e);
+  });
+  std::printf("  %d trees: alpha^T (a_P - a_Q) vs beta + the drivers' shares %.3g\n", cases, worst);
   EXPECT_GE(cases, kRelativeTrees * 3 / 4);
 }
 
