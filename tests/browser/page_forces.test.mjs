@@ -54,33 +54,37 @@ function project(camera, p) {
 }
 
 // Pixels of the canvas within `radius` CSS pixels of the world point p's projection whose
-// colour is within 40 of rgb. After two animation frames, the camera and the pixels are
-// read in one task, so the projection is that of the frame read (the camera may have
-// reframed the robot since the caller's last look, as its meshes arrived).
-function colourCount(page, p, rgb, radius = 4) {
-  return page.evaluate(async ({ p, rgb, radius }) => {
-    await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
-    const camera = window.achdDemo.camera();
+// colour is within 40 of rgb, at least `enough` of them if a frame within about a second
+// has them. Each look waits two animation frames, then reads the camera and the pixels
+// in one task, so the projection is that of the frame read (the page may reframe the
+// robot and rebuild its view as the meshes arrive, which a loaded machine delays).
+function colourCount(page, p, rgb, enough, radius = 4) {
+  return page.evaluate(async ({ p, rgb, enough, radius }) => {
     const mul = (m, v) => [0, 1, 2, 3].map((i) => m[i] * v[0] + m[4 + i] * v[1] + m[8 + i] * v[2] + m[12 + i] * v[3]);
-    const clip = mul(camera.projection, mul(camera.worldInverse, [...p, 1]));
-    const x = camera.rect.left + ((clip[0] / clip[3] + 1) / 2) * camera.rect.width;
-    const y = camera.rect.top + ((1 - clip[1] / clip[3]) / 2) * camera.rect.height;
-    const canvas = document.querySelector('#view canvas');
-    const rect = canvas.getBoundingClientRect();
-    const scale = canvas.width / rect.width;
-    const copy = document.createElement('canvas');
-    copy.width = canvas.width;
-    copy.height = canvas.height;
-    const ctx = copy.getContext('2d');
-    ctx.drawImage(canvas, 0, 0);
-    const cx = Math.round((x - rect.left) * scale), cy = Math.round((y - rect.top) * scale), r = Math.round(radius * scale);
-    const { data } = ctx.getImageData(cx - r, cy - r, 2 * r + 1, 2 * r + 1);
     let n = 0;
-    for (let i = 0; i < data.length; i += 4) {
-      if (Math.hypot(data[i] - rgb[0], data[i + 1] - rgb[1], data[i + 2] - rgb[2]) < 40) n++;
+    for (let look = 0; look < 30 && n < enough; look++) {
+      await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+      const camera = window.achdDemo.camera();
+      const clip = mul(camera.projection, mul(camera.worldInverse, [...p, 1]));
+      const x = camera.rect.left + ((clip[0] / clip[3] + 1) / 2) * camera.rect.width;
+      const y = camera.rect.top + ((1 - clip[1] / clip[3]) / 2) * camera.rect.height;
+      const canvas = document.querySelector('#view canvas');
+      const rect = canvas.getBoundingClientRect();
+      const scale = canvas.width / rect.width;
+      const copy = document.createElement('canvas');
+      copy.width = canvas.width;
+      copy.height = canvas.height;
+      const ctx = copy.getContext('2d');
+      ctx.drawImage(canvas, 0, 0);
+      const cx = Math.round((x - rect.left) * scale), cy = Math.round((y - rect.top) * scale), r = Math.round(radius * scale);
+      const { data } = ctx.getImageData(cx - r, cy - r, 2 * r + 1, 2 * r + 1);
+      n = 0;
+      for (let i = 0; i < data.length; i += 4) {
+        if (Math.hypot(data[i] - rgb[0], data[i + 1] - rgb[1], data[i + 2] - rgb[2]) < 40) n++;
+      }
     }
     return n;
-  }, { p, rgb, radius });
+  }, { p, rgb, enough, radius });
 }
 
 test('the constraint wrench arrow and the joint torque bars', async (t) => {
@@ -115,7 +119,7 @@ test('the constraint wrench arrow and the joint torque bars', async (t) => {
       close(f.force.length, Math.abs(s.nu[0]) * f.metersPerNewton, 1e-9, 'force arrow length');
       // On the canvas: the arrow's colour around its middle (it is drawn over the robot).
       const middle = f.force.from.map((v, i) => (v + f.force.to[i]) / 2);
-      const count = await colourCount(page, middle, FORCE_RGB);
+      const count = await colourCount(page, middle, FORCE_RGB, 10);
       assert.ok(count >= 10, `${count} force-coloured pixels around the arrow's middle`);
     });
 

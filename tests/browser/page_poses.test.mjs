@@ -75,8 +75,9 @@ test('the pose list offers the SRDF\'s poses after loading and starts again from
     for (const name of ['straight_standing', 'standing']) {
       await page.evaluate(() => window.achdDemo.step(300));
       await page.evaluate(() => window.achdDemo.setDirection('rz', 'hold'));
-      await page.locator('#pose-select').selectOption(name);
+      // (paused first: a playing page plays on from the pose chosen, before it is read)
       await page.evaluate(() => window.achdDemo.pause());
+      await page.locator('#pose-select').selectOption(name);
       const s0 = await state(page);
       assert.equal(s0.error, null);
       assert.equal(s0.pose, name);
