@@ -7,6 +7,7 @@
 #include "achd/error.hpp"
 #include "achd/hybrid_dynamics.hpp"
 #include "achd/kinematics.hpp"
+#include "achd/loops.hpp"
 #include "achd/model.hpp"
 #include "achd/options.hpp"
 #include "achd/pv_reference.hpp"

@@ -73,6 +73,11 @@ struct Case {
   // Coupled joints (Model::couplings): qdd_f - k qdd_l for each coupling, empty = 0 (what
   // q_f = k q_l + c asks); the simulator sets it to hold the coupling's drift.
   Eigen::VectorXd coupling_beta;
+  // Loop joints (Model::loops): beta of every loop column, the loops in order and each
+  // loop's directions in index order (Model::num_loop_columns() values), empty = 0 (the
+  // loop's frames keep their relative velocity); the simulator sets it to hold the loops'
+  // closure and the velocity terms of their turning directions.
+  Eigen::VectorXd loop_beta;
   // Extra axial inertia per joint: empty = none, else one per joint, finite and >= 0. Added
   // to joint i's D = S^T IA S where its rotor inertia is (RBDA 9.28), whether or not
   // Effect::kRotorInertia is on: the mass matrix is M + diag(rotor) + diag(extra_inertia).
@@ -91,7 +96,8 @@ struct Case {
 // Throws achd::Error naming the field and index on a wrong length, a non-finite
 // number, more than kMaxConstraints columns on the tip or in a block, a block on a link
 // that is not in the model, a tip constraint on a model without a tip (a tree), or more
-// constraint columns in all than `capacity` (the Data's: Data::constraint_capacity()).
+// constraint columns in all, the model's loop columns included, than `capacity` (the
+// Data's: Data::constraint_capacity()), or a loop_beta of the wrong length.
 void validate(const Model& model, const Case& c, int capacity = kMaxConstraintColumns);
 
 }  // namespace achd

@@ -138,6 +138,9 @@ struct Data {
     // Coupled joints (joint_couplings.cpp): the case of the extra solves and the
     // accelerations under each coupling's unit torques (n x p), reserved by the constructor.
     Case coupling_case;
+    // Loop joints (loop_blocks.hpp): the case with the loops' blocks after its own,
+    // reserved by the constructor.
+    Case loop_case;
     Eigen::MatrixXd coupling_response;
   } workspace;
  private:

@@ -24,10 +24,7 @@ namespace achd {
 
 enum class DirectionMode { Free, Hold, Accelerate };
 
-constexpr int kNumDirections = 6;
-// "x", "y", "z", "rx", "ry", "rz"; index_of_direction returns -1 for anything else.
-const char* direction_name(int index);
-int index_of_direction(const std::string& name);
+// kNumDirections, direction_name and index_of_direction: spatial.hpp.
 
 // Held angles of the direction sets, kNumDirections per set (Simulator::step integrates them).
 using HeldAngles = Eigen::VectorXd;

@@ -56,6 +56,27 @@ struct JointCoupling {
 // The most couplings a model may have.
 constexpr int kMaxCouplings = 32;
 
+// The joint a loop closure stands for: which relative motions of its two frames it allows.
+enum class LoopType { Revolute, Prismatic, Spherical, Fixed };
+
+// A loop joint (loop_joints.hpp): a joint between two links of the tree that the tree
+// cannot hold (URDF has no loops), closed by relative constraint columns. Its loop frame
+// sits at `frame_a` on link a and at `frame_b` on link b, the two coinciding while the loop
+// is closed, z along the joint's axis (revolute: the turn, prismatic: the slide). Held:
+// the loop frame's directions x y z rx ry rz with bit k of `directions` set (the joint
+// type's, less those found redundant at load: `dropped`), as alpha^T (a_A - a_B) = beta
+// with alpha the direction in base axes, a_A link a's spatial acceleration at frame b's
+// origin and a_B link b's there (loop_blocks.hpp).
+struct LoopJoint {
+  std::string name;
+  LoopType type = LoopType::Fixed;
+  int link_a = -1, link_b = -1;  // Model::links indices; -1: the root (fixed base only)
+  Transform frame_a, frame_b;    // the loop frame in link a's and in link b's frame
+  unsigned directions = 0;       // held directions of the loop frame, bit k = x..rz
+  unsigned dropped = 0;          // the type's directions the tree cannot violate
+  int num_columns() const;
+};
+
 // A movable joint of the URDF that the model holds fixed (a side branch of a chain): its
 // child link rides rigidly on the body it hangs from, at the joint position `value`.
 struct LockedJoint {
@@ -84,6 +105,9 @@ struct Model {
   // Coupled joints (URDF <mimic>, UrdfOptions::mimic Couple): every solve holds each as a
   // joint-space constraint; their forces follow the constraint columns' in nu.
   std::vector<JointCoupling> couplings;
+  // Loop joints (UrdfOptions::loops, resolve_loops): every solve holds their columns after
+  // the case's blocks; their forces follow those blocks' in nu.
+  std::vector<LoopJoint> loops;
   // What the loader found odd in the file but loaded (or repaired), one line per finding,
   // naming the link: inertias violating the triangle inequality, moments within round-off
   // of zero, repairs (achd::InertiaPolicy).
@@ -106,6 +130,8 @@ struct Model {
   // (i >= free_joint_rates(); the free joint's own numbers are q[0..6]).
   int position_index(int joint) const { return floating && joint >= 6 ? joint + 1 : joint; }
   int num_links() const { return static_cast<int>(links.size()); }
+  // The loop joints' constraint columns, all loops together.
+  int num_loop_columns() const;
   bool has_tip() const { return !tip_name.empty(); }
   const Link& tip() const { return links.back(); }  // when has_tip()
 

@@ -154,6 +154,10 @@ class Simulator : public SimulationState {
   std::array<double, kNumDirections> max_residuals() const;
   Transform tip_pose() const;
   Vector6 tip_velocity() const;
+  // Loop joint `loop` (Model::loops index): its closure error now (the largest over its
+  // held directions, m or rad: loop_closure.hpp) and the largest since reset().
+  double loop_error(int loop) const;
+  double loop_drift(int loop) const;
   double kinetic_energy() const;
   double potential_energy() const;  // gravity only; 0 when gravity is off
   double energy() const;  // kinetic_energy() + potential_energy(), from one sweep
@@ -227,6 +231,7 @@ class Simulator : public SimulationState {
   bool control_on_ = false;
   Eigen::VectorXd hold_torques_;  // JointControl::hold's tau_hold (zeros without it)
   std::vector<int> limit_hits_;
+  std::vector<double> loop_drift_;  // per loop: the largest closure error at a step's start
   std::vector<double> mass_;   // per body, from the spatial inertia
   std::vector<Vector3> com_;   // per body, body frame
   // Body poses and velocities of step() (sized once).

@@ -4,6 +4,8 @@
 //   force vector  f = [f; n]   (force, moment about the frame origin)
 // Transforms are stored as a rotation plus a translation and applied with cross
 // products, never as 6x6 matrices (RBDA ch. 2, Featherstone's "plux" in parts).
+#include <string>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -91,5 +93,13 @@ Matrix6 spatial_inertia(double mass, const Vector3& com, const Matrix3& inertia_
 Matrix6 inertia_to_parent(const Transform& X, const Matrix6& I_child);
 // I_parent += X^T I_child X: rotate the blocks, then add_shifted_inertia.
 void add_inertia_to_parent(const Transform& X, const Matrix6& I_child, Matrix6& I_parent);
+
+// The six directions of a spatial vector [v; w] (linear x y z, angular rx ry rz), by the
+// names the simulator's held directions and the loop joints use: "x", "y", "z", "rx",
+// "ry", "rz" (an achd::Error on an index outside 0..5); index_of_direction returns -1 for
+// anything else.
+constexpr int kNumDirections = 6;
+const char* direction_name(int index);
+int index_of_direction(const std::string& name);
 
 }  // namespace achd

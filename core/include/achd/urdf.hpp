@@ -3,7 +3,9 @@
 // a root and a tip link with what hangs off it merged into the bodies it hangs from.
 #include <map>
 #include <string>
+#include <vector>
 
+#include "achd/loops.hpp"
 #include "achd/model.hpp"
 
 namespace achd {
@@ -39,6 +41,8 @@ struct UrdfOptions {
   // whose inertia then counts.
   bool floating = false;
   InertiaPolicy inertia = InertiaPolicy::Accept;
+  // Loop joints closing loops of the tree (loops.hpp: add_loops), in Model::loops.
+  std::vector<LoopJointSpec> loops;
 };
 
 // The name of a MimicJoints value in the CLI, JS and scene files ("couple",

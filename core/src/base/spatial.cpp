@@ -1,5 +1,8 @@
 #include "achd/spatial.hpp"
 
+#include <string>
+
+#include "achd/error.hpp"
 #include "spatial_pairs.hpp"
 
 namespace achd {
@@ -46,6 +49,22 @@ Matrix6 inertia_to_parent(const Transform& X, const Matrix6& Ic) {
   Matrix6 I = Matrix6::Zero();
   add_inertia_to_parent(X, Ic, I);
   return I;
+}
+
+namespace {
+const char* const kDirectionNames[kNumDirections] = {"x", "y", "z", "rx", "ry", "rz"};
+}  // namespace
+
+const char* direction_name(int index) {
+  if (index < 0 || index >= kNumDirections)
+    throw Error("direction index " + std::to_string(index) + " is not in 0..5 (x y z rx ry rz)");
+  return kDirectionNames[index];
+}
+
+int index_of_direction(const std::string& name) {
+  for (int k = 0; k < kNumDirections; ++k)
+    if (name == kDirectionNames[k]) return k;
+  return -1;
 }
 
 }  // namespace achd

@@ -45,9 +45,10 @@
 #include "coupling_solve.hpp"
 #include "driver_priorities.hpp"
 #include "free_joint.hpp"
-#include "joint_couplings.hpp"
 #include "joint.hpp"
+#include "joint_couplings.hpp"
 #include "joint_subspace.hpp"
+#include "loop_blocks.hpp"
 #include "overflow_error.hpp"
 #include "virtual_wrenches.hpp"
 #include "spatial_pairs.hpp"
@@ -369,9 +370,10 @@ void solve_uncoupled(const Model& model, Data& d, const Case& c, const Options& 
 
 }  // namespace
 
-void hybrid_dynamics(const Model& model, Data& d, const Case& c, const Options& o) {
-  validate(model, c, d.constraint_capacity());
+void hybrid_dynamics(const Model& model, Data& d, const Case& given, const Options& o) {
+  validate(model, given, d.constraint_capacity());
   validate(o);
+  const Case& c = model.loops.empty() ? given : case_with_loops(model, given, d);
   if (model.couplings.empty()) return solve_uncoupled(model, d, c, o);
   if (d.coupling_forces.size() != static_cast<Eigen::Index>(model.couplings.size()))
     throw Error("the Data was made for a model with another number of coupled joints");

@@ -349,6 +349,7 @@ void finish(Model& model, const UrdfOptions& options) {
   if (options.inertia == InertiaPolicy::Repair) {
     repair_joints_moving_nothing(model);
     validate(model);
+    add_loops(model, options.loops);
     return;
   }
   try {
@@ -357,6 +358,7 @@ void finish(Model& model, const UrdfOptions& options) {
     check_coupled_joints_move_something(model);  // (a better message for a coupled joint)
     throw;
   }
+  add_loops(model, options.loops);
 }
 
 Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,

@@ -102,7 +102,11 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
     s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k) +
          (b.link_b >= 0 ? finite_probe(b.point_b.data(), 3) : 0.0);
   }
-  return s == 0 && c.num_constraints() <= capacity && c.constraints.size() <= static_cast<size_t>(capacity);
+  const int loops = model.num_loop_columns();
+  if (c.loop_beta.size() && c.loop_beta.size() != loops) return false;
+  s += finite_probe(c.loop_beta.data(), c.loop_beta.size());
+  return s == 0 && c.num_constraints() + loops <= capacity &&
+         c.constraints.size() + model.loops.size() <= static_cast<size_t>(capacity);
 }
 
 // Driver weights of nc columns: empty, or nc numbers in [0, 1].
@@ -185,10 +189,19 @@ void validate(const Model& model, const Case& c, int capacity) {
   if (c.constraints.size() > static_cast<size_t>(capacity))
     throw Error("constraints: " + std::to_string(c.constraints.size()) + " blocks, more than the workspace's capacity of " +
                 std::to_string(capacity) + " (Data's constraint_capacity)");
-  const int nc = c.num_constraints();
+  const int nc = c.num_constraints(), loops = model.num_loop_columns();
   if (nc > capacity)
     throw Error("constraints: " + std::to_string(nc) + " columns in all, more than the workspace's capacity of " +
                 std::to_string(capacity) + " (Data's constraint_capacity)");
+  if (nc + loops > capacity || c.constraints.size() + model.loops.size() > static_cast<size_t>(capacity))
+    throw Error("constraints: " + std::to_string(nc) + " columns and the loop joints' " + std::to_string(loops) +
+                " are more than the workspace's capacity of " + std::to_string(capacity) +
+                " (Data's constraint_capacity)");
+  if (c.loop_beta.size() && c.loop_beta.size() != loops)
+    throw Error("loop_beta: expected " + std::to_string(loops) + " values (one per loop column) or none, got " +
+                std::to_string(c.loop_beta.size()));
+  for (int k = 0; k < c.loop_beta.size(); ++k)
+    if (!std::isfinite(c.loop_beta[k])) throw Error("loop_beta[" + std::to_string(k) + "] is not finite");
   if (!c.f_ext.empty()) {
     if (static_cast<int>(c.f_ext.size()) != model.num_links())
       throw Error("f_ext: expected " + std::to_string(model.num_links()) +

@@ -55,6 +55,17 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
     h.f_virtual.reserve(model.num_links());
     w.coupling_response = Eigen::MatrixXd::Zero(n, model.couplings.size());
   }
+  if (!model.loops.empty()) {
+    Case& l = w.loop_case;
+    l.q = Eigen::VectorXd::Zero(model.num_positions());
+    l.qd = l.ff_torques = l.qdd_given = l.extra_inertia = Eigen::VectorXd::Zero(n);
+    l.prescribed.reserve(n);
+    l.constraints.reserve(constraint_capacity);
+    l.f_ext.reserve(model.num_links());
+    l.f_virtual.reserve(model.num_links());
+    l.coupling_beta = Eigen::VectorXd::Zero(model.couplings.size());
+    l.loop_beta = Eigen::VectorXd::Zero(model.num_loop_columns());
+  }
   if (model.floating) {
     Case& f = w.free_case;
     f.q = Eigen::VectorXd::Zero(model.num_positions());

@@ -25,6 +25,18 @@ void Model::set_rotor_inertia(int joint, double value) {
   bodies[joint].rotor_inertia = value;
 }
 
+int LoopJoint::num_columns() const {
+  int n = 0;
+  for (int k = 0; k < kNumDirections; ++k) n += (directions >> k) & 1u;
+  return n;
+}
+
+int Model::num_loop_columns() const {
+  int n = 0;
+  for (const LoopJoint& l : loops) n += l.num_columns();
+  return n;
+}
+
 int Model::joint_index(const std::string& name) const {
   for (int i = 0; i < num_rates(); ++i)
     if (bodies[i].joint_name == name) return i;

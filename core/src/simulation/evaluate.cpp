@@ -3,6 +3,7 @@
 // couplings their drift's decay and the joints the PD torques; one hybrid_dynamics solve
 // gives qdd, and the held angles' rates are e . w_link. Also the prescribed joint motion
 // the solves follow.
+#include <algorithm>
 #include <cmath>
 
 #include "achd/error.hpp"
@@ -11,6 +12,7 @@
 #include "direction_sets.hpp"
 #include "held_directions.hpp"
 #include "joint_couplings.hpp"
+#include "loop_closure.hpp"
 #include "message_number.hpp"
 #include "simulator_checks.hpp"
 #include "tip_kinematics.hpp"
@@ -45,6 +47,13 @@ void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAn
       angle_rates[s * kNumDirections + k] = set.held.mode[k] == DirectionMode::Hold && !is_linear_direction(k)
                                                 ? direction_axis(k).dot(at.w) : 0.0;
   }
+  // Loop joints: each closure error decays as a held direction's does (loop_closure.hpp).
+  if (!model_.loops.empty()) {
+    loop_targets(model_, X0_, v_, w_n, options_.stabilisation_damping, options_.effects & kVelocityProducts,
+                 case_.loop_beta);
+    for (int j = 0; j < case_.loop_beta.size(); ++j)
+      if (!std::isfinite(case_.loop_beta[j])) throw Error(loop_beta_not_finite(model_, j, case_.loop_beta[j]));
+  }
   for (int i = 0; i < model_.num_rates(); ++i)
     if (moving_[i]) case_.qdd_given[i] = sample(motions_[i], x.t).qdd;
   // Coupled joints: e = q_f - k q_l - c decays as the held directions' errors do,
@@ -71,6 +80,16 @@ void Simulator::held_angle_rates(const SimulationState& x, HeldAngles& angle_rat
       angle_rates[s * kNumDirections + k] =
           set.held.mode[k] == DirectionMode::Hold && !is_linear_direction(k) ? direction_axis(k).dot(w) : 0.0;
   }
+}
+
+double Simulator::loop_error(int loop) const {
+  check_loop(model_, loop, "loop_error");
+  const ChainMotion& m = thread_chain_motion(model_, q, qd);
+  return achd::loop_error(model_, model_.loops[loop], m.X0, m.v);
+}
+
+double Simulator::loop_drift(int loop) const {
+  return std::max(loop_error(loop), loop_drift_[loop]);
 }
 
 void Simulator::check_joint(int joint, const char* what) const {

@@ -4,22 +4,6 @@
 
 namespace achd {
 
-namespace {
-const char* const kDirectionNames[kNumDirections] = {"x", "y", "z", "rx", "ry", "rz"};
-}  // namespace
-
-const char* direction_name(int index) {
-  if (index < 0 || index >= kNumDirections)
-    throw Error("direction index " + std::to_string(index) + " is not in 0..5 (x y z rx ry rz)");
-  return kDirectionNames[index];
-}
-
-int index_of_direction(const std::string& name) {
-  for (int k = 0; k < kNumDirections; ++k)
-    if (name == kDirectionNames[k]) return k;
-  return -1;
-}
-
 std::string direction_label(const Model& model, int link, int index) {
   std::string label = std::string("direction ") + direction_name(index);
   if (model.has_tip() && link == model.num_links() - 1) return label;

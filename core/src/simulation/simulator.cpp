@@ -2,6 +2,7 @@
 // (the chosen integrator, integrators/), limits, events.
 #include "achd/simulator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -9,6 +10,7 @@
 #include "achd/kinematics.hpp"
 #include "direction_sets.hpp"
 #include "integrators.hpp"
+#include "loop_closure.hpp"
 #include "message_number.hpp"
 #include "held_directions.hpp"
 #include "simulator_checks.hpp"
@@ -34,6 +36,8 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   case_.qd = case_.ff_torques = Eigen::VectorXd::Zero(n);
   case_.f_ext.reserve(model_.num_links());
   case_.coupling_beta = Eigen::VectorXd::Zero(model_.couplings.size());
+  case_.loop_beta = Eigen::VectorXd::Zero(model_.num_loop_columns());
+  loop_drift_.assign(model_.loops.size(), 0.0);
   // Blocks, impact points and the saved held angles: room for every link, so that no step
   // allocates (the state's held angles grow with the sets, set_of()).
   const int links = model_.num_links();
@@ -91,6 +95,7 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   held_angles.setZero();
   update_blocks();
   limit_hits_.clear();
+  std::fill(loop_drift_.begin(), loop_drift_.end(), 0.0);
   limit_stop_.assign(n, 0);
   moving_.assign(n, 0);
   case_.prescribed.assign(n, false);
@@ -154,6 +159,8 @@ void Simulator::check_step(double dt) {
   clock.start(t, dt);
   body_motion(model_, q, qd, X0_, r_, v_);
   directions_->record_residuals(model_, X0_, v_, held_angles);
+  for (size_t l = 0; l < model_.loops.size(); ++l)
+    loop_drift_[l] = std::max(loop_drift_[l], achd::loop_error(model_, model_.loops[l], X0_, v_));
 }
 
 // One step of the chosen integrator from this state, its first solve into `first`.

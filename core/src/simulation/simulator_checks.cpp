@@ -81,4 +81,22 @@ const char* integrator_name(Integrator integrator) {
   return "?";
 }
 
+void check_loop(const Model& model, int loop, const char* what) {
+  if (loop < 0 || loop >= static_cast<int>(model.loops.size()))
+    throw Error(std::string(what) + ": loop index " + std::to_string(loop) +
+                (model.loops.empty() ? " but the model has no loop joints"
+                                     : " is not in 0.." + std::to_string(model.loops.size() - 1)));
+}
+
+std::string loop_beta_not_finite(const Model& model, int column, double beta) {
+  for (const LoopJoint& loop : model.loops)
+    for (int k = 0; k < kNumDirections; ++k) {
+      if (!((loop.directions >> k) & 1u)) continue;
+      if (column-- == 0)
+        return std::string("the acceleration to enforce along direction ") + direction_name(k) + " of loop '" +
+               loop.name + "' is not finite (beta = " + message_number(beta) + ")";
+    }
+  return "a loop's acceleration to enforce is not finite";
+}
+
 }  // namespace achd

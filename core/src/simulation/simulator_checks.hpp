@@ -18,5 +18,10 @@ void check_simulator_options(const SimulatorOptions& o);
 // The first joint whose q or qd is not finite, as "joint 'elbow': qd = inf"; "" if none
 // (a floating base's free joint: its seven positions and six rates).
 std::string non_finite_joint(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+// A loop index of the model; else an achd::Error naming `what` and the range.
+void check_loop(const Model& model, int loop, const char* what);
+// "the acceleration to enforce along direction x of loop 'pin' is not finite (beta = inf)"
+// for loop column `column` (Case::loop_beta's order).
+std::string loop_beta_not_finite(const Model& model, int column, double beta);
 
 }  // namespace achd
