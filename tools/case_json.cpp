@@ -274,7 +274,8 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
   try {
     if (!j.is_object()) throw Error("the case must be a JSON object" + got(j));
     static const char* known[] = {"q",          "qd",        "gravity",     "alpha",     "beta", "f_ext",
-                                  "ff_torques", "qdd_given", "constraints", "f_virtual", "w_fext", "w_ff"};
+                                  "ff_torques", "qdd_given", "constraints", "f_virtual", "w_fext", "w_ff",
+                                  "loop_beta"};
     for (const auto& item : j.items()) {
       bool ok = false;
       for (const char* k : known) ok = ok || item.key() == k;
@@ -293,6 +294,7 @@ Case case_from_json(const json& j, const Model& model, const std::string& source
     if (given(j, "f_ext")) link_wrenches(j["f_ext"], model, "f_ext", c.f_ext);
     if (given(j, "f_virtual")) link_wrenches(j["f_virtual"], model, "f_virtual", c.f_virtual);
     if (given(j, "qdd_given")) prescribed_joints(j["qdd_given"], model, c);
+    if (given(j, "loop_beta")) c.loop_beta = vector(j["loop_beta"], "loop_beta", model.num_loop_columns());
     validate(model, c);
     return c;
   } catch (const Error& e) {

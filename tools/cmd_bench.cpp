@@ -1,6 +1,6 @@
 // achd bench ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json [--iterations N]
 //            [--repeats R] [--clock cpu|wall] [--against kdl] [--lock JOINT=VALUE ...]
-//            [--mimic couple|independent|error] [solver options]
+//            [--mimic couple|independent|error] [--loops LOOPS.json] [solver options]
 // Loads the robot and reads the case as `achd solve` does (without --tip: the whole tree).
 // Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R rounds of N
 // calls (default: about 2 ms per round, 51 rounds) after a warm-up round; with --against

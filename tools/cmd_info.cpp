@@ -1,5 +1,5 @@
 // achd info ROBOT.urdf [--root LINK] [--tip LINK] [--lock JOINT=VALUE ...]
-//           [--mimic couple|independent|error] [--inertia accept|strict|repair]
+//           [--mimic couple|independent|error] [--loops LOOPS.json] [--inertia accept|strict|repair]
 //           [--convention physical|kdl] [--srdf FILE]
 // Prints the model the other commands would load, as JSON (model_info.hpp).
 #include <iostream>

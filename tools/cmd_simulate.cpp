@@ -160,6 +160,12 @@ int cmd_simulate(int argc, char** argv) {
   }
   out["held_drift"] = drift;
   out["link_held_drift"] = link_drift;
+  // loop_drift: each loop joint's largest closure error (m or rad), by loop name
+  if (!scene.model.loops.empty()) {
+    out["loop_drift"] = nlohmann::ordered_json::object();
+    for (size_t l = 0; l < scene.model.loops.size(); ++l)
+      out["loop_drift"][scene.model.loops[l].name] = sim.loop_drift(static_cast<int>(l));
+  }
   nlohmann::ordered_json limit = nlohmann::ordered_json::object();
   for (int i = 0; i < scene.model.num_rates(); ++i)
     if (hits[i]) limit[scene.model.bodies[i].joint_name] = hits[i];

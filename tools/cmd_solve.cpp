@@ -1,5 +1,5 @@
 // achd solve ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json [--lock JOINT=VALUE ...]
-//            [--mimic couple|independent|error] [solver options]
+//            [--mimic couple|independent|error] [--loops LOOPS.json] [solver options]
 // Without --tip: the whole tree below --root (default: the URDF's root link).
 #include <iostream>
 

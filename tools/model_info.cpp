@@ -8,6 +8,7 @@
 #include "achd/error.hpp"
 #include "achd/srdf.hpp"
 #include "console_capture.hpp"
+#include "loops_json.hpp"
 
 namespace achd::cli {
 namespace {
@@ -74,6 +75,7 @@ std::string model_info_json(const Model& model, const std::string& urdf_text, co
   info["locked_joints"] = ordered_json::array();
   for (const LockedJoint& j : model.locked_joints) info["locked_joints"].push_back({{"name", j.name}, {"value", j.value}});
   info["warnings"] = model.warnings;
+  if (!model.loops.empty()) info["loops"] = ordered_json::parse(loops_json(model));
   info["default_q"] = pose_by_name(model, default_pose(model));
   if (!poses.empty()) {
     info["poses"] = ordered_json::array();

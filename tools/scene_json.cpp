@@ -8,6 +8,7 @@
 #include "case_json.hpp"
 #include "json_file.hpp"
 #include "json_text.hpp"
+#include "loops_json.hpp"
 #include "printable.hpp"
 #include "read_text_file.hpp"
 
@@ -297,7 +298,7 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
                        "stabilisation_frequency", "stabilisation_damping", "ff_torques", "f_ext",
                        "rotor_inertia", "mimic", "inertia", "srdf", "pose", "rtol", "atol", "policy",
                        "singular_region", "max_damping", "prescribed", "floating", "link_directions",
-                       "joint_control"});
+                       "joint_control", "loops"});
     if (j.contains("description")) text(j["description"], "description");
     s.urdf = resolve_scene_path(text(required(j, "urdf"), "urdf"), source);
     s.root = text(required(j, "root"), "root");
@@ -310,6 +311,13 @@ Scene parse_scene(const std::string& text_in, const std::string& source) {
     }
     if (j.contains("inertia"))
       urdf_options.inertia = inertia_policy_from_name(text(j["inertia"], "inertia"), "inertia");
+    // loops: the loop joints, or the path of a loops file (resolved as urdf is)
+    if (j.contains("loops") && j["loops"].is_string()) {
+      const std::string path = resolve_scene_path(text(j["loops"], "loops"), source, "loops");
+      urdf_options.loops = parse_loops(read_json_file(path, "a loops file"), path);
+    } else if (j.contains("loops")) {
+      urdf_options.loops = loop_specs(j["loops"], "loops");
+    }
     s.model = load_urdf_file(s.urdf, s.root, s.tip, urdf_options);
     const int n = s.model.num_rates();
     // q0: given, or the SRDF's pose ("srdf": a path resolved as urdf is, "pose": a

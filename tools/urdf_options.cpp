@@ -4,9 +4,12 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "json_file.hpp"
+#include "loops_json.hpp"
+
 namespace achd::cli {
 
-const std::set<std::string> kUrdfValued = {"--mimic", "--lock", "--inertia"};
+const std::set<std::string> kUrdfValued = {"--mimic", "--lock", "--inertia", "--loops"};
 const std::set<std::string> kUrdfFlags = {"--floating"};
 
 namespace {
@@ -34,6 +37,10 @@ UrdfOptions urdf_options(const Args& args) {
   if (args.get("--convention", "") == "kdl") options.side_branches = SideBranches::Ignore;
   options.floating = args.has("--floating");
   options.inertia = inertia_policy_from_name(args.get("--inertia", "accept"), "option --inertia");
+  if (args.has("--loops")) {
+    const std::string path = args.get("--loops");
+    options.loops = parse_loops(read_json_file(path, "a loops file"), path);
+  }
   return options;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The URDF-loading options of `achd solve`, `achd bench` and `achd info`: --mimic
 // error|independent, --inertia accept|strict|repair, --lock JOINT=VALUE (repeatable: a
-// joint held at VALUE), --floating (a free joint between the world and the root link)
+// joint held at VALUE), --floating (a free joint between the world and the root link),
+// --loops FILE (loop joints, loops_json.hpp)
 // and --convention kdl, which loads a chain as KDL does (side branches ignored).
 #include <set>
 #include <string>

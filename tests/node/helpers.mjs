@@ -119,9 +119,11 @@ export function assertSameResult(wasm, native, what) {
   }
 }
 
-// The CLI flags of loadURDF's options.
-export function loadFlags(load = {}) {
+// The CLI flags of loadURDF's options (options.loops: written as a loops file into
+// `scratch`, scratchDir()).
+export function loadFlags(load = {}, scratch = null) {
   const flags = [];
+  if (load.loops !== undefined) flags.push('--loops', scratch.write(`loops${caseFiles++}.json`, JSON.stringify({ loops: load.loops })));
   if (load.mimic !== undefined) flags.push('--mimic', load.mimic);
   if (load.root !== undefined) flags.push('--root', load.root);
   if (load.tip !== undefined) flags.push('--tip', load.tip);
@@ -137,14 +139,14 @@ let caseFiles = 0;
 // robot loaded as loadURDF(text, load) loads it: the result object.
 export async function nativeSolve(cli, scratch, urdf, load, c, options) {
   const casePath = scratch.write(`case${caseFiles++}.json`, JSON.stringify(c));
-  return JSON.parse(await runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath, ...cliOptionFlags(options)]));
+  return JSON.parse(await runCli(cli, ['solve', urdf, ...loadFlags(load, scratch), '--case', casePath, ...cliOptionFlags(options)]));
 }
 
 // The message of the CLI's error on case c, without "achd: error: FILE: "; null if it solved.
 export async function nativeError(cli, scratch, urdf, load, c) {
   const casePath = scratch.write(`bad${caseFiles++}.json`, JSON.stringify(c));
   try {
-    await runCli(cli, ['solve', urdf, ...loadFlags(load), '--case', casePath]);
+    await runCli(cli, ['solve', urdf, ...loadFlags(load, scratch), '--case', casePath]);
   } catch (e) {
     return e.message.slice(e.message.lastIndexOf(`${casePath}: `) + casePath.length + 2).trim();
   }

@@ -3,6 +3,7 @@
 import { achdConstants, achdEffectBitsByKey } from './constants.mjs';
 import { achdLastError, achdWasm } from './runtime.mjs';
 import { achdCheckObject, achdChoice } from './validation.mjs';
+import { achdJsonText } from './json_text.mjs';
 import { achdWithScratch, achdWithString } from './memory.mjs';
 import { Robot } from './robot.mjs';
 
@@ -20,12 +21,16 @@ export function installAchd(Module) {
   // positions [x, y, z, qx, qy, qz, qw] and 6 rates [v; w] come first).
   // options.inertia: 'accept' (default: odd inertias loaded, listed in robot.warnings),
   // 'strict' (refused) or 'repair' (made physical, listed); achd::InertiaPolicy's order.
+  // options.loops: loop joints closing the tree, [{name, link_a, origin_a: {xyz, rpy},
+  // link_b, origin_b, type, axis, directions}] (as in a loops file; robot.loops).
   // options.srdf: SRDF text whose named poses (group_states) become robot.poses;
   // options.pose: the one of them robot.startPose is (default: robot.defaultPose).
   Module['loadURDF'] = function loadURDF(text, options) {
     if (typeof text !== 'string') throw new Error('loadURDF: the URDF must be a string');
     if (options === undefined) options = {};  // (null is not "no options": a named error)
-    options = achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating', 'inertia', 'srdf', 'pose']);
+    options = achdCheckObject(options, 'loadURDF options', ['root', 'tip', 'mimic', 'locked', 'sideBranches', 'floating', 'inertia', 'srdf', 'pose', 'loops']);
+    if (options.loops !== undefined && !Array.isArray(options.loops))
+      throw new Error('loadURDF: options.loops must be an array of loop joints');
     if (options.srdf !== undefined && typeof options.srdf !== 'string') throw new Error('loadURDF: options.srdf must be SRDF text (a string)');
     if (options.pose !== undefined && (typeof options.pose !== 'string' || options.srdf === undefined))
       throw new Error('loadURDF: options.pose must name a group_state of options.srdf');
@@ -50,7 +55,8 @@ export function installAchd(Module) {
       achdWithString(tip, (t) => achdWithString(names.map((n) => `${n}\n`).join(''), (ln) =>
         achdWithScratch(values.length, (v) => {
           achdWasm.module.HEAPF64.set(values, v);
-          return achdWasm.module._achd_robot_load(x, r, t, mimic, sides, ln, 8 * v, options.floating ? 1 : 0, inertia);
+          return achdWithString(options.loops === undefined ? '' : achdJsonText(options.loops), (lp) =>
+            achdWasm.module._achd_robot_load(x, r, t, mimic, sides, ln, 8 * v, options.floating ? 1 : 0, inertia, lp));
         })))));
     if (!ptr) throw achdLastError();
     const robot = new Robot(ptr);

@@ -28,6 +28,10 @@ export class Robot extends AchdHandle {
     // Coupled joints (URDF <mimic>, loaded coupled by default): [{joint, leader,
     // multiplier, offset}], q_joint = multiplier q_leader + offset in every solve.
     this.couplings = info.couplings;
+    // Loop joints (options.loops): [{name, type, link_a, link_b, directions, dropped}], the
+    // directions of each loop frame held in every solve (after the case's blocks in nu) and
+    // those found held by the tree already.
+    this.loops = info.loops;
     // With a floating base (options.floating) the free joint comes first in jointNames, named
     // after the root link, with 7 of the numPositions numbers of q and 6 of the numRates
     // numbers of qd, qdd and the torques; without one both counts are the joints'.

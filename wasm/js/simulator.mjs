@@ -283,12 +283,23 @@ export class Simulator extends AchdHandle {
       achdWasm.module._achd_sim_constraint_wrenches(ptr, 8 * p);
       const out = {};
       // defineProperty: a link named '__proto__' is a key like the others, not the prototype
-      for (let b = 0; b < n; ++b) {
+      for (let b = 0; b < links.length; ++b) {  // (the loop joints' blocks follow)
         Object.defineProperty(out, links[b].link, { value: Array.from(achdWasm.module.HEAPF64.subarray(p + 6 * b, p + 6 * b + 6)),
           enumerable: true, writable: true, configurable: true });
       }
       return out;
     });
+  }
+  // Each loop joint's closure error (robot.loops: m or rad, the largest over its held
+  // directions): {loop name: {now, max}}, max the largest since reset().
+  loopDrift() {
+    const ptr = this._live(), out = {};
+    this._robot.loops.forEach((loop, l) => {
+      const now = achdWasm.module._achd_sim_loop_error(ptr, l, 0), max = achdWasm.module._achd_sim_loop_error(ptr, l, 1);
+      if (Number.isNaN(now) || Number.isNaN(max)) throw achdLastError();
+      Object.defineProperty(out, loop.name, { value: { now, max }, enumerable: true, writable: true, configurable: true });
+    });
+    return out;
   }
   energy() {
     const ptr = this._live();

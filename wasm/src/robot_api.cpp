@@ -6,6 +6,7 @@
 #include "achd/achd.hpp"
 #include "c_api.hpp"
 #include "json_out.hpp"
+#include "loops_json.hpp"
 #include "robot_links.hpp"
 
 namespace achd::wasm {
@@ -49,7 +50,7 @@ std::string describe(const Model& m, const std::string& urdf_text) {
          ",\"leader\":" + quoted(m.bodies[c.leader].joint_name) + ",\"multiplier\":" + number(c.multiplier) +
          ",\"offset\":" + number(c.offset) + "}";
   }
-  s += "],\"warnings\":[";
+  s += "],\"loops\":" + cli::loops_json(m) + ",\"warnings\":[";
   for (size_t k = 0; k < m.warnings.size(); ++k) s += (k ? "," : "") + quoted(m.warnings[k]);
   return s + "]}";
 }
@@ -67,10 +68,11 @@ using achd::wasm::Robot;
 // value (0 merge, 1 ignore); locked: the joints to lock (UrdfOptions::locked), their
 // names one per line in locked_names and their values in locked_values; floating != 0: a
 // free joint above the root link (UrdfOptions::floating); inertia an achd::InertiaPolicy
-// value (0 accept, 1 strict, 2 repair).
+// value (0 accept, 1 strict, 2 repair); loops: "" or the JSON text of options.loops
+// (tools/loops_json.hpp).
 ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char* tip, int mimic,
                                    int side_branches, const char* locked_names, const double* locked_values,
-                                   int floating, int inertia) {
+                                   int floating, int inertia, const char* loops) {
   Robot* robot = nullptr;
   achd::wasm::guarded([&] {
     achd::UrdfOptions options;
@@ -78,6 +80,7 @@ ACHD_EXPORT Robot* achd_robot_load(const char* xml, const char* root, const char
     options.inertia = static_cast<achd::InertiaPolicy>(inertia);
     options.mimic = static_cast<achd::MimicJoints>(mimic);
     options.side_branches = static_cast<achd::SideBranches>(side_branches);
+    if (*loops) options.loops = achd::cli::loop_specs(achd::wasm::json_from_bridge(loops), "options.loops");
     std::string name;
     for (const char* p = locked_names; *p; ++p) {
       if (*p != '\n') {

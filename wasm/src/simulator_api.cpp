@@ -1,6 +1,7 @@
 // The simulator: achd::Simulator stepping a robot, its state (q, qd, t, ff_torques,
 // f_ext) exposed to JS as views on the Simulator's own Eigen buffers.
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "achd/achd.hpp"
@@ -177,14 +178,23 @@ ACHD_EXPORT int achd_sim_residuals(const achd::Simulator* sim, int link, double*
 }
 
 // out: 6 doubles per constraint block of the last solve (the links of
-// achd_sim_direction_sets with active directions, in order): alpha nu at the link's
-// point, what the link exerts on its constraint (Data::constraint_wrenches).
+// achd_sim_direction_sets with active directions, in order, then the loop joints):
+// alpha nu at the block's point, what link (a) exerts on its constraint
+// (Data::constraint_wrenches).
 ACHD_EXPORT int achd_sim_constraint_wrenches(const achd::Simulator* sim, double* out) {
   const std::vector<achd::Vector6>& w = sim->data().constraint_wrenches;
   if (out)
     for (const achd::Vector6& f : w)
       for (int k = 0; k < 6; ++k) *out++ = f[k];
   return static_cast<int>(w.size());
+}
+
+// Loop joint `loop`'s closure error now (which = 0) or its largest since reset (1), m or
+// rad; NaN with the reason in achd_last_error() on a bad index.
+ACHD_EXPORT double achd_sim_loop_error(const achd::Simulator* sim, int loop, int which) {
+  double out = std::numeric_limits<double>::quiet_NaN();
+  achd::wasm::guarded([&] { out = which ? sim->loop_drift(loop) : sim->loop_error(loop); });
+  return out;
 }
 
 ACHD_EXPORT double achd_sim_kinetic_energy(const achd::Simulator* sim) { return sim->kinetic_energy(); }

@@ -194,7 +194,7 @@ ACHD_EXPORT const char* achd_solver_result(const Solver* s) {
   static std::string json;
   const char* out = nullptr;
   achd::wasm::guarded([&] {
-    if (s->data.constraint_wrenches.size() != s->c.constraints.size())
+    if (s->data.constraint_wrenches.size() != s->c.constraints.size() + s->model->loops.size())
       throw achd::Error("result(): the constraint blocks changed after the last solve (call solve() first)");
     json = achd::cli::result_json(*s->model, s->data, s->c, achd::cli::Digits::Shortest);
     out = json.c_str();

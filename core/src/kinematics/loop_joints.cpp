@@ -105,6 +105,9 @@ void find_directions(const Model& model, const std::vector<Eigen::VectorXd>& sam
     for (size_t s = 0; s < samples.size(); ++s) {
       Eigen::VectorXd r = relative_row(model, samples[s], poses[s], loop, k).transpose();
       const double size = r.norm();
+      if (!std::isfinite(size))
+        throw Error("loop '" + loop.name + "': its origins are too far from the links (its direction " +
+                    direction_name(k) + " moves by more than a double holds)");
       for (int pass = 0; pass < 2; ++pass)  // Gram-Schmidt, twice for round-off
         for (const Eigen::VectorXd& e : kept[s]) r -= e.dot(r) * e;
       // A row is a length (linear rows: m per rad) or a number: 1e-9 of it, or of 1, is
@@ -154,9 +157,11 @@ void add_loops(Model& model, const std::vector<LoopJointSpec>& loops) {
     if (!finite(spec.origin_b)) throw Error(where + ": origin_b is not finite");
     Matrix3 turn = Matrix3::Identity();
     if (spec.type == LoopType::Revolute || spec.type == LoopType::Prismatic) {
-      const double norm = spec.axis.norm();
-      if (!std::isfinite(norm) || !(norm > 0)) throw Error(where + ": axis must be finite and not zero");
-      turn = Eigen::Quaterniond::FromTwoVectors(Vector3::UnitZ(), spec.axis / norm).toRotationMatrix();
+      // (divided by its largest component first: 1e300 or 1e-300 neither over- nor underflows)
+      const double largest = spec.axis.lpNorm<Eigen::Infinity>();
+      if (!std::isfinite(largest) || !(largest > 0)) throw Error(where + ": axis must be finite and not zero");
+      const Vector3 axis = (spec.axis / largest).normalized();
+      turn = Eigen::Quaterniond::FromTwoVectors(Vector3::UnitZ(), axis).toRotationMatrix();
     }
     loop.frame_a = spec.origin_a * Transform{turn, Vector3::Zero()};
     loop.frame_b = spec.origin_b * Transform{turn, Vector3::Zero()};
