@@ -324,9 +324,9 @@ std::string result_json(const Model& model, const Data& d, const Case& c, Digits
   s += "  \"qdd\": " + array(d.qdd, digits) + ",\n";
   s += "  \"constraint_torques\": " + array(d.constraint_torques, digits) + ",\n";
   s += "  \"total_torques\": " + array(d.total_torques, digits) + ",\n";
-  if (model.couplings.empty()) {
+  if (model.couplings.empty() && model.loops.empty()) {
     s += "  \"nu\": " + array(d.nu, digits) + ",\n";
-  } else {  // the coupled joints' forces follow the constraint columns', each entry named
+  } else {  // the loops' and coupled joints' forces follow the blocks', each entry named
     Eigen::VectorXd nu(d.nu.size() + d.coupling_forces.size());
     nu << d.nu, d.coupling_forces;
     s += "  \"nu\": " + array(nu, digits) + ",\n  \"nu_owners\": [";
@@ -337,6 +337,9 @@ std::string result_json(const Model& model, const Data& d, const Case& c, Digits
       for (const ConstraintBlock& b : c.constraints)
         for (int k = 0; k < b.alpha.cols(); ++k)
         owners += std::string(owners.empty() ? "" : ", ") + quoted("link " + model.links[b.link].name);
+    if (d.nu.size())
+      for (const LoopJoint& l : model.loops)
+        for (int k = 0; k < l.num_columns(); ++k) owners += std::string(owners.empty() ? "" : ", ") + quoted("loop " + l.name);
     for (const JointCoupling& j : model.couplings)
       owners += std::string(owners.empty() ? "" : ", ") + quoted("coupling " + model.bodies[j.follower].joint_name);
     s += owners + "],\n";
@@ -353,6 +356,12 @@ std::string result_json(const Model& model, const Data& d, const Case& c, Digits
   s += "  \"constraint_wrenches\": [";  // one per block of c.constraints
   for (size_t b = 0; b < c.constraints.size(); ++b) s += (b ? ", " : "") + array(d.constraint_wrenches[b], digits);
   s += "],\n";
+  if (!model.loops.empty()) {  // one per loop joint, after the blocks': alpha nu at Q, what link a exerts
+    s += "  \"loop_wrenches\": [";
+    for (size_t l = 0; l < model.loops.size(); ++l)
+      s += (l ? ", " : "") + array(d.constraint_wrenches[c.constraints.size() + l], digits);
+    s += "],\n";
+  }
   s += "  \"link_accelerations\": [";
   for (int i = 0; i <= model.num_links(); ++i)
     s += std::string(i ? ",\n    " : "\n    ") + array(d.link_accelerations[i], digits);

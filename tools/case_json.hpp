@@ -53,6 +53,9 @@ enum class Digits { Seventeen, Shortest };
 // reads back as the same doubles):
 // the names ("joints" in the order of qdd, "links" in the order of link_accelerations,
 // root link first), the outputs, "constraint_wrenches" (one per block of c.constraints);
+// "loop_wrenches" (one per loop joint, after the blocks': alpha nu at Q, what link a exerts)
+// and "nu_owners" (who owns each entry of nu) only when the model has loop joints or
+// coupled joints;
 // "prescribed_torques" (null where a joint is not prescribed) only when c prescribes a
 // joint, "locked_joints" only when the model has any.
 std::string result_json(const Model& model, const Data& data, const Case& c, Digits digits = Digits::Seventeen);

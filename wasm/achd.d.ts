@@ -131,9 +131,12 @@ export interface Result {
   /** KDL's D qdd. */
   total_torques: number[];
   nu: number[];
-  /** with coupled joints (Robot.couplings): who owns each entry of nu ('tip', 'link NAME',
-   * 'coupling JOINT'); the couplings' forces come last. */
+  /** with loop joints (Robot.loops) or coupled joints (Robot.couplings): who owns each entry
+   * of nu ('tip', 'link NAME', 'loop NAME', 'coupling JOINT'); the loops' columns follow the
+   * blocks', the couplings' forces come last. */
   nu_owners?: string[];
+  /** with loop joints: alpha nu of each loop at frame b's origin, what link a exerts. */
+  loop_wrenches?: number[][];
   /** ff - J^T alpha nu = RNEA(q, qd, qdd): what a controller must command. */
   joint_torques: number[];
   /** alpha nu: the wrench the tip exerts on the constraint. */
@@ -421,6 +424,9 @@ export interface Simulator {
   /** held-direction residuals of a link (omitted: the tip) in m or rad; null for directions not held. */
   residuals(link?: LinkRef): Record<Direction, number | null>;
   energy(): { kinetic: number; potential: number; total: number };
+  /** each loop joint's closure error (m or rad, the largest over its held directions): now,
+   * and the largest since reset(). */
+  loopDrift(): Record<string, { now: number; max: number }>;
   /** names of the joints at or past a limit after the last step (a copy; [] under limits 'ignore'). */
   limitHits(): string[];
   /** direction events since createSimulator() or reset(), oldest first (copies). */
@@ -491,6 +497,9 @@ export interface Robot {
   readonly lockedJoints: LockedJoint[];
   /** coupled joints (URDF <mimic>): joint = multiplier leader + offset in every solve. */
   readonly couplings: Array<{ joint: string; leader: string; multiplier: number; offset: number }>;
+  /** loop joints (LoadOptions.loops): the directions of each loop frame held in every solve
+   * (after the case's blocks in nu) and those dropped because the tree holds them. */
+  readonly loops: LoopInfo[];
   /** what the loader found odd in the URDF but loaded, or repaired (LoadOptions.inertia),
    * one line per finding naming the link; empty for a clean file. */
   readonly warnings: string[];
@@ -564,11 +573,44 @@ export interface LoadOptions {
    * ones listed in Robot.warnings), 'strict' (odd ones refused) or 'repair' (made
    * physical with the least change, a massless moving link given a floor mass; listed). */
   inertia?: 'accept' | 'strict' | 'repair';
+  /** loop joints closing the tree (a loops file's "loops" list): each its links, its frame
+   * on each (they coincide while the loop is closed), its type and axis (frame a). */
+  loops?: LoopJoint[];
   /** SRDF text: its group_states become Robot.poses (joints it does not name: as in
    * defaultPose; a floating base from its 'root_joint' entry, x y z qx qy qz qw). */
   srdf?: string;
   /** the group_state of srdf that Robot.startPose is. */
   pose?: string;
+}
+
+export interface LoopFrame {
+  xyz?: [number, number, number];
+  /** roll, pitch, yaw (URDF's fixed axes) */
+  rpy?: [number, number, number];
+}
+
+/** a loop joint: the joint a tree cannot hold, closed by relative constraint columns. */
+export interface LoopJoint {
+  name: string;
+  link_a: string;
+  origin_a?: LoopFrame;
+  link_b: string;
+  origin_b?: LoopFrame;
+  type: 'revolute' | 'prismatic' | 'spherical' | 'fixed';
+  /** revolute, prismatic: in frame a (default z) */
+  axis?: [number, number, number];
+  /** the loop frame's directions to hold (its z along the axis); default: the type's, less
+   * those the tree already holds. */
+  directions?: Direction[];
+}
+
+export interface LoopInfo {
+  name: string;
+  type: LoopJoint['type'];
+  link_a: string;
+  link_b: string;
+  directions: Direction[];
+  dropped: Direction[];
 }
 
 export interface Achd {

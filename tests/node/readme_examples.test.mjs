@@ -110,6 +110,19 @@ const JS_EXAMPLES = [
       assert.ok(Number(stand[2]) < 1e-9, `foot residual ${stand[2]}`);
     },
   },
+  {
+    // The four-bar closed by its loop joint: the loop keeps its two in-plane directions,
+    // and after 1 s from its crank straight up the crank is where the independent
+    // reference puts it (-1.2470 rad, support/four_bar_reference.hpp) with the loop closed.
+    name: 'the four-bar loop',
+    signature: /loopDrift\(\)/,
+    check(stdout) {
+      const m = stdout.match(/^coupler_rocker: holds x y\ncrank at (\S+) rad, loop closed within (\S+) m\n$/);
+      assert.ok(m, `unexpected output: ${stdout}`);
+      assert.ok(Math.abs(Number(m[1]) - -1.2470) <= 1e-4, `crank at ${m[1]}`);
+      assert.ok(Number(m[2]) < 1e-9, `loop drift ${m[2]}`);
+    },
+  },
 ];
 
 // The example of JS_EXAMPLES a block is; fails unless exactly one matches.
@@ -237,6 +250,22 @@ function shellScripts() {
 
 // Checks of the shell examples whose output says more than "JSON", by what they run.
 const SHELL_CHECKS = [
+  {
+    // The four-bar's loop joint: info lists it with its held and dropped directions; the
+    // scene keeps it closed and the energy constant.
+    signature: /achd info robots\/four_bar\.urdf --loops/,
+    check([info]) {
+      assert.deepEqual(info.loops.map((l) => [l.name, l.directions, l.dropped]),
+        [['coupler_rocker', ['x', 'y'], ['z', 'rx', 'ry']]]);
+    },
+  },
+  {
+    signature: /achd simulate robots\/scenes\/four_bar_swing\.json/,
+    check([summary]) {
+      assert.ok(summary.loop_drift.coupler_rocker < 1e-9, `loop drift ${summary.loop_drift.coupler_rocker}`);
+      assert.ok(summary.energy_drift < 1e-8, `energy drift ${summary.energy_drift}`);
+    },
+  },
   {
     // achd info reports the free joint; the floating quadruped's feet stay put while its
     // unpowered legs fold and the trunk drops faster than g.

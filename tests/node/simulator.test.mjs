@@ -15,7 +15,7 @@ const camelCase = (name) => name.replace(/_([a-z])/g, (_, ch) => ch.toUpperCase(
 const OPTIONS = ['limits', 'friction_velocity', 'stabilisation_frequency', 'stabilisation_damping', 'rtol', 'atol'];
 const HANDLED = ['description', 'urdf', 'root', 'tip', 'q0', 'qd0', 'effects', 'directions', 'direction_weights', 'integrator',
   'dt', 'duration', 'gravity', 'ff_torques', 'f_ext', 'prescribed', 'floating', 'link_directions', 'joint_control',
-  'mimic', 'inertia', 'srdf', 'pose', ...OPTIONS];
+  'mimic', 'inertia', 'srdf', 'pose', 'loops', ...OPTIONS];
 // A scene's output step when it gives none (tools/scene_json.hpp's kDefaultSceneDt).
 const sceneDt = (scene) => scene.dt ?? 1e-3;
 
@@ -23,6 +23,7 @@ const sceneDt = (scene) => scene.dt ?? 1e-3;
 function loadSceneRobot(scene) {
   const load = { root: scene.root, tip: scene.tip, floating: scene.floating, mimic: scene.mimic, inertia: scene.inertia };
   if (scene.srdf) Object.assign(load, { srdf: readFileSync(join(repo, scene.srdf), 'utf8'), pose: scene.pose });
+  if (scene.loops) load.loops = typeof scene.loops === 'string' ? JSON.parse(readFileSync(join(repo, scene.loops), 'utf8')).loops : scene.loops;
   for (const key of Object.keys(load)) if (load[key] === undefined) delete load[key];
   return achd.loadURDF(readFileSync(join(repo, scene.urdf), 'utf8'), load);
 }
