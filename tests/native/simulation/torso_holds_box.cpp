@@ -200,73 +200,99 @@ TEST(TorsoHoldsBox, HandsHoldTheBoxWhileTheArmsMove) {
               static_cast<long long>(sim.substeps()));
 }
 
-// At rest at q0 with the torso's and arms' joints prescribed at qdd = 0, the box (free on
-// its joints) is held by the hands alone. Each loop's block is
+// A second closed pose, away from q0's left-right symmetry: the box's joints set to
+// (0.04, -0.03, 0.05) m and (0.25, 0.15, -0.1) rad, the waist at 0.2 rad, and the arms'
+// 14 joints from a Newton solve (minimum-norm steps) that closes both loops from q0's arms.
+Eigen::VectorXd tilted_pose(const achd::Model& m, const Eigen::VectorXd& q0) {
+  Eigen::VectorXd q = q0;
+  const std::vector<int> box = box_joints(m);
+  const double values[6] = {0.04, -0.03, 0.05, 0.25, 0.15, -0.1};
+  for (int k = 0; k < 6; ++k) q[box[k]] = values[k];
+  q[m.joint_index("waist")] = 0.2;
+  std::vector<int> arms;
+  for (const char* side : {"left", "right"})
+    for (int k = 1; k <= 7; ++k) arms.push_back(m.joint_index(std::string(side) + "_joint_" + std::to_string(k)));
+  const double residual = close_loops(m, arms, q);
+  EXPECT_LT(residual, 1e-13);
+  return q;
+}
+
+// At rest with the torso's and arms' joints prescribed at qdd = 0, the box (free on its
+// joints) is held by the hands alone. Each loop's block is
 // alpha^T (a_hand(Q) - a_box(Q)) = beta with link a the hand and link b the box, and the
 // robot receives -alpha nu at the point on link a and +alpha nu at Q on link b
 // (case.hpp): Data::constraint_wrenches[l] = alpha nu = [f_l; n_l] (base axes, at Q_l)
 // is the wrench hand l exerts on the box. The box at rest: sum_l f_l + m g = 0 and
 // sum_l (n_l + (Q_l - c) x f_l) = 0 about its centre of mass c, so the hands push up with
 // m_box 9.81 N through c. The same torques with every joint free (ff = the prescribed
-// torques) leave the whole robot at rest with the same loop wrenches.
+// torques) leave the whole robot at rest with the same loop wrenches. At q0 and at a
+// tilted, turned pose (tilted_pose), where the grip points' arms about c do not cancel
+// by symmetry.
 TEST(TorsoHoldsBox, BoxWeightShowsInBothHands) {
   const achd::cli::Scene s = scene();
   const achd::Model& m = s.model;
   const int n = m.num_rates();
   const int box = m.link_index("box");
+  for (const Eigen::VectorXd& pose : {Eigen::VectorXd(s.q0), tilted_pose(m, s.q0)}) {
+    SCOPED_TRACE(pose[m.joint_index("waist")] == 0 ? "q0" : "tilted");
+    achd::Simulator closure(m);
+    closure.reset(pose, Eigen::VectorXd::Zero(n));
+    for (int l = 0; l < 2; ++l) ASSERT_LT(closure.loop_error(l), 1e-12);
 
-  achd::Case c = achd::Case::zeros(m);
-  c.q = s.q0;
-  c.gravity = achd::Vector3(0, 0, -kG);
-  c.prescribed.assign(n, false);
-  c.qdd_given = Eigen::VectorXd::Zero(n);
-  for (int i = 0; i < n; ++i) c.prescribed[i] = !is_box_joint(m, i);
-  achd::Data d(m);
-  achd::hybrid_dynamics(m, d, c);
-  ASSERT_EQ(d.constraint_wrenches.size(), 2u);  // no blocks of the case: the two loops
-  EXPECT_LT(d.qdd.norm(), 1e-9);
-  // With the arms prescribed, the 12 loop columns act on the box's 6 free joints only: K
-  // has rank 6, and the solver's truncation takes the nu of least norm, the one with no
-  // squeeze between the hands; what statics fixes, the sum on the box, is checked below.
-  EXPECT_EQ(d.rank, 6);
+    achd::Case c = achd::Case::zeros(m);
+    c.q = pose;
+    c.gravity = achd::Vector3(0, 0, -kG);
+    c.prescribed.assign(n, false);
+    c.qdd_given = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i) c.prescribed[i] = !is_box_joint(m, i);
+    achd::Data d(m);
+    achd::hybrid_dynamics(m, d, c);
+    ASSERT_EQ(d.constraint_wrenches.size(), 2u);  // no blocks of the case: the two loops
+    EXPECT_LT(d.qdd.norm(), 1e-9);
+    // With the arms prescribed, the 12 loop columns act on the box's 6 free joints only:
+    // K has rank 6, and the solver's truncation takes the nu of least norm, the one with
+    // no squeeze between the hands; what statics fixes, the sum on the box, is checked.
+    EXPECT_EQ(d.rank, 6);
 
-  const std::vector<achd::Transform> X = achd::forward_kinematics(m, c.q);
-  const achd::Vector3 centre = X[box].p;  // the box's centre of mass is its frame's origin
-  const auto balance = [&](const std::vector<achd::Vector6>& w, achd::Vector3& force, achd::Vector3& moment) {
-    force.setZero();
-    moment.setZero();
-    for (int l = 0; l < 2; ++l) {
-      const achd::Vector3 Q = (X[box] * m.loops[l].frame_b).p;
-      const achd::Vector3 f = w[l].head<3>(), torque = w[l].tail<3>();
-      force += f;
-      moment += torque + (Q - centre).cross(f);
-    }
-  };
-  achd::Vector3 force, moment;
-  balance(d.constraint_wrenches, force, moment);
-  EXPECT_LT((force - achd::Vector3(0, 0, kBoxMass * kG)).norm(), 1e-6) << force.transpose();
-  EXPECT_LT(moment.norm(), 1e-6) << moment.transpose();
-  // Each hand carries part of the weight.
-  const double left_up = d.constraint_wrenches[0][2], right_up = d.constraint_wrenches[1][2];
-  EXPECT_GT(left_up, 0.1 * kBoxMass * kG);
-  EXPECT_GT(right_up, 0.1 * kBoxMass * kG);
-  std::printf("torso box at rest: hands lift %.9f N (left %.6f N, right %.6f N; m g = %.9f N), moment about the "
-              "centre %.3g N m\n",
-              force.z(), left_up, right_up, kBoxMass * kG, moment.norm());
+    const std::vector<achd::Transform> X = achd::forward_kinematics(m, c.q);
+    const achd::Vector3 centre = X[box].p;  // the box's centre of mass is its frame's origin
+    const auto balance = [&](const std::vector<achd::Vector6>& w, achd::Vector3& force, achd::Vector3& moment) {
+      force.setZero();
+      moment.setZero();
+      for (int l = 0; l < 2; ++l) {
+        const achd::Vector3 Q = (X[box] * m.loops[l].frame_b).p;
+        const achd::Vector3 f = w[l].head<3>(), torque = w[l].tail<3>();
+        force += f;
+        moment += torque + (Q - centre).cross(f);
+      }
+    };
+    achd::Vector3 force, moment;
+    balance(d.constraint_wrenches, force, moment);
+    EXPECT_LT((force - achd::Vector3(0, 0, kBoxMass * kG)).norm(), 1e-6) << force.transpose();
+    EXPECT_LT(moment.norm(), 1e-6) << moment.transpose();
+    // Each hand carries part of the weight.
+    const double left_up = d.constraint_wrenches[0][2], right_up = d.constraint_wrenches[1][2];
+    EXPECT_GT(left_up, 0.1 * kBoxMass * kG);
+    EXPECT_GT(right_up, 0.1 * kBoxMass * kG);
+    std::printf("torso box at rest (%s): hands lift %.9f N (left %.6f N, right %.6f N; m g = %.9f N), moment "
+                "about the centre %.3g N m\n",
+                pose[m.joint_index("waist")] == 0 ? "q0" : "tilted", force.z(), left_up, right_up, kBoxMass * kG,
+                moment.norm());
 
-  // Every joint free, driven by the torques the prescribed solve found.
-  achd::Case free = achd::Case::zeros(m);
-  free.q = s.q0;
-  free.gravity = c.gravity;
-  free.ff_torques = d.prescribed_torques;
-  achd::Data d_free(m);
-  achd::hybrid_dynamics(m, d_free, free);
-  EXPECT_EQ(d_free.rank, 12);  // 21 free joints: the loops' 12 columns are independent
-  EXPECT_LT(d_free.qdd.norm(), 1e-9) << d_free.qdd.transpose();
-  achd::Vector3 force_free, moment_free;
-  balance(d_free.constraint_wrenches, force_free, moment_free);
-  EXPECT_LT((force_free - achd::Vector3(0, 0, kBoxMass * kG)).norm(), 1e-6) << force_free.transpose();
-  EXPECT_LT(moment_free.norm(), 1e-6) << moment_free.transpose();
-  for (int l = 0; l < 2; ++l)
-    EXPECT_LT((d_free.constraint_wrenches[l] - d.constraint_wrenches[l]).norm(), 1e-6) << m.loops[l].name;
+    // Every joint free, driven by the torques the prescribed solve found.
+    achd::Case free = achd::Case::zeros(m);
+    free.q = pose;
+    free.gravity = c.gravity;
+    free.ff_torques = d.prescribed_torques;
+    achd::Data d_free(m);
+    achd::hybrid_dynamics(m, d_free, free);
+    EXPECT_EQ(d_free.rank, 12);  // 21 free joints: the loops' 12 columns are independent
+    EXPECT_LT(d_free.qdd.norm(), 1e-9) << d_free.qdd.transpose();
+    achd::Vector3 force_free, moment_free;
+    balance(d_free.constraint_wrenches, force_free, moment_free);
+    EXPECT_LT((force_free - achd::Vector3(0, 0, kBoxMass * kG)).norm(), 1e-6) << force_free.transpose();
+    EXPECT_LT(moment_free.norm(), 1e-6) << moment_free.transpose();
+    for (int l = 0; l < 2; ++l)
+      EXPECT_LT((d_free.constraint_wrenches[l] - d.constraint_wrenches[l]).norm(), 1e-6) << m.loops[l].name;
+  }
 }
