@@ -274,3 +274,53 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
 }
 
 }  // namespace
+
+// Loop joints: every solve appends the loops' blocks at the case's q (a copy of the case
+// into the Data's reserved storage). The four-bar's revolute loop on a fixed base, and the
+// floating quadruped with its front feet closed by a spherical loop and its hind feet by a
+// fixed one, beside a block on one link, with every input nonzero.
+TEST(NoAllocation, HybridDynamicsWithLoopJoints) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> U(-1, 1);
+  achd::LoopJointSpec pin;
+  pin.name = "coupler_rocker";
+  pin.type = achd::LoopType::Revolute;
+  pin.axis = achd::Vector3(0, 1, 0);
+  pin.link_a = "coupler", pin.link_b = "rocker";
+  pin.origin_a.p = achd::Vector3(0.12, 0, 0), pin.origin_b.p = achd::Vector3(0.08, 0, 0);
+  achd::LoopJointSpec front{"front_feet", "lf_foot", "rf_foot"}, hind{"hind_feet", "lh_foot", "rh_foot"};
+  front.type = achd::LoopType::Spherical;
+  hind.type = achd::LoopType::Fixed;
+  achd::UrdfOptions four_bar, quadruped;
+  four_bar.loops = {pin};
+  quadruped.loops = {front, hind};
+  quadruped.floating = true;
+  const achd::Model models[] = {achd::load_urdf_file(kRepo + "/robots/four_bar.urdf", "", "", four_bar),
+                                achd::load_urdf_file(kRepo + "/robots/quadruped.urdf", "", "", quadruped)};
+  for (const achd::Model& m : models) {
+    ASSERT_GT(m.num_loop_columns(), 0);
+    achd::Data d(m);
+    const int n = m.num_rates();
+    achd::Case c = achd::Case::zeros(m);
+    for (int i = m.free_joint_positions(); i < c.q.size(); ++i) c.q[i] = U(rng);
+    c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+    c.f_ext.assign(m.num_links(), achd::Vector6::Zero());
+    for (auto& w : c.f_ext) w = achd::Vector6::NullaryExpr([&] { return U(rng); });
+    c.loop_beta = Eigen::VectorXd::NullaryExpr(m.num_loop_columns(), [&] { return U(rng); });
+    achd::ConstraintBlock b;
+    b.link = m.num_links() - 1;
+    b.alpha = achd::ConstraintMatrix::Identity(6, 3);
+    b.beta = achd::ConstraintVector::Zero(3);
+    c.constraints.push_back(b);
+    for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::VariableDamping}) {
+      achd::Options o;
+      o.policy = policy;
+      o.effects = achd::kAllEffects;
+      achd::hybrid_dynamics(m, d, c, o);  // the first solve of a case sizes the loop case's copies
+      EXPECT_EQ(allocations_of_solve(m, d, c, o), 0) << m.root_name;
+      ASSERT_TRUE(d.qdd.allFinite() && d.nu.allFinite());
+      EXPECT_EQ(d.nu.size(), 3 + m.num_loop_columns());
+    }
+  }
+}
