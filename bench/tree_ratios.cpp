@@ -4,6 +4,7 @@
 //   - the dual-arm torso holding both hands in 6D (m = 12) over its unconstrained solve;
 //   - the quadruped's feet held pairwise together (relative blocks, m = 6) over two of its
 //     feet held (m = 6);
+//   - the Delta robot closed by its five loop joints (m = 15) over its open tree;
 //   - with a floating base: the quadruped on its four feet in 3D and the humanoid (30
 //     joints) on its two soles in 6D (m = 12 each), over their unconstrained solves;
 //   - a random tree of 200 bodies over one of 100, both with four blocks of 3 columns
@@ -22,6 +23,7 @@
 
 #include "random_chain.hpp"
 #include "random_tree.hpp"
+#include "scene_json.hpp"
 #include "timing.hpp"
 
 namespace {
@@ -112,6 +114,20 @@ int main() {
     relative.constraints[1].link_b = m.link_index("rh_foot");
     lines.push_back({"quadruped, feet held pairwise together (two relative blocks, m = 6) / two feet held (m = 6)",
                      "<= 1.5", side_by_side(m, relative, m, absolute), 1.5});
+  }
+
+  // Loop joints: the Delta robot at its scene's closed start pose with its five spherical
+  // loops (m = 15) over its open tree (the same URDF loaded without them, the same inputs).
+  {
+    const cli::Scene scene = cli::load_scene(robots + "/scenes/delta_pd.json");
+    const Model& closed = scene.model;
+    const Model open = load_urdf_file(scene.urdf, scene.root, "");
+    Case c = test::random_tree_inputs(rng, open);
+    c.gravity = Vector3(0, 0, -9.81);
+    c.q = scene.q0;
+    lines.push_back({"Delta robot, its five loop joints (m = " + std::to_string(closed.num_loop_columns()) +
+                         ") / its open tree",
+                     "<= 2", side_by_side(closed, c, open, c), 2});
   }
 
   // Floating bases (a free joint above the root link): the quadruped on its four feet in 3D

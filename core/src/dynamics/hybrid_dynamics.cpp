@@ -89,7 +89,8 @@ const SpatialVector kZero{};
 // pA_i = v_i x* I_i v_i + I_i kappa_i,
 // with I_i x = [m x_lin - h x x_ang; h x x_lin + C x_ang] for I_i = [m 1, -[h]x; [h]x, C].
 void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving) {
-  body_poses(model, c.q, d.X0, d.r);
+  // With loop joints, case_with_loops computed the poses at this q already.
+  if (model.loops.empty()) body_poses(model, c.q, d.X0, d.r);
   for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;

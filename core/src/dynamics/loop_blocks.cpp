@@ -8,7 +8,7 @@ namespace achd {
 const Case& case_with_loops(const Model& model, const Case& c, Data& d) {
   Case& out = d.workspace.loop_case;
   out = c;
-  body_poses(model, c.q, d.X0, d.r);  // the solve computes them again from the same q
+  body_poses(model, c.q, d.X0, d.r);  // the solve's: it does not compute them again
   const auto link_pose = [&](int link) {
     if (link < 0) return Transform{};
     const Link& l = model.links[link];

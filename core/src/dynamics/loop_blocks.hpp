@@ -13,7 +13,8 @@ namespace achd {
 // b's origin, with beta from c.loop_beta (0 when empty):
 //   e^T (a_A(Q) - a_B(Q)) = beta.
 // A loop with the root of a fixed base as one of its links becomes a block on the other
-// link alone (the root does not move). The case must be validated.
+// link alone (the root does not move). The case must be validated. Leaves the body poses
+// at c.q in d.X0 and d.r, where the solve that follows takes them.
 const Case& case_with_loops(const Model& model, const Case& c, Data& d);
 
 }  // namespace achd

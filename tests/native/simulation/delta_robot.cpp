@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <chrono>
 #include <complex>
 #include <cstdio>
 #include <cstdlib>
@@ -376,27 +375,4 @@ TEST(DeltaRobot, PrescribedShouldersHoldTheStaticTorquesOfVirtualWork) {
     std::printf("P (%g, %g, %g): shoulder torques %.12f %.12f %.12f N m, virtual work differs by %.3g (relative)\n",
                 P.x(), P.y(), P.z(), tau[0], tau[1], tau[2], (tau - tau_vw).norm() / tau_vw.norm());
   }
-}
-
-// Not a timed test: what a solve costs with the five loops against the open tree's, at
-// the home pose (printed only).
-TEST(DeltaRobot, PrintsTheCostOfTheLoops) {
-  const achd::Model closed = delta(), open = delta(false);
-  const Eigen::VectorXd q = closed_q(closed, kHome);
-  const auto time = [&](const achd::Model& m) {
-    achd::Data d(m);
-    achd::Case c = achd::Case::zeros(m);
-    c.q = q;
-    double best = 1e300;
-    for (int round = 0; round < 5; ++round) {
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int k = 0; k < 2000; ++k) achd::hybrid_dynamics(m, d, c);
-      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 2000);
-    }
-    return best;
-  };
-  const double t_closed = time(closed), t_open = time(open);
-  std::printf("delta solve: closed (15 loop columns) %.2f us, open tree %.2f us, ratio %.2f\n", 1e6 * t_closed,
-              1e6 * t_open, t_closed / t_open);
-  SUCCEED();
 }
