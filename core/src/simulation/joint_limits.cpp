@@ -36,6 +36,7 @@
 #include "direction_sets.hpp"
 #include "held_directions.hpp"
 #include "integrators.hpp"
+#include "loop_closure.hpp"
 #include "tip_kinematics.hpp"
 
 namespace achd {
@@ -167,10 +168,24 @@ void Simulator::stop_at_limits() {
     }
     return off;
   };
+  // Each loop column's error, position (e) or velocity (g), into loop_beta as its change
+  // -e or -g (loop_closure.hpp), from the state of X0_ and v_; returns the largest.
+  const auto loop_changes = [&](bool velocity) {
+    double off = 0, e[kNumDirections], g[kNumDirections];
+    int column = 0;
+    for (const LoopJoint& loop : model_.loops) {
+      loop_errors(model_, loop, X0_, v_, e, g);
+      for (int j = 0; j < loop.num_columns(); ++j) {
+        impact_case_.loop_beta[column++] = -(velocity ? g[j] : e[j]);
+        off = std::max(off, std::abs(velocity ? g[j] : e[j]));
+      }
+    }
+    return off;
+  };
   // A prescribed joint keeps its trajectory through an impact: dq_i = dqd_i = 0.
   for (int i = 0; i < n; ++i) impact_case_.prescribed[i] = limit_stop_[i] || limit_reached_[i] || moving_[i];
 
-  // Position: back on the limit with the held quantities unchanged.
+  // Position: back on the limit with the held quantities unchanged (and the loops closed).
   body_motion(model_, q, qd, X0_, r_, v_);
   for (size_t s = 0; s < sets.size(); ++s)
     impact_points_[s] = link_state(model_, X0_, v_, sets[s].link, sets[s].point);
@@ -183,6 +198,8 @@ void Simulator::stop_at_limits() {
       off = std::max(off, std::abs(to_limit));
     }
     if (it > 0) off = std::max(off, held_changes(false));
+    const double loops_open = loop_changes(false);  // the loops closed again
+    if (it > 0) off = std::max(off, loops_open);
     if (off == 0) break;
     impact_case_.q = q;
     solve_impact("position projection");
@@ -196,6 +213,7 @@ void Simulator::stop_at_limits() {
   // its limit but already moving back stays free), which also gives the held directions
   // back the velocities they had before the position went back (J changed with q).
   held_changes(true);
+  loop_changes(true);  // and the loops their relative velocity 0
   for (int i = 0; i < n; ++i) {
     const bool into = limit_reached_[i] && limit_reached_[i] * qd[i] >= 0;
     if (limit_reached_[i] && !into) limit_reached_[i] = 0;
