@@ -47,11 +47,14 @@ void DirectionEventLog::update(const std::vector<LinkDirections>& sets, const Da
     for (int k = 0; k < kNumDirections; ++k)
       if (sets[s].held.active(k)) column_.emplace_back(s, k);
   }
+  // K's columns: the sets' directions, then the loop joints' (Case::loop_beta's), which
+  // have no direction of a link to attribute to.
   const Eigen::Index nc = static_cast<Eigen::Index>(column_.size());
-  const Eigen::Index ndamped = first.damped.rows() == nc ? first.damped.cols() : 0;
+  const Eigen::Index ndamped = first.damped.rows() >= nc ? first.damped.cols() : 0;
   for (Eigen::Index j = 0; j < ndamped; ++j) {
     Eigen::Index column = 0;
     first.damped.col(j).cwiseAbs().maxCoeff(&column);
+    if (column >= nc) continue;
     const auto [s, k] = column_[column];
     const double sigma = first.damped_sigma[j], lambda = first.damped_lambda[j];
     const double r = sigma > 0 ? lambda / sigma : std::numeric_limits<double>::infinity();
