@@ -438,7 +438,6 @@ function openLoop(name) {
 // state, settings, directions, prescribed joints, time and plots (web/simulation.js,
 // carryOn). Throws, the robot shown kept, when the loader refuses.
 function reloadLoops(closed) {
-  moduleLog.length = 0;
   const sim = new Simulation(page.achd, { ...page.sim.source, closed }, page.settings, page.sim);
   push.release();
   page.pushedLink = null;
