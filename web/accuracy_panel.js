@@ -82,7 +82,7 @@ async function loadRobot() {
   const source = window.achdDemo.robotSource();
   const { default: createAchd } = await import('./dist/achd.mjs');
   const achd = await createAchd();
-  const robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip });
+  const robot = achd.loadURDF(source.text, { root: source.root, tip: source.tip, loops: source.loops });
   const held = Object.entries(state.directions).filter(([, mode]) => mode !== 'free');
   return { name: source.title, robot, q0: source.q0, held, integrators: achd.constants.integrators.map(looks) };
 }

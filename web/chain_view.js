@@ -1,8 +1,8 @@
 // The 3D view: the robot as its URDF's visuals on the link frames forward kinematics
 // reports (web/visual_meshes.js), or, for a URDF without visuals and for links whose mesh
 // was not found, a stick figure: simple solids between consecutive link frames and
-// spheres at movable joints. Also the tip frame's axes and the held or accelerated tip
-// directions as glyphs. z is up, as in URDF.
+// spheres at movable joints. Also the tip frame's axes, the held or accelerated tip
+// directions as glyphs, and the loop joints. z is up, as in URDF.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { DIRECTIONS } from './settings.js';
@@ -27,6 +27,9 @@ const FRAME_FILL = 0.8;
 const SWING_FILL = 1.15;
 // A robot smaller than this across (m) is framed as a box this large around its middle.
 const MIN_FRAMED = 0.1;
+// The loop joints' colour: a ring at frame a's origin facing the camera, a dot at frame
+// b's origin and a line between them (that shows while the loop is open).
+export const LOOP_COLOR = '#00a3c4';
 
 // Checked up front: three logs a console error when it cannot get a context, and a
 // machine without WebGL should get a message in the view instead.
@@ -81,6 +84,11 @@ export class ChainView {
     );
     this.pushLine.visible = false;
     this.scene.add(this.pushLine);
+    // Outside robotGroup: picking and framing see the robot alone.
+    this.loopGroup = new THREE.Group();
+    this.scene.add(this.loopGroup);
+    this.loopMarks = [];
+    this.loopNames = '';
 
     this.raycaster = new THREE.Raycaster();
     new ResizeObserver(() => this.resize()).observe(container);
@@ -362,6 +370,45 @@ export class ChainView {
     if (push) {
       this.pushLine.geometry.setFromPoints([push.from, push.to]);
     }
+  }
+
+  // Draws each loop joint (ends: [{name, a, b}], its frames' origins in world
+  // coordinates, web/simulation.js loopEnds), over the robot so that a pin inside a
+  // visual shows; the marks are made again when the loops change.
+  updateLoops(ends) {
+    if (!this.enabled || !this.segments) return;
+    const names = ends.map((e) => e.name).join('\n');
+    if (names !== this.loopNames || this.loopRadius !== this.radius) {
+      for (const child of [...this.loopGroup.children]) {
+        child.traverse((o) => {
+          o.geometry?.dispose();
+          o.material?.dispose();
+        });
+        this.loopGroup.remove(child);
+      }
+      this.loopNames = names;
+      this.loopRadius = this.radius;
+      const material = () => new THREE.MeshBasicMaterial({ color: LOOP_COLOR, depthTest: false, depthWrite: false,
+        transparent: true });
+      this.loopMarks = ends.map(() => {
+        const ring = new THREE.Mesh(new THREE.TorusGeometry(this.radius * 2.2, this.radius * 0.3, 10, 40), material());
+        const dot = new THREE.Mesh(new THREE.SphereGeometry(this.radius * 0.7, 12, 8), material());
+        const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
+          new THREE.LineBasicMaterial({ color: LOOP_COLOR, depthTest: false, transparent: true }));
+        for (const o of [ring, dot, line]) {
+          o.renderOrder = 2;
+          this.loopGroup.add(o);
+        }
+        return { ring, dot, line };
+      });
+    }
+    ends.forEach(({ a, b }, k) => {
+      const { ring, dot, line } = this.loopMarks[k];
+      ring.position.fromArray(a);
+      ring.quaternion.copy(this.camera.quaternion);
+      dot.position.fromArray(b);
+      line.geometry.setFromPoints([new THREE.Vector3(...a), new THREE.Vector3(...b)]);
+    });
   }
 
   render() {

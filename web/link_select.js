@@ -1,12 +1,15 @@
 // Choosing the link whose directions the controls show: a click on a link (a press and
 // release without moving the pointer, so that orbiting and pushing stay drags) selects it;
 // with Shift held, the directions also act at the point clicked instead of the origin.
+// With Alt held, the click picks a link for a loop joint instead (two Alt-clicks close a
+// loop between the two links).
 const CLICK_PIXELS = 4;
 
 export class LinkSelect {
   // view: ChainView; onSelect(link, point): called with the FK index (root = 0) of the link
-  // clicked and, with Shift, the world point clicked (a THREE.Vector3), else null.
-  constructor(view, onSelect) {
+  // clicked and, with Shift, the world point clicked (a THREE.Vector3), else null;
+  // onLoopPick(link): called with the FK index of the link Alt-clicked.
+  constructor(view, onSelect, onLoopPick) {
     this.press = null;
     if (!view.enabled) return;
     // Capture phase on the container: PushDrag stops a press on a link from reaching the
@@ -18,7 +21,8 @@ export class LinkSelect {
       const p = this.press;
       this.press = null;
       if (!p?.hit || Math.hypot(e.clientX - p.x, e.clientY - p.y) > CLICK_PIXELS) return;
-      onSelect(p.hit.link, e.shiftKey ? p.hit.point : null);
+      if (e.altKey) onLoopPick(p.hit.link);
+      else onSelect(p.hit.link, e.shiftKey ? p.hit.point : null);
     }, { capture: true });
   }
 }

@@ -7,6 +7,12 @@
 // pose with the toggles kept, and plays again if the page was playing when the step
 // failed. Loading a robot (the list, an own URDF) frees every direction, clears the
 // events and the plots, and plays.
+//
+// Loop joints: a robot of the list comes with its loops file's loops; two Alt-clicks
+// close one more (a fixed loop joint between the two links as they are then), and the
+// loops card opens it again. The core holds loops as part of the model, so either loads
+// the robot again with the other loops and goes on from the same state (web/simulation.js,
+// carryOn).
 import { ChainView } from './chain_view.js';
 import { Controls } from './controls.js';
 import { EventsNotice } from './events_notice.js';
@@ -26,6 +32,7 @@ import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
 import { LINK_CHARACTERS, openSharedSrdf, openSharedUrdf, shareSrdf, shareUrdf, urdfKey } from './urdf_share.js';
 import { linkVisuals } from './link_visuals.js';
+import { fixedLoopBetween } from './loop_pick.js';
 import './accuracy_panel.js';
 
 // At most this much simulated time per frame: after a stall (a hidden tab, a slow
@@ -72,6 +79,8 @@ const page = {
   // {error}; null while it is worked out (its meshes are read first), and for a robot of
   // the list.
   share: null,
+  // The first link of a loop being closed by picking (its name), until the second pick.
+  loopPick: null,
 }
 
 let markReady;
@@ -104,6 +113,7 @@ window.achdDemo = {
       warnings: [...page.sim.robot.warnings],
       floating: page.sim.robot.floating,
       pose: page.sim.pose,
+      loopPick: page.loopPick,
     };
   },
   // The robot shown as it was loaded: {name, text (its URDF), root, tip, q0 (start pose),
@@ -114,7 +124,25 @@ window.achdDemo = {
     const s = page.sim.source;
     return { name: s.name, title: s.fileName ?? robotSelect.selectedOptions[0]?.text ?? s.name, text: s.text,
       root: page.sim.robot.root, tip: page.sim.robot.tip, q0: [...page.sim.q0], floating: page.sim.robot.floating,
-      mimic: s.mimic ?? null, inertia: s.inertia ?? null, srdf: s.srdf ?? null, pose: page.sim.pose };
+      mimic: s.mimic ?? null, inertia: s.inertia ?? null, srdf: s.srdf ?? null, pose: page.sim.pose,
+      loops: structuredClone([...(s.loops ?? []), ...(s.closed ?? [])]) };
+  },
+  // Closes a loop between two links by name, as Alt-clicks on link_a, then link_b, do: a
+  // fixed loop joint holding their relative pose now. Throws (after the page has shown it)
+  // when the loader refuses the loop; the robot then runs on without it.
+  closeLoop(linkA, linkB) {
+    if (!page.sim) throw new Error('achdDemo.closeLoop: no robot loaded yet (await achdDemo.ready)');
+    closeLoop(linkA, linkB);
+  },
+  // Opens a loop the user closed (by its name, state().loops), as its Open button does.
+  openLoop(name) {
+    if (!page.sim) throw new Error('achdDemo.openLoop: no robot loaded yet (await achdDemo.ready)');
+    openLoop(name);
+  },
+  // Each loop joint's closure error, m or rad: {name: {now, max}} (sim.loopDrift()).
+  loopDrift() {
+    if (!page.sim) throw new Error('achdDemo.loopDrift: no robot loaded yet (await achdDemo.ready)');
+    return page.sim.sim.loopDrift();
   },
   // The 3D view's camera (column-major 4x4 matrices as three.js stores them), the
   // canvas's size in CSS pixels and its place on the page, and the box the camera framed
@@ -288,6 +316,24 @@ new LinkSelect(view, (link, at) => {
   } catch (err) {
     showError(err.message);
   }
+}, (link) => {
+  const name = page.links?.[link]?.name;
+  if (!page.sim || !name) return;
+  if (page.loopPick === null) {
+    page.loopPick = name;
+    showLoops();
+    return;
+  }
+  try {
+    if (page.loopPick === name) {
+      page.loopPick = null;  // the same link again: no loop
+      showLoops();
+    } else {
+      closeLoop(page.loopPick, name);
+    }
+  } catch {
+    // On the page already (closeLoop shows it).
+  }
 });
 const viewNote = document.getElementById('view-note');
 const sliders = new JointSliders(document.getElementById('joint-sliders'), document.getElementById('btn-start-pose'), {
@@ -365,6 +411,75 @@ function setPose(q) {
   page.sim.setPose(q);
   page.links = page.sim.links();
   sliders.show(page.sim.q);
+}
+
+// A fixed loop joint between two links as they are now (web/loop_pick.js), the robot
+// loaded again with it; the loader's refusal is shown and the robot runs on as it was.
+function closeLoop(linkA, linkB) {
+  page.loopPick = null;
+  try {
+    const taken = new Set(page.sim.robot.loops.map((l) => l.name));
+    const loop = fixedLoopBetween(page.sim.links(), linkA, linkB, taken);
+    reloadLoops([...(page.sim.source.closed ?? []), loop]);
+  } catch (err) {
+    showLoops();
+    showError(`could not close a loop between ${linkA} and ${linkB}: ${err.message}`);
+    throw err;
+  }
+}
+
+function openLoop(name) {
+  const closed = page.sim.source.closed ?? [];
+  if (!closed.some((l) => l.name === name)) throw new Error(`no loop "${name}" closed on the page`);
+  reloadLoops(closed.filter((l) => l.name !== name));
+}
+
+// The robot shown, loaded again with `closed` as the loops the user closed: the same
+// state, settings, directions, prescribed joints, time and plots (web/simulation.js,
+// carryOn). Throws, the robot shown kept, when the loader refuses.
+function reloadLoops(closed) {
+  const sim = new Simulation(page.achd, { ...page.sim.source, closed }, page.settings, page.sim);
+  push.release();
+  page.pushedLink = null;
+  page.sim.delete();
+  page.sim = sim;
+  page.links = sim.links();
+  torqueBars.setRobot(sim.robot);
+  sliders.setRobot(sim.robot, sim.q);
+  showLoops();
+}
+
+// The loops card: each loop joint of the robot shown (its links, type and held
+// directions), an Open button beside those the user closed, and what an Alt-click does next.
+function showLoops() {
+  const list = document.getElementById('loop-list');
+  const closed = page.sim.source.closed ?? [];
+  list.replaceChildren(...page.sim.robot.loops.map((loop) => {
+    const item = document.createElement('li');
+    item.dataset.loop = loop.name;
+    const picked = closed.some((c) => c.name === loop.name);
+    item.textContent = `${loop.name}: ${loop.type}, ${loop.link_a} to ${loop.link_b}, holds ${loop.directions.join(' ')}` +
+      `${picked ? ' (closed here)' : ''} `;
+    if (picked) {
+      const button = document.createElement('button');
+      button.type = 'button';
+      button.textContent = 'Open';
+      button.dataset.open = loop.name;
+      button.addEventListener('click', () => {
+        try {
+          openLoop(loop.name);
+        } catch (err) {
+          showError(`could not open the loop ${loop.name}: ${err.message}`);
+        }
+      });
+      item.append(button);
+    }
+    return item;
+  }));
+  document.getElementById('loops-none').hidden = page.sim.robot.loops.length > 0;
+  document.getElementById('loop-pick').textContent = page.loopPick === null
+    ? 'Alt-click a link, then another, to close a loop between them.'
+    : `Closing a loop from ${page.loopPick}: Alt-click the second link (${page.loopPick} again: no loop).`;
 }
 
 function setYield(name, on) {
@@ -531,6 +646,8 @@ function loadRobot(source, { keepDirections = false } = {}) {
   torqueBars.setRobot(sim.robot);
   sliders.setRobot(sim.robot, sim.q);
   showPoses();
+  page.loopPick = null;
+  showLoops();
   if (source.name === CUSTOM && ![...robotSelect.options].some((o) => o.value === CUSTOM)) {
     robotSelect.add(new Option(`own URDF`, CUSTOM));
   }
@@ -702,8 +819,8 @@ async function selectRobot(name, options) {
   const entry = page.index.robots.find((r) => r.name === name);
   if (!entry) return;
   try {
-    const text = await fetchText(entry.urdf);
-    loadRobot(indexSource(entry, text), options);
+    const [text, loops] = await Promise.all([fetchText(entry.urdf), fetchLoops(entry)]);
+    loadRobot(indexSource(entry, text, loops), options);
   } catch (err) {
     robotSelect.value = page.settings.robot;
     showError(`${entry.name}: ${err.message}`);
@@ -789,6 +906,7 @@ function frame() {
     const p = push.current();
     view.update(page.links, page.settings.directions, p && { from: p.from, to: p.to },
       1 + sim.robot.linkNames.indexOf(sim.selected), sim.pointOf(sim.selected, page.links));
+    view.updateLoops(sim.loopEnds(page.links));
     view.render();
     readouts.drawCharts();
     if (now - page.lastNumbers >= NUMBERS_EVERY_MS) {
@@ -878,7 +996,7 @@ async function readIndexAndRobot() {
     try {
       if (!own) throw new Error(`robot=${CUSTOM} needs urdf= and root=`);
       const { text, ...entry } = await linkedSource(own);
-      return { index, problems, entry, text };
+      return { index, problems, entry, text, loops: undefined };
     } catch (err) {
       problems.push(`the own URDF of the link: ${err.message}`);
       robot = index.default;
@@ -889,18 +1007,25 @@ async function readIndexAndRobot() {
     robot = index.default;
   }
   const entry = index.robots.find((r) => r.name === robot);
-  return { index, problems, entry, text: await fetchText(entry.urdf) };
+  const [text, loops] = await Promise.all([fetchText(entry.urdf), fetchLoops(entry)]);
+  return { index, problems, entry, text, loops };
 }
 
-// The source of an index robot, its meshes read from this server.
-function indexSource(entry, text) {
+// The loop joints of an index robot: the "loops" list of its loops file (entry.loops, a
+// path like urdf's), or undefined without one.
+async function fetchLoops(entry) {
+  return entry.loops ? JSON.parse(await fetchText(entry.loops)).loops : undefined;
+}
+
+// The source of an index robot (loops: its loops file's), its meshes read from this server.
+function indexSource(entry, text, loops) {
   return { name: entry.name, text, root: entry.root, tip: entry.tip, q0: entry.q0, files: servedFiles(entry),
     floating: entry.floating, mimic: entry.mimic, constraints: entry.constraints, held: entry.held,
-    jointControl: jointControlOf(entry.joint_control) };
+    jointControl: jointControlOf(entry.joint_control), loops };
 }
 
 async function start() {
-  const [achd, { index, problems, entry, text }] = await Promise.all([loadModule(), readIndexAndRobot()]);
+  const [achd, { index, problems, entry, text, loops }] = await Promise.all([loadModule(), readIndexAndRobot()]);
   page.achd = achd;
   page.offer = moduleOffer(achd);
   adoptOffer(page.offer);
@@ -912,14 +1037,14 @@ async function start() {
   controls.offer(page.offer);
   controls.show(page.settings, page.playing);
   try {
-    loadRobot(entry.name === CUSTOM ? { ...entry, text } : indexSource(entry, text), { keepDirections: true });
+    loadRobot(entry.name === CUSTOM ? { ...entry, text } : indexSource(entry, text, loops), { keepDirections: true });
   } catch (err) {
     // An own URDF of the link that does not load: the default robot instead, and why.
     if (entry.name !== CUSTOM) throw err;
     problems.push(err.message);
     const fallback = index.robots.find((r) => r.name === index.default);
     page.settings.robot = fallback.name;
-    loadRobot(indexSource(fallback, await fetchText(fallback.urdf)), { keepDirections: true });
+    loadRobot(indexSource(fallback, await fetchText(fallback.urdf), await fetchLoops(fallback)), { keepDirections: true });
   }
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
   requestAnimationFrame(frame);

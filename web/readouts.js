@@ -1,6 +1,6 @@
 // Live numbers and plots under the view: residual per held direction and nu of the
-// selected link, joint torques, energy, and the time one step and one solve take in this
-// browser.
+// selected link, the loop joints' closure errors, joint torques, energy, and the time one
+// step and one solve take in this browser.
 import { DIRECTION_COLORS } from './chain_view.js';
 import { DIRECTIONS } from './settings.js';
 import { StripChart } from './strip_chart.js';
@@ -17,7 +17,7 @@ export class Readouts {
     for (const [key, label] of [
       ['t', 'time t'], ['energy', 'energy (kinetic + gravity)'], ['step', 'one step'],
       ['solve', 'one solve'], ['capacity', 'real-time capacity'], ['residuals', 'held residuals'],
-      ['nu', 'ν (constraint forces)'], ['torques', 'joint torques'],
+      ['nu', 'ν (constraint forces)'], ['loops', 'loop closure (now, largest)'], ['torques', 'joint torques'],
     ]) {
       const tr = table.insertRow();
       const th = document.createElement('th');
@@ -76,8 +76,10 @@ export class Readouts {
     const nu = sim.nuByLink()[sim.selected] ?? [];
     const torques = sim.sim.joint_torques();
     const energy = sim.sim.energy();
+    // {loop name: {now, max}}: each loop joint's closure error, m or rad
+    const loops = sim.sim.loopDrift();
     // constrained: the selected link's constrained directions, in the order of its nu.
-    this.last = { sim, residuals, nu, torques, energy, constrained: this.constrained };
+    this.last = { sim, residuals, nu, torques, energy, loops, constrained: this.constrained };
     this.charts.residuals.push(this.held.map((d) => residuals[d]));
     // a link's nu lists its constraints in direction order, as the simulator builds alpha.
     this.charts.nu.push(this.constrained.map((_, k) => nu[k]));
@@ -98,7 +100,7 @@ export class Readouts {
 
   showNumbers() {
     if (!this.last) return;
-    const { sim, residuals, nu, torques, energy } = this.last;
+    const { sim, residuals, nu, torques, energy, loops } = this.last;
     const stepMicros = sim.currentStepMicros();
     this.rows.t.textContent = `${sim.t.toFixed(3)} s`;
     this.rows.energy.textContent = `${fmt(energy.total, 6)} J  (kinetic ${fmt(energy.kinetic, 4)})`;
@@ -110,6 +112,10 @@ export class Readouts {
       ? this.held.map((d) => `${d}: ${residuals[d].toExponential(2)}`).join('  ') : 'no held direction';
     this.rows.nu.textContent = this.constrained.length
       ? this.constrained.map((d, k) => `${d}: ${fmt(nu[k], 4)}`).join('  ') : 'no constraint';
+    const closures = Object.entries(loops);
+    this.rows.loops.textContent = closures.length
+      ? closures.map(([name, e]) => `${name}: ${e.now.toExponential(2)}, ${e.max.toExponential(2)}`).join('  ')
+      : 'no loop joint';
     this.rows.torques.textContent = list(torques);
   }
 }

@@ -63,13 +63,20 @@ export class Simulation {
   // a singularity, web/start_pose.js, for a tree robot.startPose), constraints (a tree's
   // default held links; an own floating robot: its lowest leaf links), held (their held
   // directions, default x, y, z), jointControl (setJointControl's {kp, kd} or {frequency,
-  // dampingRatio, feedforward}: the PD controller toward the start pose)}. Throws an Error
-  // naming the problem and owns nothing in that case.
-  constructor(achd, source, settings) {
+  // dampingRatio, feedforward}: the PD controller toward the start pose), loops (the
+  // robot's loop joints, loadURDF's loops: robots/index.json's loops file), closed (the
+  // loop joints the user closed on the page, after those)}. Throws an Error naming the
+  // problem and owns nothing in that case.
+  // previous: the Simulation of the same robot this one replaces with other loops (the
+  // user closed or opened one): its state (q, qd, the page's time, every link's
+  // directions and point, the PD controller's target) goes on here.
+  constructor(achd, source, settings, previous = null) {
     this.name = source.name;
     this.source = source;
     const options = { root: source.root, tip: source.tip ?? undefined, floating: Boolean(source.floating) };
     for (const key of ['mimic', 'inertia', 'srdf', 'pose']) if (source[key]) options[key] = source[key];
+    const loops = [...(source.loops ?? []), ...(source.closed ?? [])];
+    if (loops.length) options.loops = loops;
     this.robot = achd.loadURDF(source.text, options);
     try {
       // The links as the module loaded them (robot.links: parents, joints, masses).
@@ -101,7 +108,8 @@ export class Simulation {
       this.tOffset = 0;
       this.sim = null;
       this.solver = null;
-      this.build(this.q0, null);
+      if (previous) this.carryOn(previous);
+      else this.build(this.q0, null);
     } catch (err) {
       this.delete();
       throw err;
@@ -135,6 +143,31 @@ export class Simulation {
     this.defaultLinks = this.own ? lowestLeaves(this.robot, [...base, ...joints])
       : (source.constraints ?? []).filter((l) => this.robot.linkNames.includes(l));
     this.q0 = this.robot.floating ? this.floatingPose(base, joints) : [...joints];
+  }
+
+  // Goes on from `previous` (the same robot with other loops): its links' directions and
+  // points, the selected link, the PD controller's target, and a simulator reset to its
+  // q and qd at its time.
+  carryOn(previous) {
+    this.sets = new Map([...previous.sets].map(([link, set]) => [link, structuredClone(set)]));
+    this.points = new Map(previous.points);
+    this.selected = previous.selected;
+    this.controlTarget = previous.controlTarget;
+    this.build(Array.from(previous.sim.q), Array.from(previous.sim.qd), previous.t);
+  }
+
+  // Where each loop joint's two frames are: [{name, a, b}], a and b the origins of frame
+  // a on link_a and frame b on link_b (links: this state's poses, links()), in the base
+  // frame (world for a floating base); they coincide while the loop is closed.
+  loopEnds(links) {
+    const byName = new Map(links.map((l) => [l.name, l]));
+    const at = (link, origin) => {
+      const { position: p, rotation: R } = byName.get(link);
+      const x = origin?.xyz ?? [0, 0, 0];
+      return [0, 1, 2].map((i) => p[i] + R[3 * i] * x[0] + R[3 * i + 1] * x[1] + R[3 * i + 2] * x[2]);
+    };
+    return [...(this.source.loops ?? []), ...(this.source.closed ?? [])].map((loop) => ({
+      name: loop.name, a: at(loop.link_a, loop.origin_a), b: at(loop.link_b, loop.origin_b) }));
   }
 
   // The link whose directions the controls show first: a chain's tip, else the first
@@ -244,9 +277,9 @@ export class Simulation {
     }
   }
 
-  // (Re)creates the simulator for the current settings, starting from q, qd.
-  build(q, qd) {
-    const t = this.t;
+  // (Re)creates the simulator for the current settings, starting from q, qd at the
+  // page's time t (default: now).
+  build(q, qd, t = this.t) {
     this.sim?.delete();
     this.solver?.delete();
     this.sim = null;
@@ -445,6 +478,8 @@ export class Simulation {
       // order (its constrained directions), joint_torques per joint
       nu: this.nuByLink()[this.selected] ?? [],
       joint_torques: this.sim.joint_torques(),
+      // the loop joints (robot.loops), each with picked: whether the user closed it on the page
+      loops: this.robot.loops.map((l) => ({ ...l, picked: (this.source.closed ?? []).some((c) => c.name === l.name) })),
       stepMicros: this.currentStepMicros(),
     };
   }

@@ -8,7 +8,9 @@
 //   the left one within 1e-9 m over the run (its hand held);
 // - a floating robot stands: its feet start at z = 0, stay held within 1e-6, and its trunk
 //   (the free joint's x, y, z) stays within 2 cm of where it started; the humanoid's soles
-//   are held in 6D and its head stays within 2 cm of its start height (it does not fold).
+//   are held in 6D and its head stays within 2 cm of its start height (it does not fold);
+// - the four-bar swings on its loop joint: the crank turns and the loop stays closed
+//   within 1e-6 m over the run.
 // Every entry must have its claim here: a new one without fails the test.
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
@@ -53,6 +55,15 @@ const CLAIMS = {
     assert.ok(drift <= HELD_TOLERANCE, `${entry.name}: a held link moved ${drift} m`);
     assert.ok(residual <= HELD_TOLERANCE, `${entry.name}: residual ${residual}`);
   },
+  loop: async (t, { page, s0, s1, entry }) => {
+    const drift = await page.evaluate(() => window.achdDemo.loopDrift());
+    const crank = Math.abs(s1.q[0] - s0.q[0]);
+    t.diagnostic(`${entry.name}: the crank turned ${crank.toFixed(2)} rad, the loop's largest closure error ` +
+      `${Object.entries(drift).map(([name, e]) => `${name} ${e.max.toExponential(2)} m`).join(', ')}`);
+    assert.deepEqual(Object.keys(drift), ['coupler_rocker']);
+    assert.ok(drift.coupler_rocker.max <= HELD_TOLERANCE, `${entry.name}: closure error ${drift.coupler_rocker.max}`);
+    assert.ok(crank > 0.1, `${entry.name}: the crank turned ${crank} rad`);
+  },
   standing: async (t, args) => {
     const { s0, s1, entry, feet0 } = args;
     for (const p of feet0) assert.ok(Math.abs(p[2]) < 1e-9, `${entry.name}: a foot starts at z = ${p[2]}`);
@@ -71,6 +82,7 @@ const ENTRY_CLAIMS = {
   dual_arm_torso: ['held'],
   panda_fingers: ['held', 'coupled'],
   humanoid: ['standing', 'upright'],
+  four_bar: ['loop'],
 };
 
 test('every entry of the robot list has a claim to check', () => {
@@ -120,7 +132,7 @@ test('every robot of the page\'s list loads, runs 5 s and does what its title sa
         assert.equal(s1.error, null);
         assert.ok(Math.abs(s1.t - s0.t - SECONDS) < 1e-9, `t went from ${s0.t} to ${s1.t}`);
         const feet1 = await linkPositions(page, held);
-        const args = { s0, s1, entry, feet0, feet1 };
+        const args = { page, s0, s1, entry, feet0, feet1 };
         for (const claim of ENTRY_CLAIMS[entry.name]) {
           if (claim === 'coupled') {
             t.diagnostic(`panda_fingers: |q_right - q_left| <= ${worstCoupling.toExponential(2)} m over the run`);

@@ -18,6 +18,9 @@
 //                                 constraint force arrow, the torque bars
 //   docs/screenshots/humanoid.png  the floating humanoid standing on its two soles held in 6D under
 //                                 the 5 Hz hold controller, after 3 simulated seconds
+//   docs/screenshots/four_bar.png  the four-bar linkage of the list swinging on its loop joint
+//                                 (coupler to rocker: the cyan ring and dot) after 0.6 simulated
+//                                 seconds, the panel scrolled to the loops card
 //   docs/screenshots/own_robot.png solo12 loaded whole from example-robot-data's solo_description
 //                                 folder (two URDFs, an SRDF), floating, in the SRDF's standing
 //                                 pose, on its four held feet (no meshes in that copy: stick
@@ -33,7 +36,7 @@ import { openPage } from './launch.mjs';
 const out = new URL('../../docs/screenshots/', import.meta.url);
 await mkdir(out, { recursive: true });
 const wanted = process.argv.slice(2);
-const SHOTS = ['default', 'boundary', 'robot', 'sliders', 'forces', 'quadruped', 'humanoid', 'own_robot'];
+const SHOTS = ['default', 'boundary', 'robot', 'sliders', 'forces', 'quadruped', 'humanoid', 'four_bar', 'own_robot'];
 for (const name of wanted) {
   if (!SHOTS.includes(name) && name !== 'held') throw new Error(`no screenshot "${name}" (${[...SHOTS, 'held'].join(', ')})`);
 }
@@ -181,6 +184,24 @@ if (want('humanoid')) {
     if (standing.consoleErrors.length) throw new Error(`console errors: ${standing.consoleErrors.join('\n')}`);
   } finally {
     await standing.close();
+  }
+}
+
+if (want('four_bar')) {
+  const linkage = await openPage({ viewport: { width: 1400, height: 1000 }, hash: '#robot=four_bar' });
+  try {
+    const { page } = linkage;
+    await page.evaluate(() => {
+      window.achdDemo.pause();
+      window.achdDemo.step(600);
+    });
+    // The panel scrolled to the loops card, beside the view.
+    await page.waitForTimeout(500);
+    await page.locator('#loop-list').scrollIntoViewIfNeeded();
+    await page.screenshot({ path: new URL('four_bar.png', out).pathname });
+    if (linkage.consoleErrors.length) throw new Error(`console errors: ${linkage.consoleErrors.join('\n')}`);
+  } finally {
+    await linkage.close();
   }
 }
 

@@ -92,7 +92,8 @@ test('loadURDF({floating: true}) describes the free joint as `achd info --floati
 test('the tree robots floating, holding their default links in 3D: wasm == native, to the bit', async () => {
   const r = rng(1503);
   const jobs = [];
-  for (const entry of indexTrees()) {
+  // The trees with default links (the four-bar has none: it is about its loop joint).
+  for (const entry of indexTrees().filter((e) => e.constraints)) {
     const load = entry.mimic ? { floating: true, mimic: entry.mimic } : { floating: true };
     const free = randomFreeJoint(r);
     const robot = achd.loadURDF(entry.text, load);

@@ -193,13 +193,14 @@ test(`every page link in README.md and the guides runs ${LINK_SECONDS} simulated
     const entry = index.robots.find((r) => r.name === settings.robot);
     assert.ok(entry, `${link}: robot ${settings.robot} is not in robots/index.json`);
     const robot = achd.loadURDF(readFileSync(join(repo, entry.urdf), 'utf8'),
-      { root: entry.root, tip: entry.tip, floating: Boolean(entry.floating) });
+      { root: entry.root, tip: entry.tip, floating: Boolean(entry.floating),
+        loops: entry.loops ? JSON.parse(readFileSync(join(repo, entry.loops), 'utf8')).loops : [] });
     const sim = robot.createSimulator(simulatorOptions(settings));
     try {
       // As web/simulation.js builds it: the start pose (a floating base raised so that its
       // default links stand at z = 0), its PD controller, the default links held in x, y,
-      // z, then the directions of the selected link (link=, else the tip or the first
-      // default link).
+      // z, then the directions of the selected link (link=, else the tip, the first
+      // default link or the last link).
       let q0 = entry.q0;
       if (robot.floating) {
         q0 = [0, 0, 0, 0, 0, 0, 1, ...entry.q0];
@@ -208,7 +209,7 @@ test(`every page link in README.md and the guides runs ${LINK_SECONDS} simulated
       }
       sim.reset(q0);
       if (entry.joint_control) sim.setJointControl({ target: q0, ...entry.joint_control });
-      const selected = settings.link ?? entry.tip ?? entry.constraints[0];
+      const selected = settings.link ?? entry.tip ?? entry.constraints?.[0] ?? robot.linkNames.at(-1);
       for (const held of entry.constraints ?? []) {
         if (held !== selected) for (const d of ['x', 'y', 'z']) sim.setDirection(d, 'hold', held);
       }

@@ -49,10 +49,12 @@ async function runParity(jobs) {
   });
 }
 
-// Every entry of robots/index.json, trees (no tip) included, with its URDF text.
+// Every entry of robots/index.json, trees (no tip) included, with its URDF text and its
+// loops file's loop joints (loopJoints, undefined without one).
 function indexRobots() {
   const index = JSON.parse(readFileSync(join(repo, 'robots/index.json'), 'utf8'));
-  return index.robots.map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8') }));
+  return index.robots.map((r) => ({ ...r, path: join(repo, r.urdf), text: readFileSync(join(repo, r.urdf), 'utf8'),
+    loopJoints: r.loops && JSON.parse(readFileSync(join(repo, r.loops), 'utf8')).loops }));
 }
 
 const kukaCase = () => ({ q: kukaEntry.q0, gravity: GRAVITY });
@@ -193,14 +195,15 @@ test('the small tree and the tree robots of robots/index.json: wasm == native, t
     c: { q: { left_knee: 0.9 }, gravity: GRAVITY, alpha: [[0, 0, 1, 0, 0, 0]], beta: [0] }, what: 'small tree chain, locked' });
   jobs.push({ ...small, load: { root: 'base', tip: 'left_foot', sideBranches: 'ignore' },
     c: { q: { left_knee: 0.9 }, gravity: GRAVITY }, options: { convention: 'kdl' }, what: 'small tree chain, kdl' });
-  // The tree robots (robots/index.json entries without a tip): at their start pose, at a
-  // random state, and with their default constraint links (the quadruped's four feet) held
-  // in 3D.
+  // The tree robots (robots/index.json entries without a tip, the four-bar with its loop
+  // joint): at their start pose, at a random state, and with their default constraint
+  // links (the quadruped's four feet) held in 3D.
   const trees = indexRobots().filter((e) => !e.tip);
   const xyz = [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]];
   for (const entry of trees) {
     const load = { root: entry.root };
     if (entry.mimic) load.mimic = entry.mimic;
+    if (entry.loopJoints) load.loops = entry.loopJoints;
     const base = { urdf: entry.path, text: entry.text, load };
     jobs.push({ ...base, c: { q: entry.q0, gravity: GRAVITY }, what: `${entry.name} q0` });
     const robot = achd.loadURDF(entry.text, load);

@@ -363,10 +363,11 @@ TEST(UrdfTrees, ErrorsNameTheLinkOrJoint) {
 }
 
 // The tree robots of robots/index.json: each loads whole with its options, its q0 inside the
-// limits, its default held links links of the model.
+// limits, its default held links links of the model; the four-bar has no held links but
+// its loop joint (its loops file's).
 TEST(UrdfTrees, IndexTreesLoadWithTheirPosesAndHeldLinks) {
   const std::vector<test::IndexedRobot> trees = test::load_tree_index(ACHD_SOURCE_DIR);
-  ASSERT_EQ(trees.size(), 4u);  // quadruped, dual-arm torso, Panda with fingers, humanoid
+  ASSERT_EQ(trees.size(), 5u);  // quadruped, dual-arm torso, Panda with fingers, humanoid, four-bar
   for (const test::IndexedRobot& r : trees) {
     SCOPED_TRACE(r.name);
     EXPECT_FALSE(r.model.has_tip());
@@ -375,13 +376,16 @@ TEST(UrdfTrees, IndexTreesLoadWithTheirPosesAndHeldLinks) {
       EXPECT_GT(r.q0[i], r.model.bodies[i].limits.lower) << r.model.bodies[i].joint_name;
       EXPECT_LT(r.q0[i], r.model.bodies[i].limits.upper) << r.model.bodies[i].joint_name;
     }
-    EXPECT_FALSE(r.constraints.empty());
+    EXPECT_NE(r.constraints.empty(), r.model.loops.empty()) << "held links, or loop joints";
     for (const std::string& link : r.constraints) EXPECT_GE(r.model.link_index(link), 0) << link;
     expect_depth_first(r.model);
   }
   EXPECT_EQ(trees[0].model.num_rates(), 12);
   EXPECT_GE(trees[1].model.num_rates(), 15);
   EXPECT_EQ(trees[2].model.num_rates(), 9);
+  EXPECT_EQ(trees[4].name, "four_bar");
+  ASSERT_EQ(trees[4].model.loops.size(), 1u);
+  EXPECT_EQ(trees[4].model.loops[0].name, "coupler_rocker");
 }
 
 }  // namespace

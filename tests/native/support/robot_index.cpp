@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "loops_json.hpp"
+
 namespace achd::test {
 
 std::string read_text(const std::string& path) {
@@ -14,6 +16,10 @@ std::string read_text(const std::string& path) {
   std::ostringstream s;
   s << f.rdbuf();
   return s.str();
+}
+
+std::vector<LoopJointSpec> read_loops_file(const std::string& path) {
+  return cli::parse_loops(read_text(path), path);
 }
 
 namespace {
@@ -33,6 +39,7 @@ std::vector<IndexedRobot> load_index(const std::string& source_dir, bool trees) 
     robot.q0 = Eigen::Map<const Eigen::VectorXd>(q0.data(), static_cast<Eigen::Index>(q0.size()));
     if (r.contains("constraints")) robot.constraints = r.at("constraints").get<std::vector<std::string>>();
     if (r.contains("mimic")) robot.options.mimic = mimic_joints_from_name(r.at("mimic"), robot.name + ": mimic");
+    if (r.contains("loops")) robot.options.loops = read_loops_file(source_dir + "/" + r.at("loops").get<std::string>());
     robot.model = load_urdf_string(robot.urdf, robot.root, robot.tip, robot.options);
     robots.push_back(std::move(robot));
   }
