@@ -102,9 +102,12 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
     s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k) +
          (b.link_b >= 0 ? finite_probe(b.point_b.data(), 3) : 0.0);
   }
-  const int loops = model.num_loop_columns();
-  if (c.loop_beta.size() && c.loop_beta.size() != loops) return false;
-  s += finite_probe(c.loop_beta.data(), c.loop_beta.size());
+  int loops = 0;  // (a model without loop joints pays nothing for them)
+  if (!model.loops.empty() || c.loop_beta.size()) {
+    loops = model.num_loop_columns();
+    if (c.loop_beta.size() && c.loop_beta.size() != loops) return false;
+    s += finite_probe(c.loop_beta.data(), c.loop_beta.size());
+  }
   return s == 0 && c.num_constraints() + loops <= capacity &&
          c.constraints.size() + model.loops.size() <= static_cast<size_t>(capacity);
 }
