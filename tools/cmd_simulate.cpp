@@ -148,33 +148,62 @@ int cmd_simulate(int argc, char** argv) {
   else out["energy_drift"] = nullptr;
   out["energy"] = {{"initial", E0}, {"final", sim.energy()}, {"max_kinetic", max_kinetic}};
   // held_drift: the tip's held directions; link_held_drift: every link's, by link name
+  // (while followed: released intervals excluded); released_s and link_released_s: how
+  // long each direction that was ever released was not followed.
   nlohmann::ordered_json drift = nlohmann::ordered_json::object(), link_drift = nlohmann::ordered_json::object();
+  nlohmann::ordered_json released = nlohmann::ordered_json::object(), link_released = nlohmann::ordered_json::object();
   for (const LinkDirections& set : sim.direction_sets()) {
-    nlohmann::ordered_json d = nlohmann::ordered_json::object();
-    const auto r = sim.max_residuals(set.link);
-    for (int k = 0; k < kNumDirections; ++k)
-      if (set.held.mode[k] == DirectionMode::Hold) d[direction_name(k)] = r[k];
-    if (d.empty()) continue;
-    if (scene.model.has_tip() && set.link == scene.model.num_links() - 1) drift = d;
-    link_drift[scene.model.links[set.link].name] = d;
+    nlohmann::ordered_json d = nlohmann::ordered_json::object(), r = nlohmann::ordered_json::object();
+    const auto res = sim.max_residuals(set.link);
+    const auto seconds = sim.released_seconds(set.link);
+    for (int k = 0; k < kNumDirections; ++k) {
+      if (set.held.mode[k] == DirectionMode::Hold) d[direction_name(k)] = res[k];
+      if (seconds[k] > 0) r[direction_name(k)] = seconds[k];
+    }
+    const std::string& name = scene.model.links[set.link].name;
+    const bool tip = scene.model.has_tip() && set.link == scene.model.num_links() - 1;
+    if (!d.empty()) {
+      if (tip) drift = d;
+      link_drift[name] = d;
+    }
+    if (!r.empty()) {
+      if (tip) released = r;
+      link_released[name] = r;
+    }
   }
   out["held_drift"] = drift;
   out["link_held_drift"] = link_drift;
-  // loop_drift: each loop joint's largest closure error (m or rad), by loop name
+  out["released_s"] = released;
+  out["link_released_s"] = link_released;
+  // loop_drift: each loop joint's largest closure error (m or rad), by loop name;
+  // loop_released_s: how long each of its directions that was ever released was not followed
   if (!scene.model.loops.empty()) {
     out["loop_drift"] = nlohmann::ordered_json::object();
-    for (size_t l = 0; l < scene.model.loops.size(); ++l)
-      out["loop_drift"][scene.model.loops[l].name] = sim.loop_drift(static_cast<int>(l));
+    nlohmann::ordered_json loop_released = nlohmann::ordered_json::object();
+    for (size_t l = 0; l < scene.model.loops.size(); ++l) {
+      const std::string& name = scene.model.loops[l].name;
+      out["loop_drift"][name] = sim.loop_drift(static_cast<int>(l));
+      const auto seconds = sim.loop_released_seconds(static_cast<int>(l));
+      for (int k = 0; k < kNumDirections; ++k)
+        if (seconds[k] > 0) loop_released[name][direction_name(k)] = seconds[k];
+    }
+    out["loop_released_s"] = loop_released;
   }
   nlohmann::ordered_json limit = nlohmann::ordered_json::object();
   for (int i = 0; i < scene.model.num_rates(); ++i)
     if (hits[i]) limit[scene.model.bodies[i].joint_name] = hits[i];
   out["limit_hits"] = limit;  // joint -> number of steps that ended at or past a limit
   nlohmann::ordered_json events = nlohmann::ordered_json::array();
-  for (const DirectionEvent& e : sim.events())
-    events.push_back({{"t", e.t}, {"step", e.step}, {"link", scene.model.links[e.link].name},
-                      {"direction", direction_name(e.direction)},
-                      {"kind", kDirectionEventKindNames[static_cast<int>(e.kind)]}, {"sigma_min", e.sigma_min}});
+  for (const DirectionEvent& e : sim.events()) {
+    nlohmann::ordered_json j = {{"t", e.t}, {"step", e.step}};
+    if (e.loop >= 0) j["loop"] = scene.model.loops[e.loop].name;
+    else j["link"] = scene.model.links[e.link].name;
+    j["direction"] = direction_name(e.direction);
+    j["kind"] = kDirectionEventKindNames[static_cast<int>(e.kind)];
+    j["sigma_min"] = e.sigma_min;
+    j["unmet"] = e.unmet;
+    events.push_back(j);
+  }
   out["events"] = events;  // direction events (Simulator::events())
   if (sim.events_not_kept()) out["events_not_kept"] = sim.events_not_kept();
   if (csv) csv->commit();

@@ -330,14 +330,18 @@ export interface DirectionEvent {
   t: number;
   /** steps completed at that state. */
   step: number;
-  /** the link whose direction it is. */
-  link: string;
+  /** the link whose direction it is (absent for a loop joint's direction). */
+  link?: string;
+  /** the loop joint whose direction (of its loop frame) it is (absent for a link's). */
+  loop?: string;
   direction: Direction;
-  /** limited: damped; released: damping dominates, not followed; resumed: out of the singular
-   * region (a released held direction then holds where the tip is). */
+  /** limited: damped with an effect; released: damping dominates, not followed; resumed:
+   * followed again for 0.05 s (a released held direction then holds where the tip is). */
   kind: DirectionEventKind;
   /** the coupling matrix's smallest singular value in that solve. */
   sigma_min: number;
+  /** |acceleration asked - delivered| along the direction in that solve (m/s^2 or rad/s^2). */
+  unmet: number;
 }
 
 /** Options of Simulator.step. */
@@ -431,6 +435,8 @@ export interface Simulator {
   limitHits(): string[];
   /** direction events since createSimulator() or reset(), oldest first (copies). */
   events(): DirectionEvent[];
+  /** how long (s) each direction of a link (omitted: the tip) was released since it was set. */
+  releasedSeconds(link?: LinkRef): Record<Direction, number>;
   /** events that happened beyond the simulator's capacity (10000) and were not kept. */
   readonly eventsNotKept: number;
   /** of the solve at the start of the last completed step (copies). */

@@ -1,6 +1,7 @@
 // The page's notice of simulation events: each time the simulator limited, released or
 // resumed a held or accelerated direction near a configuration where the robot cannot
-// follow it (sim.events(): {t, step, link, direction, kind, sigma_min}), newest last, and
+// follow it (sim.events(): {t, step, link, direction, kind, sigma_min, unmet}; a loop joint's: loop
+// instead of link), newest last, and
 // which directions are lost now (released and not yet resumed), for the toggles.
 
 // The list (and `recent`, for achdDemo.state()) keeps the newest events; a chattering
@@ -30,15 +31,17 @@ export class EventsNotice {
   // events: new events in time order, t on the page's clock.
   add(events) {
     for (const e of events) {
-      if (e.kind === 'released') this.lost.add(e.direction);
-      else if (e.kind === 'resumed') this.lost.delete(e.direction);
+      if (e.loop === undefined && e.kind === 'released') this.lost.add(e.direction);
+      else if (e.loop === undefined && e.kind === 'resumed') this.lost.delete(e.direction);
       const item = document.createElement('li');
       item.className = e.kind;
       item.dataset.direction = e.direction;
       item.dataset.kind = e.kind;
       const sigma = Number.isFinite(e.sigma_min) ? `, σmin ${e.sigma_min.toExponential(1)}` : '';
+      const unmet = e.kind !== 'resumed' && Number.isFinite(e.unmet) ? `, unmet ${e.unmet.toExponential(1)}` : '';
+      const where = e.loop !== undefined ? `loop ${e.loop}` : e.link;
       item.textContent = `t = ${e.t.toFixed(3)} s (step ${e.step}): ${e.direction} ${WHAT[e.kind] ?? e.kind}` +
-        ` at ${e.link}${sigma}`;
+        ` at ${where}${sigma}${unmet}`;
       this.list.append(item);
       this.recent.push(e);
     }

@@ -1,6 +1,7 @@
 // Direction events from JS: sim.events() of the UR5 pushed into its workspace boundary
 // (z, rx held, y at 0.5 m/s^2, the simulator's default variable_damping) equals the
-// `achd simulate` summary's "events" for the same scene, field by field.
+// `achd simulate` summary's "events" for the same scene, field by field, and
+// sim.releasedSeconds() its "released_s".
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
@@ -40,15 +41,19 @@ test('sim.events() equals the CLI summary\'s events on the UR5 pushed into its b
       assert.ok(events.some((e) => e.direction === 'y' && e.kind === 'released'), JSON.stringify(events.slice(0, 5)));
       assert.equal(events.length, summary.events.length);
       for (const [i, e] of events.entries()) {
-        assert.deepEqual(Object.keys(e), ['t', 'step', 'link', 'direction', 'kind', 'sigma_min']);
+        assert.deepEqual(Object.keys(e), ['t', 'step', 'link', 'direction', 'kind', 'sigma_min', 'unmet']);
         // The event times and kinds must match exactly; sigma_min to 1e-6 relative: the wasm
         // and native runs agree to round-off in q (simulator.test.mjs compares them to 1e-9),
         // and near the boundary sigma_min amplifies that (measured: 4e-9 by 5 s).
         const c = summary.events[i];
         assert.deepEqual([e.t, e.step, e.link, e.direction, e.kind], [c.t, c.step, c.link, c.direction, c.kind], `event ${i}`);
         assert.ok(Math.abs(e.sigma_min - c.sigma_min) <= 1e-6 * Math.abs(c.sigma_min), `event ${i}: ${e.sigma_min} vs ${c.sigma_min}`);
+        assert.ok(Math.abs(e.unmet - c.unmet) <= 1e-6 * Math.abs(c.unmet), `event ${i}: unmet ${e.unmet} vs ${c.unmet}`);
         assert.equal(e.link, 'wrist_3_link');
       }
+      const released = sim.releasedSeconds();
+      assert.ok(released.y > 0 && Math.abs(released.y - summary.released_s.y) <= 1e-12, `${released.y} vs ${summary.released_s.y}`);
+      assert.deepEqual([released.z, released.rx], [0, 0]);
       assert.equal(sim.eventsNotKept, 0);
       sim.reset(q0);
       assert.deepEqual(sim.events(), []);

@@ -1,7 +1,8 @@
 // Loop joints (loadURDF's options.loops) through the module: the four-bar's loop keeps the
 // same directions as `achd info --loops` finds, its solves (at rest, moving, with a
 // loop_beta) equal the native CLI's to the bit, its simulation ends where `achd simulate`
-// of the same scene ends with the loop closed, and bad loops get the CLI's messages.
+// of the same scene ends with the loop closed, bad loops get the CLI's messages, and a loop
+// that cannot close has the CLI's events, naming the loop.
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -90,4 +91,30 @@ test('bad loops: the CLI\'s message after the field, the module usable after', a
   }
   assert.throws(() => achd.loadURDF(text, { loops: {} }), /options\.loops must be an array of loop joints/);
   assert.equal(achd.loadURDF(text, { loops: LOOPS }).delete(), undefined);
+});
+
+test('a loop the arm cannot close: sim.events() name the loop as the CLI summary does', async () => {
+  const pin = [{ name: 'pin', link_a: 'link2', origin_a: { xyz: [1, 0, 0] }, link_b: 'base_link',
+    origin_b: { xyz: [0, 0, -2.2] }, type: 'spherical' }];
+  const planar2 = join(repo, 'robots/planar2.urdf');
+  const path = scratch.write('pin.json', JSON.stringify({ urdf: planar2, root: 'base_link', q0: [0.3, -0.6],
+    loops: pin, dt: 0.001, duration: 2 }));
+  const summary = JSON.parse(await runCli(cli, ['simulate', path]));
+  const arm = achd.loadURDF(readFileSync(planar2, 'utf8'), { loops: pin });
+  const sim = arm.createSimulator();
+  try {
+    sim.reset([0.3, -0.6]);
+    assert.equal(sim.step(2000, 1e-3), 2000);
+    const events = sim.events();
+    assert.ok(events.some((e) => e.kind === 'released'), JSON.stringify(events));
+    assert.equal(events.length, summary.events.length);
+    for (const [i, e] of events.entries()) {
+      assert.deepEqual(Object.keys(e), ['t', 'step', 'loop', 'direction', 'kind', 'sigma_min', 'unmet']);
+      const c = summary.events[i];
+      assert.deepEqual([e.t, e.loop, e.direction, e.kind], [c.t, c.loop, c.direction, c.kind], `event ${i}`);
+    }
+  } finally {
+    sim.delete();
+    arm.delete();
+  }
 });

@@ -315,18 +315,36 @@ export class Simulator extends AchdHandle {
     });
   }
   // Direction events since createSimulator() or reset() (copies), oldest first:
-  // {t, step, link, direction, kind, sigma_min} as in the CLI summary's "events".
+  // {t, step, link, direction, kind, sigma_min, unmet} as in the CLI summary's "events"
+  // ({t, step, loop, ...} for a loop joint's direction).
   events() {
     const ptr = this._live(), n = achdWasm.module._achd_sim_events(ptr, 0);
     const k = achdConstants();
-    return achdWithScratch(6 * n, (p) => {
+    return achdWithScratch(8 * n, (p) => {
       achdWasm.module._achd_sim_events(ptr, 8 * p);
       const h = achdWasm.module.HEAPF64;
       return Array.from({ length: n }, (_, i) => {
-        const e = p + 6 * i;
-        return { t: h[e], step: h[e + 1], link: this._linkNames[h[e + 2]], direction: k.directions[h[e + 3]],
-          kind: k.direction_event_kinds[h[e + 4]], sigma_min: h[e + 5] };
+        const e = p + 8 * i;
+        const out = { t: h[e], step: h[e + 1] };
+        if (h[e + 3] >= 0) out.loop = this._robot.loops[h[e + 3]].name;
+        else out.link = this._linkNames[h[e + 2]];
+        out.direction = k.directions[h[e + 4]];
+        out.kind = k.direction_event_kinds[h[e + 5]];
+        out.sigma_min = h[e + 6];
+        out.unmet = h[e + 7];
+        return out;
       });
+    });
+  }
+  // How long (s) each direction of a link (omitted: the tip) was released since it was set.
+  releasedSeconds(link) {
+    const ptr = this._live(), l = this._linkIndex(link, 'releasedSeconds');
+    const directions = achdConstants().directions;
+    return achdWithScratch(directions.length, (p) => {
+      if (achdWasm.module._achd_sim_released_seconds(ptr, l, 8 * p)) throw achdLastError();
+      const out = {};
+      directions.forEach((name, k) => { out[name] = achdWasm.module.HEAPF64[p + k]; });
+      return out;
     });
   }
   // Events that happened but were not kept (beyond the simulator's capacity).

@@ -177,6 +177,18 @@ ACHD_EXPORT int achd_sim_residuals(const achd::Simulator* sim, int link, double*
   });
 }
 
+// out: how long (s) each of the 6 directions of a link (-1: the tip) was released since
+// it was set (Simulator::released_seconds).
+ACHD_EXPORT int achd_sim_released_seconds(const achd::Simulator* sim, int link, double* out) {
+  return achd::wasm::guarded([&] {
+    if (link < 0 && !sim->model().has_tip())
+      throw achd::Error("releasedSeconds: the model is a tree (loaded without a tip); name the link whose directions these are");
+    const std::array<double, achd::kNumDirections> r =
+        sim->released_seconds(link < 0 ? sim->model().num_links() - 1 : link);
+    for (int k = 0; k < achd::kNumDirections; ++k) out[k] = r[k];
+  });
+}
+
 // out: 6 doubles per constraint block of the last solve (the links of
 // achd_sim_direction_sets with active directions, in order, then the loop joints):
 // alpha nu at the block's point, what link (a) exerts on its constraint
@@ -228,9 +240,10 @@ ACHD_EXPORT const char* achd_sim_options(const achd::Simulator* sim) {
   return json.c_str();
 }
 
-// Direction events (Simulator::events()): their count, and with out != nullptr six
-// doubles each: t, step, link (index after the root), direction (0..5), kind (index into
-// direction_event_kinds of achd_constants()), sigma_min.
+// Direction events (Simulator::events()): their count, and with out != nullptr eight
+// doubles each: t, step, link (index after the root; -1 for a loop's), loop (index into
+// the model's loops; -1 for a link's), direction (0..5), kind (index into
+// direction_event_kinds of achd_constants()), sigma_min, unmet.
 ACHD_EXPORT int achd_sim_events(const achd::Simulator* sim, double* out) {
   const std::vector<achd::DirectionEvent>& events = sim->events();
   if (out)
@@ -238,9 +251,11 @@ ACHD_EXPORT int achd_sim_events(const achd::Simulator* sim, double* out) {
       *out++ = e.t;
       *out++ = static_cast<double>(e.step);
       *out++ = e.link;
+      *out++ = e.loop;
       *out++ = e.direction;
       *out++ = static_cast<int>(e.kind);
       *out++ = e.sigma_min;
+      *out++ = e.unmet;
     }
   return static_cast<int>(events.size());
 }

@@ -48,24 +48,30 @@ struct LinkDirections {
   int link = 0;                     // Model::links index
   Vector3 point = Vector3::Zero();  // where the directions act, in the link's frame
   HeldDirections held;
-  std::array<double, kNumDirections> max_residual{};  // since each direction was set
+  std::array<double, kNumDirections> max_residual{};  // since each direction was set, while followed
 };
 
-// What became of an active direction, from the solve at the start of a step under the
-// variable_damping policy (direction_events.cpp has the thresholds):
-//   Limited:  damping acts on it (its eigen-direction of K is in the singular region);
-//   Released: damping dominates (sigma <= lambda): the direction is no longer followed;
-//   Resumed:  it has left the singular region. A released Hold direction resumes from
-//             where the tip is: its target (linear: e . p_tip) or held angle (0) is reset
-//             then, so the stabilisation does not pull the tip back to the old target.
+// What became of an active direction (a link's, or a loop joint's column), from the solve at
+// the start of a step under the variable_damping policy (direction_events.cpp has the
+// thresholds). A direction is lost while the damping acts on it and the solve leaves more
+// than w^2 1e-9 of its acceleration undelivered (w the stabilisation frequency: a constant
+// unmet acceleration u settles, under the stabilisation, as a position error u / w^2);
+// damping whose effect stays below that is no event.
+//   Limited:  lost, with the damping below the singular value it acts on;
+//   Released: lost, with the damping dominating (lambda >= sigma): not followed;
+//   Resumed:  not lost for 0.05 s. A released Hold direction resumes from where the
+//             tip is: its target (linear: e . p_tip) or held angle (0) is reset then, so
+//             the stabilisation does not pull the tip back to the old target.
 enum class DirectionEventKind { Limited, Released, Resumed };
 struct DirectionEvent {
   double t;            // time of the state whose solve showed the change (s)
   std::int64_t step;   // steps completed at that state (t = t0 + step dt)
-  int link;            // index in Model::links of the link whose direction it is
-  int direction;       // 0..5: x y z rx ry rz
+  int link;            // index in Model::links of the link whose direction it is; -1: a loop's
+  int loop;            // index in Model::loops of the loop joint whose direction it is; -1: a link's
+  int direction;       // 0..5: x y z rx ry rz (a loop's: of its loop frame)
   DirectionEventKind kind;
   double sigma_min;    // the coupling matrix's smallest singular value in that solve
+  double unmet;        // |acceleration asked - delivered| along the direction (m/s^2 or rad/s^2)
 };
 // The events a Simulator keeps (reserved at construction; later ones are counted in
 // Simulator::events_not_kept()).

@@ -95,9 +95,14 @@ class Simulator : public SimulationState {
   // constraint blocks take in nu (a link with no active direction has no block).
   const std::vector<LinkDirections>& direction_sets() const;
   // Held-direction residuals of link `link` in m or rad (0 for directions not held), and
-  // the largest |residual| of each since it was set (or since reset()).
+  // the largest |residual| of each since it was set (or since reset()) while it was
+  // followed: the intervals it was released (events()) do not count.
   std::array<double, kNumDirections> residuals(int link) const;
   std::array<double, kNumDirections> max_residuals(int link) const;
+  // How long (s) each direction of link `link` was released since it was set, and the same
+  // for the directions of loop joint `loop` (of its loop frame) since reset().
+  std::array<double, kNumDirections> released_seconds(int link) const;
+  std::array<double, kNumDirections> loop_released_seconds(int loop) const;
   // Pose of link `link` at its directions' point in the base frame, and its velocity [v; w].
   Transform link_pose(int link) const;
   Vector6 link_velocity(int link) const;

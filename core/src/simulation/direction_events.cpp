@@ -9,25 +9,48 @@ namespace achd {
 namespace {
 
 // A direction is limited as soon as the damping acts on one of its eigen-directions
-// (lambda > 0: sigma below the singular region), released when the damping dominates
-// (lambda >= sigma: sigma below 0.71 of the region), and resumed once none of its
-// eigen-directions has been damped for kResumeAfter seconds: the hysteresis that keeps a
-// robot sitting on the edge of the region from producing an event per step.
+// (lambda > 0: sigma below the singular region) with an effect: more than
+// kUnmetPosition w^2 of its acceleration undelivered (a constant unmet acceleration u
+// settles as a position error u / w^2 under the stabilisation at w, so below it the
+// direction stays within kUnmetPosition of its hold, m or rad). It is released when the
+// damping dominates (lambda >= sigma: sigma below 0.71 of the region), and resumed once
+// it has not been lost for kResumeAfter seconds: the hysteresis that keeps a robot
+// sitting on the edge of the region from producing an event per step.
 constexpr double kReleasedRatio = 1.0;
 constexpr double kResumeAfter = 0.05;
+constexpr double kUnmetPosition = 1e-9;
 
 }  // namespace
 
-DirectionEventLog::DirectionEventLog(std::size_t capacity, int max_sets)
-    : state_(max_sets), last_damped_(max_sets), ratio_(max_sets), damped_(max_sets), capacity_(capacity) {
+DirectionEventLog::DirectionEventLog(std::size_t capacity, int max_sets, int num_loops)
+    : max_sets_(max_sets),
+      state_(max_sets + num_loops),
+      last_lost_(max_sets + num_loops),
+      released_at_(max_sets + num_loops),
+      released_s_(max_sets + num_loops),
+      ratio_(max_sets + num_loops),
+      lost_(max_sets + num_loops),
+      unmet_(max_sets + num_loops),
+      capacity_(capacity) {
   events_.reserve(capacity);
   column_.reserve(kMaxConstraintColumns);
+  clear();
 }
 
 void DirectionEventLog::clear() {
   for (auto& s : state_) s.fill(State::Ok);
+  for (auto& s : released_s_) s.fill(0);
   events_.clear();
   not_kept_ = 0;
+}
+
+void DirectionEventLog::forget(int s, int k) {
+  state_[s][k] = State::Ok;
+  released_s_[s][k] = 0;
+}
+
+double DirectionEventLog::released_seconds(int s, int k, double t) const {
+  return released_s_[s][k] + (state_[s][k] == State::Released ? t - released_at_[s][k] : 0.0);
 }
 
 void DirectionEventLog::record(const DirectionEvent& e) {
@@ -35,56 +58,82 @@ void DirectionEventLog::record(const DirectionEvent& e) {
   else ++not_kept_;
 }
 
-void DirectionEventLog::update(const std::vector<LinkDirections>& sets, const Data& first, double t,
-                               std::int64_t step, std::vector<unsigned>& resumed) {
-  // The active directions in column order, and the largest lambda / sigma attributed to
-  // each (0: none of its eigen-directions is damped; inf: sigma = 0).
+void DirectionEventLog::update(const Model& model, const std::vector<LinkDirections>& sets, const Data& first,
+                               double t, std::int64_t step, double w, std::vector<unsigned>& resumed) {
+  // The active directions in column order (K's columns: the sets' directions, then the
+  // loop joints'), and per direction the largest lambda / sigma of the damped
+  // eigen-directions attributed to it (0: none; inf: sigma = 0).
   column_.clear();
-  const int nsets = static_cast<int>(sets.size());
-  for (int s = 0; s < nsets; ++s) {
-    ratio_[s].fill(0);
-    damped_[s].fill(false);
+  const int nsets = static_cast<int>(sets.size()), nloops = static_cast<int>(model.loops.size());
+  for (int s = 0; s < nsets; ++s)
     for (int k = 0; k < kNumDirections; ++k)
       if (sets[s].held.active(k)) column_.emplace_back(s, k);
+  for (int l = 0; l < nloops; ++l)
+    for (int k = 0; k < kNumDirections; ++k)
+      if (model.loops[l].directions >> k & 1u) column_.emplace_back(loop_set(l), k);
+  for (const auto& [s, k] : column_) {
+    ratio_[s][k] = 0;
+    lost_[s][k] = false;
+    unmet_[s][k] = 0;
   }
-  // K's columns: the sets' directions, then the loop joints' (Case::loop_beta's), which
-  // have no direction of a link to attribute to.
   const Eigen::Index nc = static_cast<Eigen::Index>(column_.size());
-  const Eigen::Index ndamped = first.damped.rows() >= nc ? first.damped.cols() : 0;
+  const Eigen::Index ndamped = first.damped.rows() == nc ? first.damped.cols() : 0;
+  if (ndamped) {
+    // What the solve leaves undelivered along column j, in m/s^2 or rad/s^2: the
+    // residual of K nu = rhs, r = K_s nu' - rhs' in the scaled columns alpha_j s_j
+    // (nu' = nu / s), divided by s_j.
+    const Data::Workspace& ws = first.workspace;
+    for (Eigen::Index j = 0; j < nc; ++j) {
+      double r = -ws.rhs[j];
+      for (Eigen::Index i = 0; i < nc; ++i) r += first.K(j, i) * (first.nu[i] / ws.alpha_scale[i]);
+      const auto [s, k] = column_[j];
+      unmet_[s][k] = std::abs(r / ws.alpha_scale[j]);
+    }
+  }
+  const double unmet_tolerance = kUnmetPosition * w * w;
   for (Eigen::Index j = 0; j < ndamped; ++j) {
     Eigen::Index column = 0;
     first.damped.col(j).cwiseAbs().maxCoeff(&column);
-    if (column >= nc) continue;
     const auto [s, k] = column_[column];
     const double sigma = first.damped_sigma[j], lambda = first.damped_lambda[j];
     const double r = sigma > 0 ? lambda / sigma : std::numeric_limits<double>::infinity();
-    damped_[s][k] = true;
+    if (!(unmet_[s][k] > unmet_tolerance)) continue;  // damped, to no effect: still followed
+    lost_[s][k] = true;
     ratio_[s][k] = std::max(ratio_[s][k], r);
   }
   bool any = false;
-  DirectionEvent e{t, step, 0, 0, DirectionEventKind::Limited, 0.0};
-  for (int s = 0; s < nsets; ++s) {
-    resumed[s] = 0;
-    std::array<State, kNumDirections>& state = state_[s];
+  DirectionEvent e{t, step, -1, -1, 0, DirectionEventKind::Limited, 0.0, 0.0};
+  for (int s = 0; s < nsets; ++s) resumed[s] = 0;
+  for (int s = 0; s < nsets + nloops; ++s) {
+    const bool loop = s >= nsets;
+    const int row = loop ? loop_set(s - nsets) : s;
+    std::array<State, kNumDirections>& state = state_[row];
     for (int k = 0; k < kNumDirections; ++k) {
-      if (!sets[s].held.active(k)) {
+      const bool active = loop ? (model.loops[s - nsets].directions >> k & 1u) : sets[s].held.active(k);
+      if (!active) {
         state[k] = State::Ok;
         continue;
       }
-      if (damped_[s][k]) last_damped_[s][k] = t;
+      if (lost_[row][k]) last_lost_[row][k] = t;
       State next = state[k];
-      if (ratio_[s][k] >= kReleasedRatio) next = State::Released;
-      else if (state[k] == State::Ok && damped_[s][k]) next = State::Limited;
-      else if (state[k] != State::Ok && !damped_[s][k] && t - last_damped_[s][k] >= kResumeAfter) next = State::Ok;
+      if (ratio_[row][k] >= kReleasedRatio) next = State::Released;
+      else if (state[k] == State::Ok && lost_[row][k]) next = State::Limited;
+      else if (state[k] != State::Ok && !lost_[row][k] && t - last_lost_[row][k] >= kResumeAfter) next = State::Ok;
       if (next == state[k]) continue;
       if (!any) e.sigma_min = sigma_min(first);  // computed once, only when something changed
       any = true;
-      e.link = sets[s].link;
+      e.link = loop ? -1 : sets[s].link;
+      e.loop = loop ? s - nsets : -1;
       e.direction = k;
+      e.unmet = unmet_[row][k];
       e.kind = next == State::Ok ? DirectionEventKind::Resumed
                : next == State::Limited ? DirectionEventKind::Limited : DirectionEventKind::Released;
       record(e);
-      if (state[k] == State::Released && next == State::Ok) resumed[s] |= 1u << k;
+      if (next == State::Released) released_at_[row][k] = t;
+      if (state[k] == State::Released) {
+        released_s_[row][k] += t - released_at_[row][k];
+        if (!loop && next == State::Ok) resumed[s] |= 1u << k;
+      }
       state[k] = next;
     }
   }

@@ -9,7 +9,7 @@
 
 namespace achd {
 
-DirectionSets::DirectionSets(const Model& model) : events_(kMaxDirectionEvents, model.num_links()) {
+DirectionSets::DirectionSets(const Model& model) : events_(kMaxDirectionEvents, model.num_links(), static_cast<int>(model.loops.size())) {
   // room for every link, so that setting a direction never moves a set and no step allocates
   const int links = model.num_links();
   sets_.reserve(links);
@@ -86,13 +86,14 @@ void DirectionSets::record_residuals(const Model& model, const std::vector<Trans
     if (!set.held.count()) continue;
     const TipState at = link_state(model, X0, v, set.link, set.point);
     for (int k = 0; k < kNumDirections; ++k)
-      set.max_residual[k] = std::max(set.max_residual[k],
+      if (!events_.released(static_cast<int>(s), k))
+        set.max_residual[k] = std::max(set.max_residual[k],
                                      std::abs(direction_error(set.held, k, at, angles.data() + s * kNumDirections)));
   }
 }
 
-bool DirectionSets::update_events(const Data& first, double t, std::int64_t step) {
-  events_.update(sets_, first, t, step, anchored_);
+bool DirectionSets::update_events(const Model& model, const Data& first, double t, std::int64_t step, double w) {
+  events_.update(model, sets_, first, t, step, w, anchored_);
   bool anchor = false;
   for (size_t s = 0; s < sets_.size(); ++s) {
     anchored_[s] |= yielding_directions(sets_[s].held);

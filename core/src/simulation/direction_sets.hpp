@@ -42,14 +42,15 @@ class DirectionSets {
   // direction: its rate is e . w), else 0 (its rate and value stay 0).
   const std::vector<char>& integrated_angles() const { return integrated_; }
 
-  // The largest |residual| of each held direction, with the residuals of the state whose
-  // body poses and velocities are X0, v.
+  // The largest |residual| of each held direction while it is followed (not released),
+  // with the residuals of the state whose body poses and velocities are X0, v.
   void record_residuals(const Model& model, const std::vector<Transform>& X0, const std::vector<Vector6>& v,
                         const HeldAngles& angles);
   // After a step whose first solve is `first` (of the state at t after `step` steps): the
   // events of the directions, and whether some direction is to be re-anchored (anchored():
   // resumed ones, and held ones that yield to a driver).
-  bool update_events(const Data& first, double t, std::int64_t step);
+  // w: the stabilisation frequency of the held directions (rad/s).
+  bool update_events(const Model& model, const Data& first, double t, std::int64_t step, double w);
   std::vector<unsigned>& anchored() { return anchored_; }
   const DirectionEventLog& events() const { return events_; }
 

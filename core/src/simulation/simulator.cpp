@@ -190,7 +190,7 @@ void Simulator::advance(double dt, double w_n, Data& first) {
 // (resumed ones, and held ones that yield to a driver, continue from where their point is).
 void Simulator::finish_step(const Data& first) {
   current_ = 1 - current_;
-  const bool anchor = directions_->update_events(first, t, steps_taken_);
+  const bool anchor = directions_->update_events(model_, first, t, steps_taken_, options_.stabilisation_frequency);
   ++steps_taken_;
   t = clock.advance();
   follow_trajectories(t);

@@ -10,6 +10,7 @@
 #include "achd/simulator.hpp"
 #include "direction_sets.hpp"
 #include "held_directions.hpp"
+#include "simulator_checks.hpp"
 #include "message_number.hpp"
 #include "tip_kinematics.hpp"
 
@@ -116,6 +117,22 @@ std::array<double, kNumDirections> Simulator::max_residuals(int link) const {
   const LinkDirections* set = directions_->find(link);
   if (set)
     for (int k = 0; k < kNumDirections; ++k) r[k] = std::max(std::abs(r[k]), set->max_residual[k]);
+  return r;
+}
+
+std::array<double, kNumDirections> Simulator::released_seconds(int link) const {
+  std::array<double, kNumDirections> r{};
+  const LinkDirections* set = directions_->find(link);
+  if (!set) return r;
+  const int s = static_cast<int>(set - directions_->sets().data());
+  for (int k = 0; k < kNumDirections; ++k) r[k] = directions_->events().released_seconds(s, k, t);
+  return r;
+}
+
+std::array<double, kNumDirections> Simulator::loop_released_seconds(int loop) const {
+  check_loop(model_, loop, "loop_released_seconds");
+  std::array<double, kNumDirections> r{};
+  for (int k = 0; k < kNumDirections; ++k) r[k] = directions_->events().loop_released_seconds(loop, k, t);
   return r;
 }
 

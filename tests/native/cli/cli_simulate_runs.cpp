@@ -255,7 +255,9 @@ TEST_F(CliSimulateRuns, FailedRunNamesStepTimeAndDirectionsAndLeavesNoFile) {
 }
 
 // The same UR5 scene with the simulator's default policy (variable_damping) runs its 5 s
-// and lists the loss of y in the summary's "events"; a wrong "policy" names the field.
+// and lists the loss of y in the summary's "events", each with the acceleration the solve
+// left undelivered (a released one more than w^2 1e-9 = 1e-5 m/s^2 at the default
+// stabilisation), and how long y was released; a wrong "policy" names the field.
 // Before: the run failed at 2.183 s, and "policy" was an unknown field.
 TEST_F(CliSimulateRuns, BoundaryRunReportsDirectionEventsInTheSummary) {
   const std::string fields = R"({"urdf": ")" ACHD_SOURCE_DIR R"(/robots/ur5.urdf",
@@ -270,16 +272,48 @@ TEST_F(CliSimulateRuns, BoundaryRunReportsDirectionEventsInTheSummary) {
   for (const auto& e : summary["events"]) {
     std::vector<std::string> keys;
     for (const auto& item : e.items()) keys.push_back(item.key());
-    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "link", "direction", "kind", "sigma_min"}));
+    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "link", "direction", "kind", "sigma_min", "unmet"}));
     EXPECT_EQ(e["link"], "wrist_3_link");
+    if (e["kind"] != "resumed") EXPECT_GT(e["unmet"].get<double>(), 1e-5) << e.dump();
     y_released = y_released || (e["direction"] == "y" && e["kind"] == "released");
   }
   EXPECT_TRUE(y_released) << summary["events"].dump();
+  ASSERT_TRUE(summary["released_s"].contains("y")) << summary.dump();
+  const double released_s = summary["released_s"]["y"].get<double>();
+  EXPECT_GT(released_s, 0);
+  EXPECT_LE(released_s, 5.0);
+  EXPECT_EQ(summary["link_released_s"]["wrist_3_link"]["y"], released_s);
   EXPECT_FALSE(summary.contains("events_not_kept"));
   expect_error(run({"simulate", write("bad.json", fields + R"(, "policy": "stiff"})")}),
                {"bad.json: policy: expected 'truncate', 'damped' or 'variable_damping', got 'stiff'"});
   expect_error(run({"simulate", write("bad2.json", fields + R"(, "singular_region": 0})")}),
                {"bad2.json: singular_region must be > 0"});
+}
+
+// A loop joint the robot cannot close (the planar arm's tip pinned 2.2 m from its base, 0.2
+// m beyond its reach): the summary's events name the loop ("loop" instead of "link"), and
+// "loop_released_s" says how long each of its directions was not followed.
+TEST_F(CliSimulateRuns, LoopEventsNameTheLoop) {
+  const std::string scene = R"({"urdf": ")" ACHD_SOURCE_DIR R"(/robots/planar2.urdf", "root": "base_link",
+    "q0": [0.3, -0.6], "dt": 0.001, "duration": 2,
+    "loops": [{"name": "pin", "link_a": "link2", "origin_a": {"xyz": [1, 0, 0]},
+               "link_b": "base_link", "origin_b": {"xyz": [0, 0, -2.2]}, "type": "spherical"}]})";
+  const CliRun r = run({"simulate", write("pin.json", scene)});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::ordered_json summary = nlohmann::ordered_json::parse(r.out);
+  ASSERT_FALSE(summary["events"].empty()) << r.out;
+  for (const auto& e : summary["events"]) {
+    std::vector<std::string> keys;
+    for (const auto& item : e.items()) keys.push_back(item.key());
+    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "loop", "direction", "kind", "sigma_min", "unmet"}));
+    EXPECT_EQ(e["loop"], "pin");
+  }
+  EXPECT_TRUE(summary["released_s"].empty());
+  ASSERT_TRUE(summary["loop_released_s"].contains("pin")) << r.out;
+  for (const auto& [direction, seconds] : summary["loop_released_s"]["pin"].items()) {
+    EXPECT_GT(seconds.get<double>(), 0) << direction;
+    EXPECT_LE(seconds.get<double>(), 2.0) << direction;
+  }
 }
 
 // A whole tree on a floating base: robots/scenes/quadruped_stand.json (feet held through
