@@ -26,7 +26,7 @@ import { moduleOffer } from './module_offer.js';
 import { PushDrag } from './push_drag.js';
 import { Readouts } from './readouts.js';
 import { DIRECTIONS, GRAVITY, adoptOffer, checkDirection, defaultSettings, formatHash, hashOwn, hashRobot, motionFrom, parseHash,
-  sameOwn } from './settings.js';
+  sameClosed, sameOwn } from './settings.js';
 import { Simulation, jointControlOf } from './simulation.js';
 import { TorqueBars } from './torque_bars.js';
 import { UrdfUpload } from './urdf_upload.js';
@@ -447,6 +447,8 @@ function reloadLoops(closed) {
   torqueBars.setRobot(sim.robot);
   sliders.setRobot(sim.robot, sim.q);
   showLoops();
+  page.settings.closed = closed;
+  writeHash();
 }
 
 // The loops card: each loop joint of the robot shown (its links, type and held
@@ -654,6 +656,7 @@ function loadRobot(source, { keepDirections = false } = {}) {
   robotSelect.value = source.name;
   errorBox.hidden = true;
   showWarnings(sim.robot.warnings);
+  page.settings.closed = source.closed ?? [];
   if (source.name === CUSTOM) {
     page.ownSource = source;
     shareOwn(sim, source, looked);
@@ -932,9 +935,10 @@ window.addEventListener('hashchange', () => {
   const { settings, problems } = parseHash(location.hash, defaultSettings(page.index.default, page.offer), page.offer);
   const robot = settings.robot;
   // The robot and own URDF shown stay in the settings until another one has loaded.
-  const linked = settings.own;
+  const linked = settings.own, closed = settings.closed;
   settings.robot = page.settings.robot;
   settings.own = page.settings.own;
+  settings.closed = page.settings.closed;
   // Another selected link: the robot is built again with it (its directions, the others'
   // defaults), as when the page opens on the link.
   const shownLink = page.sim && page.sim.selected !== page.sim.robot.tip ? page.sim.selected : null;
@@ -945,8 +949,20 @@ window.addEventListener('hashchange', () => {
   if (problems.length) showError(`ignored in the URL: ${problems.join('; ')}`);
   if (robot === CUSTOM && linked && !sameOwn(linked, page.settings.own)) openLinkedUrdf(linked);
   else if (robot !== page.settings.robot || otherLink) selectRobot(robot, { keepDirections: true });
+  else if (!sameClosed(closed, page.settings.closed)) reloadLinkedLoops(closed);
   else writeHash();
 });
+
+// The loops an edited link closes on the robot shown; the loader's refusal is shown and
+// the robot runs on as it was.
+function reloadLinkedLoops(closed) {
+  try {
+    reloadLoops(closed);
+  } catch (err) {
+    showError(`ignored in the URL: closed: ${err.message}`);
+    writeHash();
+  }
+}
 
 // The source of the own URDF a link names (urdf=, root=, tip=, base=, and the loader's
 // options mimic=, inertia=, srdf=, pose=), with the mesh files this browser keeps for it
@@ -1024,6 +1040,19 @@ function indexSource(entry, text, loops) {
     jointControl: jointControlOf(entry.joint_control), loops };
 }
 
+// A robot of the link with the loops the link closed (closed=); when the loader refuses
+// them, the robot without them, and why in problems.
+function loadWithClosed(source, problems) {
+  const closed = page.settings.closed;
+  if (!closed.length) return loadRobot(source, { keepDirections: true });
+  try {
+    loadRobot({ ...source, closed }, { keepDirections: true });
+  } catch (err) {
+    problems.push(`closed: ${err.message}`);
+    loadRobot(source, { keepDirections: true });
+  }
+}
+
 async function start() {
   const [achd, { index, problems, entry, text, loops }] = await Promise.all([loadModule(), readIndexAndRobot()]);
   page.achd = achd;
@@ -1037,7 +1066,7 @@ async function start() {
   controls.offer(page.offer);
   controls.show(page.settings, page.playing);
   try {
-    loadRobot(entry.name === CUSTOM ? { ...entry, text } : indexSource(entry, text, loops), { keepDirections: true });
+    loadWithClosed(entry.name === CUSTOM ? { ...entry, text } : indexSource(entry, text, loops), problems);
   } catch (err) {
     // An own URDF of the link that does not load: the default robot instead, and why.
     if (entry.name !== CUSTOM) throw err;

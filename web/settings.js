@@ -9,7 +9,10 @@
 // robot=custom&urdf=<deflate:… or local:…, web/urdf_share.js>&root=<link>&tip=<link> (no
 // tip: the whole robot; base=floating: on a floating base, standing on its feet) and the
 // other options the page gave loadURDF: mimic=, inertia=, srdf=<deflate:… or local:…, the
-// SRDF's group_states> and pose=<its group_state the robot starts from>.
+// SRDF's group_states> and pose=<its group_state the robot starts from>. The loop joints
+// the user closed on the page are closed=<JSON: [[name, link_a, link_b, xyz, rpy], ...]>,
+// each a fixed loop joint whose frame a is link_a's frame and whose frame b sits at xyz,
+// rpy in link_b's frame (web/loop_pick.js).
 // Values are the scene files' words (achd.constants); the simulator's option keys are
 // the same words in camelCase. Which directions, effects, integrators and policies exist,
 // which integrators are adaptive, gravity and the defaults are the module's (`offer`,
@@ -71,6 +74,8 @@ export function defaultSettings(robot, offer) {
     yielding: Object.fromEntries(DIRECTIONS.map((d) => [d, false])),
     // joint name -> {motion, position, velocity, amplitude, frequency, phase} in page time
     prescribed: {},
+    // the loop joints the user closed on the page (loadURDF's loops, web/loop_pick.js)
+    closed: [],
     // an own URDF's place in the link: {ref (urdf=), root, tip (null: the whole robot),
     // floating, mimic, inertia, srdf (srdf=: its SRDF's ref), pose} (OWN_OPTIONS: absent
     // or null when not given), or null
@@ -167,6 +172,9 @@ export function formatHash(s) {
   if (dirs.length) params.set('dirs', dirs.join(','));
   const yielding = DIRECTIONS.filter((d) => s.yielding[d]);
   if (yielding.length) params.set('yield', yielding.join(','));
+  if (s.closed.length) {
+    params.set('closed', JSON.stringify(s.closed.map((l) => [l.name, l.link_a, l.link_b, l.origin_b.xyz, l.origin_b.rpy])));
+  }
   // URLSearchParams escapes ':' and ','; they are legal in a fragment and easier to read.
   return '#' + params.toString().replaceAll('%3A', ':').replaceAll('%2C', ',');
 }
@@ -248,5 +256,39 @@ export function parseHash(hash, defaults, offer) {
       else problems.push(`yield: unknown direction "${name}"`);
     }
   }
+  if (params.has('closed')) {
+    try {
+      s.closed = closedLoops(params.get('closed'));
+    } catch (err) {
+      problems.push(`closed: ${err.message}`);
+    }
+  }
   return { settings: s, problems };
+}
+
+// Whether two lists of closed loops (settings.closed) are the same.
+export function sameClosed(a, b) {
+  return JSON.stringify(a) === JSON.stringify(b);
+}
+
+// The loops of a closed= value: fixed loop joints as web/loop_pick.js makes them. Throws
+// an Error saying what is wrong with the value.
+function closedLoops(value) {
+  let list;
+  try {
+    list = JSON.parse(value);
+  } catch {
+    throw new Error('expected a JSON list of [name, link_a, link_b, [x, y, z], [roll, pitch, yaw]]');
+  }
+  if (!Array.isArray(list)) throw new Error('expected a JSON list of [name, link_a, link_b, [x, y, z], [roll, pitch, yaw]]');
+  const triple = (v) => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number' && Number.isFinite(x));
+  return list.map((item, i) => {
+    if (!Array.isArray(item) || item.length !== 5 || !item.slice(0, 3).every((x) => typeof x === 'string' && x) ||
+        !triple(item[3]) || !triple(item[4])) {
+      throw new Error(`loop ${i}: expected [name, link_a, link_b, [x, y, z], [roll, pitch, yaw]] with finite numbers`);
+    }
+    const [name, linkA, linkB, xyz, rpy] = item;
+    return { name, type: 'fixed', link_a: linkA, origin_a: { xyz: [0, 0, 0], rpy: [0, 0, 0] },
+      link_b: linkB, origin_b: { xyz, rpy } };
+  });
 }

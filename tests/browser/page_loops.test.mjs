@@ -6,6 +6,9 @@
 //   are then: the page goes on from the same state (q, qd, time), the loop stays closed
 //   within 1e-6 (once the links' relative velocity at the click is taken out, 0.5 s) over
 //   5 s while the arm moves under gravity, and Open removes it again;
+// - a closed loop is part of the page's link (closed=): the link opens the robot with the
+//   same loop joint, which the stabilisation closes from the link's start pose; Open takes
+//   it out of the link; a closed= the page cannot read is named and the robot runs on;
 // - a loop between two links on the ends of fixed joints (the mixed chain's link_c and
 //   spacer2), whose every direction the tree holds already: the loader's message is shown
 //   in the page's error area and the robot runs on without it.
@@ -161,5 +164,51 @@ test('a loop whose every direction the tree holds is refused, the robot runs on'
     assert.deepEqual(consoleErrors, []);
   } finally {
     await session.close();
+  }
+});
+
+test('a loop closed on the page is in its link, and the link opens the robot with it', async () => {
+  const first = await openPage({ hash: '#robot=kuka_lwr4&integrator=rk4&dt=0.001' });
+  let hash, loops;
+  try {
+    await first.page.evaluate(() => window.achdDemo.pause());
+    await first.page.evaluate(() => window.achdDemo.step(300));
+    await first.page.evaluate(() => window.achdDemo.closeLoop('lwr_link_4', 'lwr_link_6'));
+    hash = await first.page.evaluate(() => location.hash);
+    loops = (await first.page.evaluate(() => window.achdDemo.robotSource())).loops;
+    assert.match(hash, /&closed=/);
+    assert.equal(loops.length, 1);
+    assert.deepEqual(first.consoleErrors, []);
+  } finally {
+    await first.close();
+  }
+  const second = await openPage({ hash });
+  const { page, consoleErrors } = second;
+  try {
+    await page.evaluate(() => window.achdDemo.pause());
+    assert.deepEqual((await page.evaluate(() => window.achdDemo.robotSource())).loops, loops);
+    const s0 = await state(page);
+    assert.equal(s0.error, null);
+    assert.deepEqual(s0.loops.map((l) => [l.name, l.picked]), [['lwr_link_4-lwr_link_6', true]]);
+    // The link starts from the robot's start pose, not where the loop was closed: the
+    // stabilisation closes it.
+    await page.evaluate(() => window.achdDemo.step(1000));
+    const { now } = (await drift(page))['lwr_link_4-lwr_link_6'];
+    assert.ok(now <= CLOSURE, `closure error ${now} m after 1 s`);
+    await page.click('#loop-list button[data-open="lwr_link_4-lwr_link_6"]');
+    assert.doesNotMatch(await page.evaluate(() => location.hash), /closed=/);
+    assert.deepEqual(consoleErrors, []);
+  } finally {
+    await second.close();
+  }
+  const bad = await openPage({ hash: '#robot=kuka_lwr4&closed=[["x","lwr_link_4"]]' });
+  try {
+    assert.match(await bad.page.locator('#page-error-text').textContent(),
+      /ignored in the URL: closed: loop 0: expected \[name, link_a, link_b/);
+    const s = await state(bad.page);
+    assert.deepEqual(s.loops, []);
+    assert.equal(s.robot, 'kuka_lwr4');
+  } finally {
+    await bad.close();
   }
 });
