@@ -431,6 +431,8 @@ export interface Simulator {
   /** each loop joint's closure error (m or rad, the largest over its held directions): now,
    * and the largest since reset(). */
   loopDrift(): Record<string, { now: number; max: number }>;
+  /** how long (s) each direction of each loop joint (of its loop frame) was released since reset(). */
+  loopReleasedSeconds(): Record<string, Record<Direction, number>>;
   /** names of the joints at or past a limit after the last step (a copy; [] under limits 'ignore'). */
   limitHits(): string[];
   /** direction events since createSimulator() or reset(), oldest first (copies). */

@@ -113,6 +113,11 @@ test('a loop the arm cannot close: sim.events() name the loop as the CLI summary
       const c = summary.events[i];
       assert.deepEqual([e.t, e.loop, e.direction, e.kind], [c.t, c.loop, c.direction, c.kind], `event ${i}`);
     }
+    const released = sim.loopReleasedSeconds().pin;
+    for (const [direction, seconds] of Object.entries(released)) {
+      assert.ok(Math.abs(seconds - (summary.loop_released_s.pin[direction] ?? 0)) <= 1e-12, `${direction}: ${seconds}`);
+    }
+    assert.ok(Object.values(released).some((s) => s > 0));
   } finally {
     sim.delete();
     arm.delete();

@@ -301,6 +301,19 @@ export class Simulator extends AchdHandle {
     });
     return out;
   }
+  // How long (s) each direction of each loop joint (of its loop frame) was released since
+  // reset(): {loop name: {x, y, z, rx, ry, rz}}.
+  loopReleasedSeconds() {
+    const ptr = this._live(), out = {}, directions = achdConstants().directions;
+    this._robot.loops.forEach((loop, l) => {
+      const seconds = achdWithScratch(directions.length, (p) => {
+        if (achdWasm.module._achd_sim_loop_released_seconds(ptr, l, 8 * p)) throw achdLastError();
+        return Object.fromEntries(directions.map((name, k) => [name, achdWasm.module.HEAPF64[p + k]]));
+      });
+      Object.defineProperty(out, loop.name, { value: seconds, enumerable: true, writable: true, configurable: true });
+    });
+    return out;
+  }
   energy() {
     const ptr = this._live();
     const kinetic = achdWasm.module._achd_sim_kinetic_energy(ptr), potential = achdWasm.module._achd_sim_potential_energy(ptr);

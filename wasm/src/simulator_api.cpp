@@ -189,6 +189,15 @@ ACHD_EXPORT int achd_sim_released_seconds(const achd::Simulator* sim, int link, 
   });
 }
 
+// out: how long (s) each of the 6 directions of loop joint `loop` (of its loop frame) was
+// released since reset (Simulator::loop_released_seconds).
+ACHD_EXPORT int achd_sim_loop_released_seconds(const achd::Simulator* sim, int loop, double* out) {
+  return achd::wasm::guarded([&] {
+    const std::array<double, achd::kNumDirections> r = sim->loop_released_seconds(loop);
+    for (int k = 0; k < achd::kNumDirections; ++k) out[k] = r[k];
+  });
+}
+
 // out: 6 doubles per constraint block of the last solve (the links of
 // achd_sim_direction_sets with active directions, in order, then the loop joints):
 // alpha nu at the block's point, what link (a) exerts on its constraint

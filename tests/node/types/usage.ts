@@ -88,6 +88,10 @@ export async function usage(): Promise<void> {
   sim.setDirectionPoint('foot', [0, 0, -0.02]);
   sim.setDirectionWeights('z', { wFext: 0 }, 'foot');
   const footHeld: number | null = sim.residuals('foot').x;
+  const footReleased: number = sim.releasedSeconds('foot').x;
+  const loopReleased: Record<string, Record<string, number>> = sim.loopReleasedSeconds();
+  const unmet: number[] = sim.events().map((e) => e.unmet);
+  const where: (string | undefined)[] = sim.events().map((e) => e.loop ?? e.link);
   const mode: 'free' | 'hold' | 'accelerate' = sim.directionMode('x', 'foot');
   const sets: { link: string; directions: number }[] = sim.directionLinks();
   const wrenches: Record<string, number[]> = sim.constraintWrenches();
