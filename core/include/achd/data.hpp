@@ -121,6 +121,7 @@ struct Data {
     // odd count 0 (the columns are held two to a pair: constraint_pairs.hpp)
     std::vector<double> ez;
     std::vector<int> path;          // scratch: the bodies from one body to the base
+    std::vector<unsigned char> walked;  // scratch: 1 at the bodies a walk has passed, else 0
     // Driver priorities (driver_priorities.cpp): per body the bias of f_ext alone and of
     // ff_torques alone (6 + 6), and their u / D (2 per body).
     std::vector<Eigen::Matrix<double, 12, 1>> driver_bias;

@@ -194,21 +194,20 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
   return sums.store(d.K, d.G0, s.column);
 }
 
-// The off-diagonal block K_st (and K_ts) of two sources: over the common part of their
-// paths. Returns its finite probe.
+// The off-diagonal block K_st (and K_ts) of two sources of NS and NT columns: over the
+// common part of their paths, each entry summed in a register in the order of the walk.
+// Returns its finite probe.
+template <int NS, int NT>
 double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
   const Data::Workspace& w = d.workspace;
-  const int ss = s.columns + (s.columns & 1), st = t.columns + (t.columns & 1);
-  double probe = 0;
-  for (int k = 0; k < s.columns; ++k)
-    for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) = 0;
+  double K[NS][NT] = {};
   const int last = last_body(d);
   auto add = [&](int i) {
-    const double* es = w.ez.data() + s.ez + i * ss;
-    const double* et = w.ez.data() + t.ez + i * st;
-    for (int k = 0; k < s.columns; ++k) {
+    const double* es = w.ez.data() + s.ez + i * ez_stride<NS>();
+    const double* et = w.ez.data() + t.ez + i * ez_stride<NT>();
+    for (int k = 0; k < NS; ++k) {
       const double a = es[k] * w.Dinv[i];
-      for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) += a * et[l];
+      for (int l = 0; l < NT; ++l) K[k][l] += a * et[l];
     }
   };
   if (!s.relative && !t.relative) {
@@ -220,17 +219,23 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
     int tops[4], n = 0;
     for (int x = 0; x < (s.relative ? 2 : 1); ++x)
       for (int y = 0; y < (t.relative ? 2 : 1); ++y) tops[n++] = common_ancestor(model, ends_s[x], ends_t[y]);
-    for (int k = 0; k < n; ++k) {
-      int walked = -1;  // the lowest body of this path already walked
-      for (int j = 0; j < k; ++j) walked = std::max(walked, common_ancestor(model, tops[k], tops[j]));
-      for (int i = tops[k]; i > walked && i >= last; i = model.bodies[i].parent) add(i);
-    }
+    // (each body walked is marked, and unmarked after: the walks before cover the ancestors
+    // of their tops, so a path stops at the first marked body, its lowest common ancestor
+    // with an earlier top)
+    unsigned char* walked = d.workspace.walked.data();
+    for (int k = 0; k < n; ++k)
+      for (int i = tops[k]; i >= last && !walked[i]; i = model.bodies[i].parent) {
+        add(i);
+        walked[i] = 1;
+      }
+    for (int k = 0; k < n; ++k)
+      for (int i = tops[k]; i >= last && walked[i]; i = model.bodies[i].parent) walked[i] = 0;
   }
-  for (int k = 0; k < s.columns; ++k)
-    for (int l = 0; l < t.columns; ++l) {
-      const double x = d.K(s.column + k, t.column + l);
-      d.K(t.column + l, s.column + k) = x;
-      probe += x * 0.0;
+  double probe = 0;
+  for (int k = 0; k < NS; ++k)
+    for (int l = 0; l < NT; ++l) {
+      d.K(s.column + k, t.column + l) = d.K(t.column + l, s.column + k) = K[k][l];
+      probe += K[k][l] * 0.0;
     }
   return probe;
 }
@@ -299,7 +304,14 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
       return prescribed ? own_coupling<NC, true>(model, d, c, s) : own_coupling<NC, false>(model, d, c, s);
     });
   for (size_t s = 0; s < w.sources.size(); ++s)
-    for (size_t t = s + 1; t < w.sources.size(); ++t) probe += mutual_coupling(model, d, w.sources[s], w.sources[t]);
+    for (size_t t = s + 1; t < w.sources.size(); ++t) {
+      const ConstraintSource &a = w.sources[s], &b = w.sources[t];
+      probe += with_constraint_count(a.columns, [&](auto ns) {
+        return with_constraint_count(b.columns, [&](auto nt) {
+          return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b);
+        });
+      });
+    }
   if (w.free_joint_step) probe += free_joint_coupling(d);
   return probe;
 }

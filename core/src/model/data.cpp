@@ -39,6 +39,7 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   w.sources.reserve(constraint_capacity + 1);  // the tip's and one per block with columns
   // A block of k columns keeps k rounded up to even per body, at most 2 k.
   w.path.assign(n, 0);
+  w.walked.assign(n, 0);
   w.driver_bias.assign(n, Eigen::Matrix<double, 12, 1>::Zero());
   w.driver_qdd.assign(2 * n, 0.0);
   w.virtual_force.assign(n, Vector6::Zero());
