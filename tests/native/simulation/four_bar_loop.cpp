@@ -49,8 +49,8 @@ double crank(const achd::Model& m, const Eigen::VectorXd& q) { return q[m.joint_
 TEST(FourBarLoop, PlanarLoopKeepsTheTwoInPlaneDirections) {
   const achd::Model m = four_bar();
   ASSERT_EQ(m.loops.size(), 1u);
-  EXPECT_EQ(achd::loop_directions_text(m.loops[0].directions), "x y");
-  EXPECT_EQ(achd::loop_directions_text(m.loops[0].dropped), "z rx ry");
+  EXPECT_EQ(achd::loop_direction_names(m.loops[0].directions), (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(achd::loop_direction_names(m.loops[0].dropped), (std::vector<std::string>{"z", "rx", "ry"}));
   EXPECT_EQ(m.num_loop_columns(), 2);
 }
 
