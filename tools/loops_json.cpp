@@ -62,13 +62,6 @@ LoopJointSpec loop_spec(const json& j, const std::string& where) {
 
 std::string link_name(const Model& m, int link) { return link < 0 ? m.root_name : m.links[link].name; }
 
-std::string names(unsigned directions) {
-  std::string s = "[";
-  for (int k = 0; k < kNumDirections; ++k)
-    if ((directions >> k) & 1u) s += std::string(s.size() > 1 ? ", " : "") + "\"" + direction_name(k) + "\"";
-  return s + "]";
-}
-
 }  // namespace
 
 std::vector<LoopJointSpec> loop_specs(const json& loops, const std::string& field) {
@@ -96,8 +89,8 @@ std::string loops_json(const Model& m) {
   for (const LoopJoint& l : m.loops)
     s += std::string(s.size() > 1 ? ", " : "") + "{\"name\": " + json(l.name).dump() + ", \"type\": \"" +
          loop_type_name(l.type) + "\", \"link_a\": " + json(link_name(m, l.link_a)).dump() +
-         ", \"link_b\": " + json(link_name(m, l.link_b)).dump() + ", \"directions\": " + names(l.directions) +
-         ", \"dropped\": " + names(l.dropped) + "}";
+         ", \"link_b\": " + json(link_name(m, l.link_b)).dump() + ", \"directions\": " + json(loop_direction_names(l.directions)).dump() +
+         ", \"dropped\": " + json(loop_direction_names(l.dropped)).dump() + "}";
   return s + "]";
 }
 

@@ -14,13 +14,14 @@ namespace achd {
 // 6 x m unit constraint forces of all columns, m <= kMaxConstraintColumns, fixed storage.
 using ForceColumns = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxConstraintColumns>;
 
-// One block of constraint columns as the sweeps see it: the tip's columns (Case::alpha) or
-// one Case::constraints block.
+// One block of constraint columns as the sweeps see it: the tip's columns (Case::alpha), one
+// Case::constraints block or one loop joint's (Data::Workspace::loop_blocks).
 struct ConstraintSource {
   int body = -1;    // the body its link rides on (-1: fixed to the root)
   int column = 0;   // its first column in nu, K and E
   int columns = 0;  // how many
-  int block = -1;   // its index in Case::constraints, -1 for the tip's
+  int block = -1;   // -1 for the tip's; b < the case's blocks: Case::constraints[b]; else
+                    // loop_blocks[b - the case's blocks] (solve_blocks.hpp)
   int ez = 0;       // where its EZ_i start in Data::Workspace::ez
   Vector3 arm = Vector3::Zero();  // from the body's origin to the point it acts at, base axes
   // A relative block's second link: its body, the arm to its point, and where the two
@@ -57,8 +58,8 @@ struct Data {
                                        // then each block's (Case::constraints) in order
   Vector6 constraint_wrench;           // alpha nu of the tip's columns, at the tip link's
                                        // origin: what the tip exerts on the constraint
-  std::vector<Vector6> constraint_wrenches;  // per Case::constraints block: alpha nu at
-                                             // its point, base axes
+  std::vector<Vector6> constraint_wrenches;  // per Case::constraints block, then per loop
+                                             // joint: alpha nu at its point, base axes
   std::vector<Vector6> link_accelerations;  // root link first, then Model::links
   Eigen::VectorXd coupling_forces;  // per Model::couplings entry: nu_c, the robot receiving
                                     // the torques -C^T nu_c (joint_couplings.hpp)
@@ -120,6 +121,7 @@ struct Data {
     // odd count 0 (the columns are held two to a pair: constraint_pairs.hpp)
     std::vector<double> ez;
     std::vector<int> path;          // scratch: the bodies from one body to the base
+    std::vector<unsigned char> walked;  // scratch: 1 at the bodies a walk has passed, else 0
     // Driver priorities (driver_priorities.cpp): per body the bias of f_ext alone and of
     // ff_torques alone (6 + 6), and their u / D (2 per body).
     std::vector<Eigen::Matrix<double, 12, 1>> driver_bias;
@@ -138,9 +140,9 @@ struct Data {
     // Coupled joints (joint_couplings.cpp): the case of the extra solves and the
     // accelerations under each coupling's unit torques (n x p), reserved by the constructor.
     Case coupling_case;
-    // Loop joints (loop_blocks.hpp): the case with the loops' blocks after its own,
-    // reserved by the constructor.
-    Case loop_case;
+    // Loop joints (loop_blocks.hpp): one block per Model::loops entry at the solve's q, held
+    // after the case's own blocks; sized by the constructor.
+    std::vector<ConstraintBlock> loop_blocks;
     Eigen::MatrixXd coupling_response;
   } workspace;
  private:

@@ -47,7 +47,8 @@ unsigned loop_type_directions(LoopType type);
 // hold, a loop with no direction left, or more columns than kMaxConstraints per loop.
 void add_loops(Model& model, const std::vector<LoopJointSpec>& loops);
 
-// The loop's directions as names ("x y" ...), space-separated, in index order.
-std::string loop_directions_text(unsigned directions);
+// The names of the directions in `directions` (bit k: direction_name(k), "x" ... "rz"), in
+// index order: what a loop holds or dropped ({"x", "y"} ...).
+std::vector<std::string> loop_direction_names(unsigned directions);
 
 }  // namespace achd

@@ -1,5 +1,6 @@
 // Vereshchagin's constraint sweep (1989, eqs. c-f; KDL's E, M, G) on a tree, for blocks of
-// columns on any links. Each block s (the tip's columns or one Case::constraints block)
+// columns on any links. Each block s (the tip's columns, one Case::constraints block or a
+// loop joint's)
 // acts at a point of one link, riding on body b_s. Its unit constraint forces E_s start at
 // b_s, moved from the point (arm a_s) to the body's origin, and roll inward along the
 // path P_s = {b_s and its ancestors} to the base, as on a chain:
@@ -35,6 +36,8 @@
 #include "free_joint.hpp"
 #include "free_joint_constraints.hpp"
 #include "joint_subspace.hpp"
+#include "loop_blocks.hpp"
+#include "solve_blocks.hpp"
 
 namespace achd {
 namespace {
@@ -78,12 +81,13 @@ double column_scale(const double* column) {
   return power_of_two(-std::min(std::max(e, -1022), 1022));
 }
 
-// The columns of source s as the case gives them (the tip's or its block's).
-const ConstraintMatrix& alpha_of(const Case& c, const ConstraintSource& s) {
-  return s.block < 0 ? c.alpha : c.constraints[s.block].alpha;
+// The columns of source s as the case gives them (the tip's or its block's, a loop's
+// block as set_loop_blocks made it).
+const ConstraintMatrix& alpha_of(const Case& c, const Data& d, const ConstraintSource& s) {
+  return s.block < 0 ? c.alpha : solve_block(c, d, s.block).alpha;
 }
-const ConstraintVector& beta_of(const Case& c, const ConstraintSource& s) {
-  return s.block < 0 ? c.beta : c.constraints[s.block].beta;
+const ConstraintVector& beta_of(const Case& c, const Data& d, const ConstraintSource& s) {
+  return s.block < 0 ? c.beta : solve_block(c, d, s.block).beta;
 }
 
 // The lowest common ancestor of bodies a and b (-1: the base). Parents come before their
@@ -190,21 +194,20 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
   return sums.store(d.K, d.G0, s.column);
 }
 
-// The off-diagonal block K_st (and K_ts) of two sources: over the common part of their
-// paths. Returns its finite probe.
+// The off-diagonal block K_st (and K_ts) of two sources of NS and NT columns: over the
+// common part of their paths, each entry summed in a register in the order of the walk.
+// Returns its finite probe.
+template <int NS, int NT>
 double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
   const Data::Workspace& w = d.workspace;
-  const int ss = s.columns + (s.columns & 1), st = t.columns + (t.columns & 1);
-  double probe = 0;
-  for (int k = 0; k < s.columns; ++k)
-    for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) = 0;
+  double K[NS][NT] = {};
   const int last = last_body(d);
   auto add = [&](int i) {
-    const double* es = w.ez.data() + s.ez + i * ss;
-    const double* et = w.ez.data() + t.ez + i * st;
-    for (int k = 0; k < s.columns; ++k) {
+    const double* es = w.ez.data() + s.ez + i * ez_stride<NS>();
+    const double* et = w.ez.data() + t.ez + i * ez_stride<NT>();
+    for (int k = 0; k < NS; ++k) {
       const double a = es[k] * w.Dinv[i];
-      for (int l = 0; l < t.columns; ++l) d.K(s.column + k, t.column + l) += a * et[l];
+      for (int l = 0; l < NT; ++l) K[k][l] += a * et[l];
     }
   };
   if (!s.relative && !t.relative) {
@@ -216,17 +219,23 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
     int tops[4], n = 0;
     for (int x = 0; x < (s.relative ? 2 : 1); ++x)
       for (int y = 0; y < (t.relative ? 2 : 1); ++y) tops[n++] = common_ancestor(model, ends_s[x], ends_t[y]);
-    for (int k = 0; k < n; ++k) {
-      int walked = -1;  // the lowest body of this path already walked
-      for (int j = 0; j < k; ++j) walked = std::max(walked, common_ancestor(model, tops[k], tops[j]));
-      for (int i = tops[k]; i > walked && i >= last; i = model.bodies[i].parent) add(i);
-    }
+    // (each body walked is marked, and unmarked after: the walks before cover the ancestors
+    // of their tops, so a path stops at the first marked body, its lowest common ancestor
+    // with an earlier top)
+    unsigned char* walked = d.workspace.walked.data();
+    for (int k = 0; k < n; ++k)
+      for (int i = tops[k]; i >= last && !walked[i]; i = model.bodies[i].parent) {
+        add(i);
+        walked[i] = 1;
+      }
+    for (int k = 0; k < n; ++k)
+      for (int i = tops[k]; i >= last && walked[i]; i = model.bodies[i].parent) walked[i] = 0;
   }
-  for (int k = 0; k < s.columns; ++k)
-    for (int l = 0; l < t.columns; ++l) {
-      const double x = d.K(s.column + k, t.column + l);
-      d.K(t.column + l, s.column + k) = x;
-      probe += x * 0.0;
+  double probe = 0;
+  for (int k = 0; k < NS; ++k)
+    for (int l = 0; l < NT; ++l) {
+      d.K(s.column + k, t.column + l) = d.K(t.column + l, s.column + k) = K[k][l];
+      probe += K[k][l] * 0.0;
     }
   return probe;
 }
@@ -266,17 +275,17 @@ __attribute__((noinline)) double add_opposite_wrench(const Model& model, Data& d
 int constraint_sources(const Model& model, Data& d, const Case& c) {
   Data::Workspace& w = d.workspace;
   w.sources.clear();
-  const int m = c.num_constraints();
+  set_loop_betas(c, d);
+  const int m = num_solve_columns(c, d);
   d.E.resize(6, m);
   w.alpha_scale.resize(m);
   int column = 0, ez = 0;
   if (c.alpha.cols())
     add_source(model, d, c.alpha, model.num_links() - 1, Vector3::Zero(), -1, Vector3::Zero(), -1, column, ez);
-  for (size_t b = 0; b < c.constraints.size(); ++b) {
-    const ConstraintBlock& block = c.constraints[b];
+  for (int b = 0; b < num_solve_blocks(c, d); ++b) {
+    const ConstraintBlock& block = solve_block(c, d, b);
     if (block.alpha.cols())
-      add_source(model, d, block.alpha, block.link, block.point, block.link_b, block.point_b, static_cast<int>(b),
-                 column, ez);
+      add_source(model, d, block.alpha, block.link, block.point, block.link_b, block.point_b, b, column, ez);
   }
   return m;
 }
@@ -295,7 +304,14 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
       return prescribed ? own_coupling<NC, true>(model, d, c, s) : own_coupling<NC, false>(model, d, c, s);
     });
   for (size_t s = 0; s < w.sources.size(); ++s)
-    for (size_t t = s + 1; t < w.sources.size(); ++t) probe += mutual_coupling(model, d, w.sources[s], w.sources[t]);
+    for (size_t t = s + 1; t < w.sources.size(); ++t) {
+      const ConstraintSource &a = w.sources[s], &b = w.sources[t];
+      probe += with_constraint_count(a.columns, [&](auto ns) {
+        return with_constraint_count(b.columns, [&](auto nt) {
+          return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b);
+        });
+      });
+    }
   if (w.free_joint_step) probe += free_joint_coupling(d);
   return probe;
 }
@@ -310,8 +326,8 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
     Vector6 kappa = Vector6::Zero();
     if (moving && s.body >= 0) kappa = motion_shift(d.kappa[s.body], s.arm);
     if (moving && s.relative) subtract_kappa_b(d, s, kappa);
-    const ConstraintMatrix& alpha = alpha_of(c, s);
-    const ConstraintVector& beta = beta_of(c, s);
+    const ConstraintMatrix& alpha = alpha_of(c, d, s);
+    const ConstraintVector& beta = beta_of(c, d, s);
     // alpha_lin^T g: a relative block sees g at both of its points, where it cancels
     const bool gravity_at_point = physical && !s.relative;
     for (int k = 0; k < s.columns; ++k) {
@@ -357,12 +373,12 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
     for (int i = 0; i < model.num_rates(); ++i)
       if (c.prescribed[i]) d.joint_torques[i] = d.prescribed_torques[i];
   d.constraint_wrench.setZero();
-  d.constraint_wrenches.assign(c.constraints.size(), Vector6::Zero());
+  d.constraint_wrenches.assign(num_solve_blocks(c, d), Vector6::Zero());
   double probe = 0;
   for (const ConstraintSource& s : d.workspace.sources) {
     // the wrench w = [f; n] = alpha nu at the point p; tau_i -= z_i . (n + (p - p_i) x f)
     // (revolute) or z_i . f (prismatic), for each body on the path
-    const ConstraintMatrix& alpha = alpha_of(c, s);
+    const ConstraintMatrix& alpha = alpha_of(c, d, s);
     SpatialVector wrench{};
     for (int k = 0; k < s.columns; ++k) wrench = wrench + load_pairs(alpha.col(k).data()) * d.nu[s.column + k];
     Vector6& out = s.block < 0 ? d.constraint_wrench : d.constraint_wrenches[s.block];

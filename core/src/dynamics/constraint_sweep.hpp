@@ -1,6 +1,7 @@
 #pragma once
 // The constraint part of the Popov-Vereshchagin solve on a tree: blocks of constraint
-// columns on any links (the tip's, Case::alpha, and Case::constraints), each rolled from
+// columns on any links (the tip's, Case::alpha, Case::constraints and the loop joints'
+// blocks, solve_blocks.hpp), each rolled from
 // its link to the base, their coupling K and bias energy G_0, and what follows from the
 // forces nu (constraint torques, wrenches, joint torques). constraint_sweep.cpp states
 // the equations; hybrid_dynamics.cpp calls these in order.
@@ -46,7 +47,7 @@ void constraint_torques(const Model& model, Data& d);
 void unscale_constraint_forces(Data& d);
 
 // The wrenches alpha nu (the tip's into constraint_wrench, one per Case::constraints block
-// into constraint_wrenches, at their points) and joint_torques = ff + virtual_torques -
+// and per loop joint into constraint_wrenches, at their points) and joint_torques = ff + virtual_torques -
 // sum_k J_k^T alpha_k nu_k (a prescribed joint's prescribed_torques in place of the first
 // two). Returns their finite probe.
 double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c, bool prescribed);

@@ -27,6 +27,7 @@
 
 #include "constraint_sweep.hpp"
 #include "joint_subspace.hpp"
+#include "solve_blocks.hpp"
 
 namespace achd {
 namespace {
@@ -85,8 +86,8 @@ void weigh_drivers(const Model& model, Data& d, const Case& c, const Options& o,
   driver_sweeps(model, d, c, o, prescribed);
   Data::Workspace& w = d.workspace;
   for (const ConstraintSource& s : w.sources) {
-    const ConstraintVector& wf = s.block < 0 ? c.w_fext : c.constraints[s.block].w_fext;
-    const ConstraintVector& wff = s.block < 0 ? c.w_ff : c.constraints[s.block].w_ff;
+    const ConstraintVector& wf = s.block < 0 ? c.w_fext : solve_block(c, d, s.block).w_fext;
+    const ConstraintVector& wff = s.block < 0 ? c.w_ff : solve_block(c, d, s.block).w_ff;
     const int stride = s.columns + (s.columns & 1);
     for (int k = 0; k < s.columns; ++k) {
       // y_f,k and y_ff,k: sum over the path of EZ_i,k u_i / D_i for each driver alone

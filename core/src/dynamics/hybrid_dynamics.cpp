@@ -50,6 +50,7 @@
 #include "joint_subspace.hpp"
 #include "loop_blocks.hpp"
 #include "overflow_error.hpp"
+#include "solve_blocks.hpp"
 #include "virtual_wrenches.hpp"
 #include "spatial_pairs.hpp"
 
@@ -89,7 +90,7 @@ const SpatialVector kZero{};
 // pA_i = v_i x* I_i v_i + I_i kappa_i,
 // with I_i x = [m x_lin - h x x_ang; h x x_lin + C x_ang] for I_i = [m 1, -[h]x; [h]x, C].
 void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving) {
-  // With loop joints, case_with_loops computed the poses at this q already.
+  // With loop joints, set_loop_blocks computed the poses at this q already.
   if (model.loops.empty()) body_poses(model, c.q, d.X0, d.r);
   for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
@@ -293,7 +294,7 @@ double link_accelerations(const Model& model, Data& d, const Vector6& a0, const 
 
 // Steps 1 to 4 on a validated case (a floating base's in the solver's coordinates).
 void solve(const Model& model, Data& d, const Case& c, const Options& o) {
-  const int nc = (o.effects & kConstraints) ? c.num_constraints() : 0;
+  const int nc = (o.effects & kConstraints) ? num_solve_columns(c, d) : 0;
   const bool gravity = o.effects & kGravity;
   // Skipped by themselves when their inputs are zero: the result is identical.
   const bool moving = (o.effects & kVelocityProducts) && any_nonzero(c.qd);
@@ -374,7 +375,8 @@ void solve_uncoupled(const Model& model, Data& d, const Case& c, const Options& 
 void hybrid_dynamics(const Model& model, Data& d, const Case& given, const Options& o) {
   validate(model, given, d.constraint_capacity());
   validate(o);
-  const Case& c = model.loops.empty() ? given : case_with_loops(model, given, d);
+  if (!model.loops.empty()) set_loop_blocks(model, given.q, d);  // held after the case's blocks
+  const Case& c = given;
   if (model.couplings.empty()) return solve_uncoupled(model, d, c, o);
   if (d.coupling_forces.size() != static_cast<Eigen::Index>(model.couplings.size()))
     throw Error("the Data was made for a model with another number of coupled joints");

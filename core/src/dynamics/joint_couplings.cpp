@@ -33,6 +33,7 @@ void homogeneous_case(const Case& c, int n, Case& h) {
   if (c.any_prescribed()) h.qdd_given.setZero();
   else h.qdd_given.resize(0);
   h.coupling_beta.resize(0);
+  h.loop_beta.setZero(c.loop_beta.size());
   h.extra_inertia = c.extra_inertia;  // part of the mass matrix the responses see
 }
 
@@ -117,6 +118,7 @@ void coupled_dynamics(const Model& model, Data& d, const Case& c, const Options&
   h.gravity = c.gravity;
   h.beta = c.beta;
   h.constraints = c.constraints;
+  h.loop_beta = c.loop_beta;
   h.f_ext = c.f_ext;
   h.f_virtual = c.f_virtual;
   h.qdd_given = c.qdd_given;

@@ -39,11 +39,11 @@ unsigned loop_type_directions(LoopType type) {
   return 0;
 }
 
-std::string loop_directions_text(unsigned directions) {
-  std::string s;
+std::vector<std::string> loop_direction_names(unsigned directions) {
+  std::vector<std::string> names;
   for (int k = 0; k < kNumDirections; ++k)
-    if ((directions >> k) & 1u) s += std::string(s.empty() ? "" : " ") + direction_name(k);
-  return s;
+    if ((directions >> k) & 1u) names.push_back(direction_name(k));
+  return names;
 }
 
 namespace {
@@ -169,9 +169,12 @@ void add_loops(Model& model, const std::vector<LoopJointSpec>& loops) {
     loop.directions = spec.directions.empty() ? allowed : 0;
     for (const std::string& d : spec.directions) {
       const int k = index_of_direction(d);
-      if (k < 0 || !((allowed >> k) & 1u))
+      if (k < 0 || !((allowed >> k) & 1u)) {
+        std::string held;  // "x y z"
+        for (const std::string& name : loop_direction_names(allowed)) held += (held.empty() ? "" : " ") + name;
         throw Error(where + ": directions: '" + d + "' is not a direction a " + loop_type_name(spec.type) +
-                    " loop holds (" + loop_directions_text(allowed) + ")");
+                    " loop holds (" + held + ")");
+      }
       loop.directions |= 1u << k;
     }
     find_directions(model, samples, kept, loop, !spec.directions.empty());

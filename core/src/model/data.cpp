@@ -39,6 +39,7 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   w.sources.reserve(constraint_capacity + 1);  // the tip's and one per block with columns
   // A block of k columns keeps k rounded up to even per body, at most 2 k.
   w.path.assign(n, 0);
+  w.walked.assign(n, 0);
   w.driver_bias.assign(n, Eigen::Matrix<double, 12, 1>::Zero());
   w.driver_qdd.assign(2 * n, 0.0);
   w.virtual_force.assign(n, Vector6::Zero());
@@ -53,18 +54,14 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
     h.constraints.reserve(constraint_capacity);
     h.f_ext.reserve(model.num_links());
     h.f_virtual.reserve(model.num_links());
+    h.loop_beta = Eigen::VectorXd::Zero(model.num_loop_columns());
     w.coupling_response = Eigen::MatrixXd::Zero(n, model.couplings.size());
   }
-  if (!model.loops.empty()) {
-    Case& l = w.loop_case;
-    l.q = Eigen::VectorXd::Zero(model.num_positions());
-    l.qd = l.ff_torques = l.qdd_given = l.extra_inertia = Eigen::VectorXd::Zero(n);
-    l.prescribed.reserve(n);
-    l.constraints.reserve(constraint_capacity);
-    l.f_ext.reserve(model.num_links());
-    l.f_virtual.reserve(model.num_links());
-    l.coupling_beta = Eigen::VectorXd::Zero(model.couplings.size());
-    l.loop_beta = Eigen::VectorXd::Zero(model.num_loop_columns());
+  w.loop_blocks.resize(model.loops.size());
+  for (size_t l = 0; l < model.loops.size(); ++l) {
+    const int columns = model.loops[l].num_columns();
+    w.loop_blocks[l].alpha = ConstraintMatrix::Zero(6, columns);
+    w.loop_blocks[l].beta = ConstraintVector::Zero(columns);
   }
   if (model.floating) {
     Case& f = w.free_case;

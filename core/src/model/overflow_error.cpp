@@ -25,6 +25,20 @@ std::string joint(const Model& model, int i) { return "joint '" + model.bodies[i
 
 [[noreturn]] void overflow(const std::string& what) { throw Error("the solve overflows: " + what); }
 
+// Block b of the solve in the user's terms: constraints[b] and its link, or the loop joint.
+std::string block_name(const Model& model, const Case& c, int b) {
+  const int own = static_cast<int>(c.constraints.size());
+  if (b >= own) return "loop '" + model.loops[b - own].name + "'";
+  return "constraints[" + std::to_string(b) + "] (link '" + model.links[c.constraints[b].link].name + "')";
+}
+
+// The loop frame's direction (x ... rz) that column j of a loop holds: its j-th held one.
+const char* loop_direction(const LoopJoint& loop, int j) {
+  for (int k = 0; k < kNumDirections; ++k)
+    if (((loop.directions >> k) & 1u) && j-- == 0) return direction_name(k);
+  return "?";  // unreachable: a loop has one column per held direction
+}
+
 }  // namespace
 
 void name_the_first_overflow(const Model& model, const Data& d, const Case& c, int nc) {
@@ -50,24 +64,43 @@ void name_the_first_overflow(const Model& model, const Data& d, const Case& c, i
                                  "f_ext, gravity or velocity products too large for this robot)");
   }
   // Steps 2-3 for the constraints: the coupling K, its right-hand side, the forces nu.
-  // Column k of nu: the tip's (alpha[k]) or column j of a block (constraints[b].alpha[j]).
+  // Column k of nu: the tip's (alpha[k]), column j of a block (constraints[b].alpha[j]) or
+  // of a loop joint (its direction j); beta[k] is the loop's loop_beta entry.
+  const int own = static_cast<int>(c.constraints.size());
+  const auto loop_of = [&](const ConstraintSource& s) { return s.block >= own ? s.block - own : -1; };
+  const auto source_of = [&](int k) -> const ConstraintSource* {
+    for (const ConstraintSource& s : d.workspace.sources)
+      if (k < s.column + s.columns) return &s;
+    return nullptr;
+  };
   const auto column = [&](int k) {
-    for (const ConstraintSource& s : d.workspace.sources) {
-      if (k >= s.column + s.columns) continue;
-      const int j = k - s.column;
-      if (s.block < 0) return "constraint column " + std::to_string(k) + " (alpha[" + std::to_string(j) + "])";
-      return "constraint column " + std::to_string(k) + " (constraints[" + std::to_string(s.block) + "].alpha[" +
-             std::to_string(j) + "], link '" + model.links[c.constraints[s.block].link].name + "')";
+    const std::string number = "constraint column " + std::to_string(k);
+    const ConstraintSource* s = source_of(k);
+    if (!s) return number;
+    const int j = k - s->column;
+    if (s->block < 0) return number + " (alpha[" + std::to_string(j) + "])";
+    if (loop_of(*s) >= 0) {
+      const LoopJoint& loop = model.loops[loop_of(*s)];
+      return number + " (loop '" + loop.name + "', its direction " + loop_direction(loop, j) + ")";
     }
-    return "constraint column " + std::to_string(k);
+    return number + " (constraints[" + std::to_string(s->block) + "].alpha[" + std::to_string(j) + "], link '" +
+           model.links[c.constraints[s->block].link].name + "')";
+  };
+  // Where column k's beta comes from: beta[k] (nu's numbering), or the loop's loop_beta entry.
+  const auto beta_name = [&](int k) {
+    const ConstraintSource* s = source_of(k);
+    if (!s || loop_of(*s) < 0) return "beta[" + std::to_string(k) + "]";
+    int first = 0;  // the loop's first entry in loop_beta
+    for (int l = 0; l < loop_of(*s); ++l) first += model.loops[l].num_columns();
+    return "loop_beta[" + std::to_string(first + k - s->column) + "]";
   };
   for (int k = 0; k < nc; ++k)
     if (!finite(d.K.col(k).data(), nc))
       overflow(column(k) + ": the coupling K = E^T D^-1 E is not finite (the robot is too light along it)");
   for (int k = 0; k < nc; ++k)
     if (!std::isfinite(d.workspace.rhs[k]))
-      overflow(column(k) + ": the constraint's right-hand side is not finite (beta[" + std::to_string(k) +
-               "], gravity or velocity products too large)");
+      overflow(column(k) + ": the constraint's right-hand side is not finite (" + beta_name(k) +
+               ", gravity or velocity products too large)");
   for (int k = 0; k < nc; ++k)
     if (!std::isfinite(d.nu[k]))
       overflow(column(k) + ": the constraint force nu[" + std::to_string(k) +
@@ -83,8 +116,7 @@ void name_the_first_overflow(const Model& model, const Data& d, const Case& c, i
   if (!finite(d.constraint_wrench)) overflow("the constraint wrench alpha nu is not finite");
   for (size_t b = 0; b < d.constraint_wrenches.size(); ++b)
     if (!finite(d.constraint_wrenches[b]))
-      overflow("constraints[" + std::to_string(b) + "] (link '" + model.links[c.constraints[b].link].name +
-               "'): the constraint wrench alpha nu is not finite");
+      overflow(block_name(model, c, static_cast<int>(b)) + ": the constraint wrench alpha nu is not finite");
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(d.joint_torques[i]))
       overflow(joint(model, i) + ": joint_torques[" + std::to_string(i) + "] = ff - J^T alpha nu is not finite");

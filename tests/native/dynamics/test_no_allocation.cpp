@@ -277,8 +277,8 @@ TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
 
 }  // namespace
 
-// Loop joints: every solve appends the loops' blocks at the case's q (a copy of the case
-// into the Data's reserved storage). The four-bar's revolute loop on a fixed base, and the
+// Loop joints: every solve sets the loops' blocks at the case's q in the Data's storage
+// (the case is not copied). The four-bar's revolute loop on a fixed base, and the
 // floating quadruped with its front feet closed by a spherical loop and its hind feet by a
 // fixed one, beside a block on one link, with every input nonzero.
 TEST(NoAllocation, HybridDynamicsWithLoopJoints) {
@@ -319,7 +319,7 @@ TEST(NoAllocation, HybridDynamicsWithLoopJoints) {
       achd::Options o;
       o.policy = policy;
       o.effects = achd::kAllEffects;
-      achd::hybrid_dynamics(m, d, c, o);  // the first solve of a case sizes the loop case's copies
+      achd::hybrid_dynamics(m, d, c, o);  // the first solve of a case sizes the free joint's copies
       EXPECT_EQ(allocations_of_solve(m, d, c, o), 0) << m.root_name;
       ASSERT_TRUE(d.qdd.allFinite() && d.nu.allFinite());
       EXPECT_EQ(d.nu.size(), 3 + m.num_loop_columns());

@@ -210,7 +210,7 @@ TEST(DeltaRobot, FiveSphericalLoopsKeepTheirDirections) {
   EXPECT_EQ(m.num_rates(), 18);
   ASSERT_EQ(m.loops.size(), 5u);
   for (const achd::LoopJoint& l : m.loops) {
-    EXPECT_EQ(achd::loop_directions_text(l.directions), "x y z") << l.name;
+    EXPECT_EQ(achd::loop_direction_names(l.directions), (std::vector<std::string>{"x", "y", "z"})) << l.name;
     EXPECT_EQ(l.dropped, 0u) << l.name;
   }
   EXPECT_EQ(m.num_loop_columns(), 15);

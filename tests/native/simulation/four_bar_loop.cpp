@@ -49,8 +49,8 @@ double crank(const achd::Model& m, const Eigen::VectorXd& q) { return q[m.joint_
 TEST(FourBarLoop, PlanarLoopKeepsTheTwoInPlaneDirections) {
   const achd::Model m = four_bar();
   ASSERT_EQ(m.loops.size(), 1u);
-  EXPECT_EQ(achd::loop_directions_text(m.loops[0].directions), "x y");
-  EXPECT_EQ(achd::loop_directions_text(m.loops[0].dropped), "z rx ry");
+  EXPECT_EQ(achd::loop_direction_names(m.loops[0].directions), (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(achd::loop_direction_names(m.loops[0].dropped), (std::vector<std::string>{"z", "rx", "ry"}));
   EXPECT_EQ(m.num_loop_columns(), 2);
 }
 
@@ -72,6 +72,39 @@ TEST(FourBarLoop, SolveAtAClosedPoseMatchesTheReference) {
     EXPECT_LT((d.qdd - want).norm(), 1e-9 * (1 + want.norm())) << "theta " << theta;
     EXPECT_EQ(d.nu.size(), 2);
   }
+}
+
+// A loop column whose force is beyond a double (each joint's axial inertia 1e307, so that
+// K = J M^-1 J^T underflows and nu = K^-1 beta overflows): the error names the loop and the
+// direction of its column, not the block the solve keeps it under; a block of the case
+// keeps its own name.
+TEST(FourBarLoop, AnOverflowInALoopColumnNamesTheLoop) {
+  const achd::Model m = four_bar();
+  achd::Data d(m);
+  achd::Case cs = achd::Case::zeros(m);
+  cs.q = in_model_order(m, fb::closure(0.3).q);
+  cs.extra_inertia = Eigen::Vector3d::Constant(1e307);
+  cs.loop_beta = Eigen::Vector2d(1, 1);
+  const auto message = [&] {
+    try {
+      achd::hybrid_dynamics(m, d, cs);
+    } catch (const achd::Error& e) {
+      return std::string(e.what());
+    }
+    return "solved, nu = " + std::to_string(d.nu[0]);
+  };
+  EXPECT_EQ(message(),
+            "the solve overflows: constraint column 0 (loop 'coupler_rocker', its direction x): the constraint force "
+            "nu[0] is not finite (the constraint needs a force beyond the range of a double)");
+  achd::ConstraintBlock block;  // the crank's tip held along z: a block of the case, before the loop
+  block.link = m.link_index("crank");
+  block.alpha = achd::ConstraintMatrix::Zero(6, 1);
+  block.alpha(2, 0) = 1;
+  block.beta = achd::ConstraintVector::Zero(1);
+  cs.constraints.push_back(block);
+  EXPECT_EQ(message(),
+            "the solve overflows: constraint column 0 (constraints[0].alpha[0], link 'crank'): the constraint force "
+            "nu[0] is not finite (the constraint needs a force beyond the range of a double)");
 }
 
 // Undamped, under gravity, with the simulator's defaults (Dormand-Prince, its

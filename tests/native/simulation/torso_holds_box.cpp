@@ -109,7 +109,9 @@ TEST(TorsoHoldsBox, BothGripsHoldAllSixDirections) {
   EXPECT_EQ(m.loops[0].name, "left_grip");
   EXPECT_EQ(m.loops[1].name, "right_grip");
   for (const achd::LoopJoint& loop : m.loops) {
-    EXPECT_EQ(achd::loop_directions_text(loop.directions), "x y z rx ry rz") << loop.name;
+    EXPECT_EQ(achd::loop_direction_names(loop.directions),
+              (std::vector<std::string>{"x", "y", "z", "rx", "ry", "rz"}))
+        << loop.name;
     EXPECT_EQ(loop.dropped, 0u) << loop.name;
   }
   EXPECT_EQ(m.num_loop_columns(), 12);
