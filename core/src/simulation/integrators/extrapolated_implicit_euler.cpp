@@ -26,11 +26,12 @@
 // failed (rejected), so that a substep the output step dt caps takes only the rows its
 // accuracy needs. The entries T_jl are stable for any h on the stiff decay rates (their
 // stability functions, combinations of 1 / (1 - z / n)^n, vanish as z -> -inf). The
-// expansion in h exists for any fixed linearisation, so the order holds whatever the
-// Jacobian leaves out (the configuration dependence of M, the velocity products).
+// expansion in h exists for any fixed linearisation, so on the smooth motion the order
+// holds whatever the Jacobian leaves out (the configuration dependence of M, the velocity
+// products); the error estimate, not the order, is what the step control relies on.
 #include <algorithm>
-#include <utility>
 #include <cmath>
+#include <utility>
 
 #include "achd/kinematics.hpp"
 #include "integrators.hpp"
