@@ -144,6 +144,7 @@ int cmd_simulate(int argc, char** argv) {
   out["friction_velocity"] = scene.options.solver.friction_velocity;
   out["substeps"] = sim.substeps();
   out["rejected_substeps"] = sim.rejected_substeps();
+  out["stiff_substeps"] = sim.stiff_substeps();
   if (conserves && max_kinetic > 0) out["energy_drift"] = max_energy_error / max_kinetic;
   else out["energy_drift"] = nullptr;
   out["energy"] = {{"initial", E0}, {"final", sim.energy()}, {"max_kinetic", max_kinetic}};

@@ -385,6 +385,8 @@ export interface Simulator {
   /** Integrator substeps accepted / rejected since createSimulator() or reset(). */
   readonly substeps: number;
   readonly rejectedSubsteps: number;
+  /** Of the accepted substeps, those Dormand-Prince took implicitly after detecting stiffness. */
+  readonly stiffSubsteps: number;
   /**
    * n steps of dt seconds (defaults 1, 1e-3); n an integer in [0, 2^53 - 1]. Returns the
    * number of steps run: n, or fewer when options.onProgress stopped the run. A step that

@@ -68,7 +68,7 @@ test('rtol and atol must be finite and > 0; stabilisationFrequency > 0 (0 no lon
     assert.throws(() => kuka.createSimulator(options), pattern);
 });
 
-test('the same run as achd simulate --rtol 1e-6 --atol 1e-8: end state within 1e-9, the same substep counts', async () => {
+test('the same run as achd simulate --rtol 1e-6 --atol 1e-8: end state within 1e-9, the same substep counts (stiff ones too: the friction near rest is detected stiff)', async () => {
   const sim = start({ rtol: 1e-6, atol: 1e-8 });
   const tmp = scratchDir();
   try {
@@ -83,6 +83,8 @@ test('the same run as achd simulate --rtol 1e-6 --atol 1e-8: end state within 1e
     assert.ok(relativeError(Array.from(sim.qd), last.slice(1 + nj, 1 + 2 * nj)) <= 1e-9);
     assert.equal(sim.substeps, summary.substeps);
     assert.equal(sim.rejectedSubsteps, summary.rejected_substeps);
+    assert.ok(summary.stiff_substeps > 0);
+    assert.equal(sim.stiffSubsteps, summary.stiff_substeps);
   } finally {
     tmp.remove();
     sim.delete();

@@ -95,6 +95,7 @@ export class Simulator extends AchdHandle {
   // (a fixed-step integrator: one per step, none rejected).
   get substeps() { return achdWasm.module._achd_sim_substeps(this._live()); }
   get rejectedSubsteps() { return achdWasm.module._achd_sim_rejected_substeps(this._live()); }
+  get stiffSubsteps() { return achdWasm.module._achd_sim_stiff_substeps(this._live()); }
   reset(q, qd) {
     const n = this.numRates, nq = this.numPositions;
     const q0 = achdReadNumbers(q, 'q', nq), qd0 = qd === undefined ? new Float64Array(n) : achdReadNumbers(qd, 'qd', n);

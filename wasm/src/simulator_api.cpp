@@ -71,6 +71,9 @@ ACHD_EXPORT double achd_sim_substeps(const achd::Simulator* sim) { return static
 ACHD_EXPORT double achd_sim_rejected_substeps(const achd::Simulator* sim) {
   return static_cast<double>(sim->rejected_substeps());
 }
+ACHD_EXPORT double achd_sim_stiff_substeps(const achd::Simulator* sim) {
+  return static_cast<double>(sim->stiff_substeps());
+}
 
 ACHD_EXPORT int achd_sim_reset(achd::Simulator* sim, const double* q, const double* qd) {
   return achd::wasm::guarded([&] {

@@ -149,6 +149,9 @@ class Simulator : public SimulationState {
   // integrator takes one substep per step and rejects none.
   std::int64_t substeps() const;
   std::int64_t rejected_substeps() const;
+  // Of the accepted substeps, those Dormand-Prince took as the extrapolated implicit Euler
+  // method's after detecting stiffness (integrators/dormand_prince.cpp).
+  std::int64_t stiff_substeps() const;
 
   // The queries below (residuals to energy) compute from q and qd into scratch storage
   // of the calling thread and write nothing in the simulator: two threads may call them
@@ -190,6 +193,8 @@ class Simulator : public SimulationState {
   // state x, at its time x.t (the prescribed joints' accelerations are their
   // trajectories' then); and the held-angle rates alone, from the kinematics.
   void evaluate(const SimulationState& x, double w_n, Data& out, HeldAngles& angle_rates);
+  // The solve of a linearly implicit step of h from x (evaluate.cpp).
+  void evaluate_implicit(const SimulationState& x, double h, double w_n, Data& out, HeldAngles& angle_rates);
   void held_angle_rates(const SimulationState& x, HeldAngles& angle_rates);
   // The tip's link index; an achd::Error naming `what` on a tree.
   int tip_link(const std::string& what) const;
@@ -234,6 +239,7 @@ class Simulator : public SimulationState {
   std::vector<TipState> impact_points_;  // joint_limits.cpp: each set's point before an impact
   JointControl control_;
   bool control_on_ = false;
+  double control_lead_ = 0;  // evaluate_implicit's h: the PD position term at q + h qd
   Eigen::VectorXd hold_torques_;  // JointControl::hold's tau_hold (zeros without it)
   std::vector<int> limit_hits_;
   std::vector<double> loop_drift_;  // per loop: the largest closure error at a step's start

@@ -11,6 +11,7 @@
 #include "achd/simulator.hpp"
 #include "direction_sets.hpp"
 #include "held_directions.hpp"
+#include "integrators.hpp"
 #include "joint_couplings.hpp"
 #include "loop_closure.hpp"
 #include "message_number.hpp"
@@ -67,6 +68,29 @@ void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAn
   case_.q = x.q;
   case_.qd = x.qd;
   hybrid_dynamics(model_, out, case_, solver_);
+}
+
+// The solve of a linearly implicit step of h (integrators/extrapolated_implicit_euler.cpp):
+// with h c_i + h^2 kp_i added to joint i's axial inertia (Case::extra_inertia, swapped in
+// and out: no allocation) and the PD torque kp (q* - q - h qd) - kd qd.
+void Simulator::evaluate_implicit(const SimulationState& x, double h, double w_n, Data& out, HeldAngles& angle_rates) {
+  IntegratorWorkspace& ws = *integrator_;
+  const PassiveTerms passive{solver_.effects, solver_.friction_velocity, control_on_ ? &control_.kd : nullptr,
+                             control_on_ ? &control_.kp : nullptr};
+  implicit_inertia(model_, passive, x.qd, h, ws.extra_inertia);
+  case_.extra_inertia.swap(ws.extra_inertia);
+  control_lead_ = h;
+  const auto restore = [&] {
+    case_.extra_inertia.swap(ws.extra_inertia);
+    control_lead_ = 0;
+  };
+  try {
+    evaluate(x, w_n, out, angle_rates);
+  } catch (...) {
+    restore();
+    throw;
+  }
+  restore();
 }
 
 // e . w_link of each held angular direction at (q, qd), 0 for the other directions.

@@ -16,6 +16,7 @@
 #include "anchored_inertia.hpp"
 #include "direction_sets.hpp"
 #include "hold_torques.hpp"
+#include "integrators.hpp"
 #include "message_number.hpp"
 
 namespace achd {
@@ -64,10 +65,15 @@ void Simulator::set_joint_control(const JointControl& given) {
   }
   control_ = c;
   control_on_ = true;
+  integrator_->clear_stiffness();  // the stiffness the detection found may have been the old gains'
+
   update_control_terms();
 }
 
-void Simulator::clear_joint_control() { control_on_ = false; }
+void Simulator::clear_joint_control() {
+  control_on_ = false;
+  integrator_->clear_stiffness();
+}
 
 void Simulator::update_control_terms() {
   if (control_on_ && control_.frequency > 0) {
@@ -106,8 +112,10 @@ void Simulator::apply_joint_control(const Eigen::VectorXd& q_at, const Eigen::Ve
   else case_.ff_torques.setZero(model_.num_rates());
   for (int i = 0; i < model_.num_rates(); ++i) {
     const int p = model_.position_index(i);
-    case_.ff_torques[i] +=
-        control_.kp[i] * (control_.target[p] - q_at[p]) - control_.kd[i] * qd_at[i] + hold_torques_[i];
+    // (a linearly implicit step of h takes the position term at q + h qd: control_lead_)
+    const double error = control_lead_ == 0 ? control_.target[p] - q_at[p]
+                                            : control_.target[p] - (q_at[p] + control_lead_ * qd_at[i]);
+    case_.ff_torques[i] += control_.kp[i] * error - control_.kd[i] * qd_at[i] + hold_torques_[i];
   }
 }
 

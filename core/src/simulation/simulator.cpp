@@ -79,6 +79,7 @@ const std::vector<DirectionEvent>& Simulator::events() const { return directions
 std::int64_t Simulator::events_not_kept() const { return directions_->events().not_kept(); }
 std::int64_t Simulator::substeps() const { return integrator_->substeps; }
 std::int64_t Simulator::rejected_substeps() const { return integrator_->rejected; }
+std::int64_t Simulator::stiff_substeps() const { return integrator_->stiff_substeps; }
 
 void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   const int n = model_.num_rates();
@@ -90,8 +91,9 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   else qd.setZero(n);
   t = 0;
   steps_taken_ = 0;
-  integrator_->substeps = integrator_->rejected = 0;
+  integrator_->substeps = integrator_->rejected = integrator_->stiff_substeps = 0;
   integrator_->substep = 0;
+  integrator_->clear_stiffness();
   directions_->release_all();  // their driver weights and points stay
   held_angles.setZero();
   update_blocks();
@@ -111,13 +113,15 @@ void Simulator::step(double dt) {
   saved_.qd = qd;
   const Eigen::Index na = held_angles.size();
   saved_.held_angles.head(na) = held_angles;
-  const std::int64_t substeps0 = integrator_->substeps, rejected0 = integrator_->rejected;
+  const std::int64_t substeps0 = integrator_->substeps, rejected0 = integrator_->rejected,
+                     stiff0 = integrator_->stiff_substeps;
   const auto undo = [&] {
     q = saved_.q;
     qd = saved_.qd;
     held_angles = saved_.held_angles.head(na);
     integrator_->substeps = substeps0;
     integrator_->rejected = rejected0;
+    integrator_->stiff_substeps = stiff0;
   };
   Data& first = data_[1 - current_];
   try {
@@ -169,12 +173,16 @@ void Simulator::advance(double dt, double w_n, Data& first) {
   IntegratorWorkspace& ws = *integrator_;
   auto f = [this, w_n](const SimulationState& x, Data& out, HeldAngles& rates) { evaluate(x, w_n, out, rates); };
   auto rates = [this](const SimulationState& x, HeldAngles& r) { held_angle_rates(x, r); };
+  auto implicit = [this, w_n](const SimulationState& x, double h, Data& out, HeldAngles& r) {
+    evaluate_implicit(x, h, w_n, out, r);
+  };
   switch (options_.integrator) {
     case Integrator::ExplicitEuler: explicit_euler(model_, ws, *this, dt, f, first); break;
     case Integrator::SemiImplicitEuler: semi_implicit_euler(model_, ws, *this, dt, f, rates, first); break;
     case Integrator::RK4: rk4(model_, ws, *this, dt, f, first); break;
     case Integrator::DormandPrince:
-      dormand_prince(model_, ws, *this, dt, options_.rtol, options_.atol, directions_->integrated_angles(), f, first);
+      dormand_prince(model_, ws, *this, dt, options_.rtol, options_.atol, directions_->integrated_angles(), f,
+                     implicit, first);
       break;
     case Integrator::ImplicitEuler: {
       const PassiveTerms passive{solver_.effects, solver_.friction_velocity, control_on_ ? &control_.kd : nullptr};
@@ -204,7 +212,8 @@ Error Simulator::step_failure(const std::string& cause) const {
   std::string where = integrator_name(options_.integrator);
   if (options_.integrator == Integrator::RK4 && stage >= 0) where += " stage " + std::to_string(stage + 1) + " of 4";
   if (options_.integrator == Integrator::DormandPrince)
-    where += (stage >= 0 ? " stage " + std::to_string(stage + 1) + " of 7," : "") + " substep of " +
+    where += (stage >= 0 ? " stage " + std::to_string(stage + 1) + " of 7," : "") +
+             (integrator_->stiff ? " stiff: extrapolated implicit Euler" : "") + " substep of " +
              message_number(integrator_->substep) + " s";
   if (!held.empty()) where += "; held: " + held;
   if (!accelerated.empty()) where += "; accelerated: " + accelerated;

@@ -150,8 +150,10 @@ TEST_F(CliSimulateRuns, SummaryStepsTimesDtIsT) {
   }
 }
 
-// The summary counts the integrator's substeps; --integrator, --rtol and --atol replace
-// the scene's (before: unknown options, exit 2, and no "substeps" in the summary).
+// The summary counts the integrator's substeps (and of them the stiff ones: at rtol 1e-5
+// the damped LWR's friction near rest is detected stiff, at the default 1e-9 it is not);
+// --integrator, --rtol and --atol replace the scene's (before: unknown options, exit 2,
+// and no "substeps" in the summary).
 TEST_F(CliSimulateRuns, IntegratorAndTolerancesFromTheCommandLineAndSubstepsInTheSummary) {
   const std::string scene = ACHD_SOURCE_DIR "/robots/scenes/kuka_lwr4_hold_z_rx.json";
   const auto summary = [&](std::vector<std::string> extra) {
@@ -167,9 +169,12 @@ TEST_F(CliSimulateRuns, IntegratorAndTolerancesFromTheCommandLineAndSubstepsInTh
   EXPECT_GT(adaptive.at("substeps").get<std::int64_t>(), adaptive.at("steps").get<std::int64_t>());
   EXPECT_GT(adaptive.at("rejected_substeps").get<std::int64_t>(), 0);
   EXPECT_LT(loose.at("substeps").get<std::int64_t>(), adaptive.at("substeps").get<std::int64_t>());
+  EXPECT_EQ(adaptive.at("stiff_substeps"), 0);
+  EXPECT_GT(loose.at("stiff_substeps").get<std::int64_t>(), 0);
   EXPECT_EQ(implicit.at("integrator"), "implicit_euler");
   EXPECT_EQ(implicit.at("substeps"), implicit.at("steps"));
   EXPECT_EQ(implicit.at("rejected_substeps"), 0);
+  EXPECT_EQ(implicit.at("stiff_substeps"), 0);
   EXPECT_EQ(adaptive.at("friction_velocity"), 0.05);
   expect_error(run({"simulate", scene, "--integrator", "rk5"}), {"--integrator", "'dormand_prince'", "'rk5'"});
   expect_error(run({"simulate", scene, "--rtol", "0"}), {"--rtol must be > 0"});

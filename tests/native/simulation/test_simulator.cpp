@@ -498,6 +498,29 @@ TEST(Simulator, StepWithLinkDirectionsAndJointControlDoesNotAllocate) {
   }
 }
 
+// Dormand-Prince's stiff substeps (the extrapolated implicit Euler method, once the
+// stiffness detection has switched to it): the dual-arm torso holding both hands in 6D
+// under kp 1e4, kd 100, stepped until it is stiff, then 50 steps that are stiff too.
+TEST(Simulator, StiffSubstepsDoNotAllocate) {
+  const Model m = load_urdf_file((kRoot / "robots/dual_arm_torso.urdf").string(), "base_link", "", UrdfOptions{});
+  Eigen::VectorXd q0(15);
+  q0 << 0, -0.225, 0.995, 3.316, -1.830, -0.433, -0.355, 0.280, 0.091, 0.991, 3.175, -1.825, -0.088, -0.327, 0.193;
+  Eigen::VectorXd target = q0;
+  target[0] = 0.3;
+  Simulator sim(m);
+  sim.reset(q0, {});
+  sim.set_joint_control(JointControl{target, Eigen::VectorXd::Constant(15, 1e4), Eigen::VectorXd::Constant(15, 100)});
+  for (const char* hand : {"left_hand", "right_hand"})
+    for (int k = 0; k < kNumDirections; ++k) sim.set_direction(m.link_index(hand), k, DirectionMode::Hold);
+  for (int k = 0; k < 1000 && sim.stiff_substeps() == 0; ++k) sim.step(1e-3);
+  ASSERT_GT(sim.stiff_substeps(), 0);
+  const std::int64_t stiff = sim.stiff_substeps();
+  const long before = g_allocations;
+  sim.run(50, 1e-3);
+  EXPECT_EQ(g_allocations - before, 0);
+  EXPECT_GE(sim.stiff_substeps() - stiff, 50);
+}
+
 // LimitPolicy::Clamp allocates only in construction: the UR5's elbow, its lower limit
 // narrowed to 0.6, falls onto it at 0.32 s while z and rx are held (an impact, then rest
 // with the release check before every step).

@@ -8,11 +8,14 @@ IntegratorWorkspace::IntegratorWorkspace(const Model& model, Eigen::Index max_he
     : stage_data(model, kMaxConstraintColumns) {
   const int n = model.num_rates();
   const Eigen::VectorXd q0 = Case::zeros(model).q;  // num_positions()
-  for (SimulationState* s : {&stage_state, &next_state}) {
-    s->q = q0;
-    s->qd = Eigen::VectorXd::Zero(n);
-    s->held_angles = HeldAngles::Zero(max_held_angles);
-  }
+  const auto size = [&](SimulationState& s) {
+    s.q = q0;
+    s.qd = Eigen::VectorXd::Zero(n);
+    s.held_angles = HeldAngles::Zero(max_held_angles);
+  };
+  size(stage_state);
+  size(next_state);
+  for (SimulationState& s : extrapolation) size(s);
   rates = HeldAngles::Zero(max_held_angles);
   for (auto& k : k_q) k = Eigen::VectorXd::Zero(q0.size());  // dq/dt: configuration_rate
   for (auto& k : k_qd) k = Eigen::VectorXd::Zero(n);

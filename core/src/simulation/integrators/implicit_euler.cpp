@@ -20,9 +20,8 @@
 
 namespace achd {
 
-void implicit_euler(const Model& model, IntegratorWorkspace& ws, SimulationState& x, double dt,
-                    const PassiveTerms& passive, Eigen::VectorXd& solve_extra_inertia, Evaluate evaluate,
-                    AngleRates angle_rates, Data& first) {
+void implicit_inertia(const Model& model, const PassiveTerms& passive, const Eigen::VectorXd& qd, double h,
+                      Eigen::VectorXd& out) {
   const bool damping = passive.effects & kDamping, friction = passive.effects & kFriction;
   const double v_f = passive.friction_velocity;
   for (int i = 0; i < model.num_rates(); ++i) {
@@ -30,11 +29,18 @@ void implicit_euler(const Model& model, IntegratorWorkspace& ws, SimulationState
     double c = damping ? b.damping : 0.0;
     if (passive.kd) c += (*passive.kd)[i];  // the PD controller's -kd qd is damping too
     if (friction && b.friction != 0) {
-      const double ch = std::cosh(x.qd[i] / v_f);  // inf for |qd| >> v_f: c = 0
+      const double ch = std::cosh(qd[i] / v_f);  // inf for |qd| >> v_f: c = 0
       c += b.friction / (v_f * ch * ch);
     }
-    ws.extra_inertia[i] = dt * c;
+    out[i] = h * c;
+    if (passive.kp) out[i] += h * h * (*passive.kp)[i];
   }
+}
+
+void implicit_euler(const Model& model, IntegratorWorkspace& ws, SimulationState& x, double dt,
+                    const PassiveTerms& passive, Eigen::VectorXd& solve_extra_inertia, Evaluate evaluate,
+                    AngleRates angle_rates, Data& first) {
+  implicit_inertia(model, passive, x.qd, dt, ws.extra_inertia);
   // The semi-implicit Euler step with dt C in its solve (swapped in and out: no allocation).
   solve_extra_inertia.swap(ws.extra_inertia);
   try {
