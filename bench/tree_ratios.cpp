@@ -9,7 +9,10 @@
 //     joints) on its two soles in 6D (m = 12 each), over their unconstrained solves;
 //   - a random tree of 200 bodies over one of 100, both with four blocks of 3 columns
 //     on their deepest links (cost linear in n at fixed m);
-//   - an unconstrained random tree over a random chain with as many joints.
+//   - an unconstrained random tree over a random chain with as many joints;
+//   - the quadruped with 60 massless frames on fixed joints added over the quadruped, both
+//     solved without link outputs (Data::set_link_outputs({})): frames that carry nothing
+//     cost nothing.
 // Prints a markdown table, then one JSON line.
 #include <algorithm>
 #include <cstdio>
@@ -40,8 +43,13 @@ struct Ratio {
   double a_ns, b_ns, ratio;
 };
 
-Ratio side_by_side(const Model& ma, const Case& ca, const Model& mb, const Case& cb) {
+// link_outputs false: both solves compute no link's acceleration.
+Ratio side_by_side(const Model& ma, const Case& ca, const Model& mb, const Case& cb, bool link_outputs = true) {
   Data da(ma), db(mb);
+  if (!link_outputs) {
+    da.set_link_outputs({});
+    db.set_link_outputs({});
+  }
   const std::vector<std::function<void()>> fns = {[&] { hybrid_dynamics(ma, da, ca); },
                                                   [&] { hybrid_dynamics(mb, db, cb); }};
   std::vector<long> iterations;
@@ -69,6 +77,22 @@ Case held(const Model& m, Case c, const std::vector<std::string>& links, int col
     c.constraints.push_back(b);
   }
   return c;
+}
+
+// The URDF with `frames` massless links added, each on a fixed joint below one of the
+// robot's links (in turn), at an offset and a turn of its own.
+std::string with_frames(const std::string& urdf, const Model& m, int frames) {
+  std::string added;
+  for (int k = 0; k < frames; ++k) {
+    const std::string name = "frame_" + std::to_string(k);
+    const int parent = k % (m.num_links() + 1);
+    added += "<joint name=\"" + name + "_joint\" type=\"fixed\"><parent link=\"" +
+             (parent ? m.links[parent - 1].name : m.root_name) + "\"/><child link=\"" + name +
+             "\"/><origin xyz=\"0.01 " + std::to_string(0.01 * (k % 10)) + " -0.02\" rpy=\"0.1 0 " +
+             std::to_string(0.1 * k) + "\"/></joint><link name=\"" + name + "\"/>\n";
+  }
+  const std::size_t end = urdf.rfind("</robot>");
+  return urdf.substr(0, end) + added + urdf.substr(end);
 }
 
 }  // namespace
@@ -191,6 +215,20 @@ int main() {
                    side_by_side(tree.model, test::random_tree_inputs(rng, tree.model), chain.model,
                                 test::random_tree_inputs(rng, chain.model)),
                    1.3});
+
+  // Links that carry nothing: the quadruped with 60 massless frames on fixed joints (sensor
+  // and marker frames) over the quadruped, the same inputs, no link outputs asked for.
+  {
+    const nlohmann::json e = entry("quadruped");
+    const std::string urdf = read(robots + "/../" + e["urdf"].get<std::string>());
+    const Model m = load_urdf_string(urdf, e["root"], "");
+    const Model framed = load_urdf_string(with_frames(urdf, m, 60), e["root"], "");
+    Case c = robot_case(m, e, rng);
+    c.f_ext.clear();  // no wrench on any link (one per link would differ between the two)
+    lines.push_back({"quadruped with 60 massless fixed frames (" + std::to_string(framed.num_links()) +
+                         " links) / without (" + std::to_string(m.num_links()) + "), no link outputs",
+                     "<= 1.02", side_by_side(framed, c, m, c, false), 1.02});
+  }
 
   nlohmann::json out;
   std::printf("| measure | ns | reference ns | ratio | target |\n|---|---|---|---|---|\n");

@@ -1,7 +1,11 @@
 // achd bench ROBOT.urdf [--root LINK] [--tip LINK] --case CASE.json [--iterations N]
 //            [--repeats R] [--clock cpu|wall] [--against kdl] [--lock JOINT=VALUE ...]
-//            [--mimic couple|independent|error] [--loops LOOPS.json] [solver options]
+//            [--mimic couple|independent|error] [--loops LOOPS.json] [--link-outputs]
+//            [solver options]
 // Loads the robot and reads the case as `achd solve` does (without --tip: the whole tree).
+// The solves compute no link's acceleration (Data::set_link_outputs({}): what a controller
+// that reads qdd and the forces pays) unless --link-outputs: then every link's, as
+// `achd solve` returns them.
 // Prints {"achd_ns": ...}: ns per hybrid_dynamics() call, the median of R rounds of N
 // calls (default: about 2 ms per round, 51 rounds) after a warm-up round; with --against
 // kdl also KDL's ChainHdSolver_Vereshchagin on the same chain and case, timed in the same
@@ -29,6 +33,7 @@ int cmd_bench(int argc, char** argv) {
   valued.insert(kUrdfValued.begin(), kUrdfValued.end());
   std::set<std::string> flags = kSolverFlags;
   flags.insert(kUrdfFlags.begin(), kUrdfFlags.end());
+  flags.insert("--link-outputs");
   const Args args(argc, argv, valued, flags);
   if (args.positional().size() != 1) throw Error("bench: expected one URDF file, see `achd help`");
   const Options options = solver_options(args);
@@ -52,6 +57,7 @@ int cmd_bench(int argc, char** argv) {
     throw Error("--against kdl: KDL's solver has no constraint blocks (\"constraints\")");
 
   Data data(model);
+  if (!args.has("--link-outputs")) data.set_link_outputs({});
   std::vector<std::function<void()>> fns = {[&] { hybrid_dynamics(model, data, c, options); }};
 #ifdef ACHD_HAVE_KDL
   std::unique_ptr<KdlProblem> kdl;

@@ -42,6 +42,21 @@ struct Data {
   explicit Data(const Model& model, int constraint_capacity = kMaxConstraintColumns);
   int constraint_capacity() const { return capacity_; }
 
+  // The links whose accelerations the solves write into link_accelerations. A new Data
+  // writes every link's (the root link's and each Model::links entry's).
+  // set_link_outputs(links) narrows that to `links` (Model::links indices, -1 for the root
+  // link; order and repeats do not matter; empty: none) and sets every other link's entry
+  // to 0, which no solve writes again: a link that carries no constraint block and no
+  // wrench (a sensor or marker frame on a fixed joint) then costs a solve nothing, and
+  // every other result stays the same to the bit. Throws achd::Error naming the entry that
+  // is not a link (and changes nothing then); allocates: call it once, outside the loop of
+  // solves. set_all_link_outputs(): every link again.
+  void set_link_outputs(const std::vector<int>& links);
+  void set_all_link_outputs();
+  bool all_link_outputs() const { return all_link_outputs_; }
+  // The links set_link_outputs() asked for, sorted, each once (empty when all_link_outputs()).
+  const std::vector<int>& link_outputs() const { return link_outputs_; }
+
   // ---- results of the last hybrid_dynamics() ----
   Eigen::VectorXd qdd;                 // joint accelerations
   Eigen::VectorXd constraint_torques;  // KDL's -S^T E nu
@@ -60,7 +75,8 @@ struct Data {
                                        // origin: what the tip exerts on the constraint
   std::vector<Vector6> constraint_wrenches;  // per Case::constraints block, then per loop
                                              // joint: alpha nu at its point, base axes
-  std::vector<Vector6> link_accelerations;  // root link first, then Model::links
+  std::vector<Vector6> link_accelerations;  // root link first, then Model::links; those
+                                            // of the links asked for (set_link_outputs)
   Eigen::VectorXd coupling_forces;  // per Model::couplings entry: nu_c, the robot receiving
                                     // the torques -C^T nu_c (joint_couplings.hpp)
   int rank = 0;                  // of the coupling matrix K (nc x nc); its
@@ -147,6 +163,8 @@ struct Data {
   } workspace;
  private:
   int capacity_;
+  bool all_link_outputs_ = true;
+  std::vector<int> link_outputs_;
 };
 
 }  // namespace achd

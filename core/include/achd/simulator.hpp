@@ -169,7 +169,10 @@ class Simulator : public SimulationState {
   double kinetic_energy() const;
   double potential_energy() const;  // gravity only; 0 when gravity is off
   double energy() const;  // kinetic_energy() + potential_energy(), from one sweep
-  // The solve at the start of the last completed step (nu, joint torques, ...).
+  // The solve at the start of the last completed step (nu, joint torques, ...). Its
+  // solves compute the accelerations of the links with directions (direction_sets())
+  // alone (Data::set_link_outputs: the other links' entries hold 0); any link's motion
+  // is link_pose() and link_velocity().
   const Data& data() const { return data_[current_]; }
   const Model& model() const { return model_; }
   const SimulatorOptions& options() const { return options_; }

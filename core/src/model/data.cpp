@@ -1,5 +1,6 @@
 #include "achd/data.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "achd/error.hpp"
@@ -72,6 +73,29 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
     f.f_ext.reserve(model.num_links());
     f.f_virtual.reserve(model.num_links());
   }
+}
+
+void Data::set_link_outputs(const std::vector<int>& links) {
+  const int n = static_cast<int>(link_accelerations.size()) - 1;  // the links after the root
+  for (size_t i = 0; i < links.size(); ++i)
+    if (links[i] < -1 || links[i] >= n)
+      throw Error("link_outputs[" + std::to_string(i) + "]: " + std::to_string(links[i]) +
+                  " is not a link index of the model (-1 for the root link, 0 to " + std::to_string(n - 1) +
+                  " for Model::links)");
+  link_outputs_ = links;
+  std::sort(link_outputs_.begin(), link_outputs_.end());
+  link_outputs_.erase(std::unique(link_outputs_.begin(), link_outputs_.end()), link_outputs_.end());
+  all_link_outputs_ = false;
+  // Every other link's entry 0, which no solve writes again.
+  std::vector<bool> wanted(n + 1, false);
+  for (const int l : link_outputs_) wanted[l + 1] = true;
+  for (int l = 0; l <= n; ++l)
+    if (!wanted[l]) link_accelerations[l].setZero();
+}
+
+void Data::set_all_link_outputs() {
+  all_link_outputs_ = true;
+  link_outputs_.clear();
 }
 
 }  // namespace achd

@@ -109,10 +109,16 @@ void name_the_first_overflow(const Model& model, const Data& d, const Case& c, i
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(d.qdd[i]) || !finite(d.a[i]))
       overflow(joint(model, i) + ": the acceleration qdd[" + std::to_string(i) + "] is not finite");
-  for (int l = 0; l <= model.num_links(); ++l)
+  const auto link_acceleration = [&](int l) {  // link_accelerations index, 0: the root link
     if (!finite(d.link_accelerations[l]))
       overflow("link '" + (l ? model.links[l - 1].name : model.root_name) +
                "': its acceleration (link_accelerations[" + std::to_string(l) + "]) is not finite");
+  };
+  if (d.all_link_outputs()) {
+    for (int l = 0; l <= model.num_links(); ++l) link_acceleration(l);
+  } else {
+    for (const int l : d.link_outputs()) link_acceleration(l + 1);  // the links the solve wrote
+  }
   if (!finite(d.constraint_wrench)) overflow("the constraint wrench alpha nu is not finite");
   for (size_t b = 0; b < d.constraint_wrenches.size(); ++b)
     if (!finite(d.constraint_wrenches[b]))

@@ -30,6 +30,10 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   if (model_.num_links() == 0)
     throw Error("simulator: the model has no link after the root link '" + model_.root_name +
                 "' (a link fixed to it will do)");
+  // The steps read the held links' motion from the kinematics (link_state), never the
+  // solves' link accelerations: the solves compute those of the links with directions
+  // alone, none at first (Data::set_link_outputs; set_of() adds each link).
+  for (Data* d : {&data_[0], &data_[1], &limit_data_, &integrator_->stage_data}) d->set_link_outputs({});
   const int n = model_.num_rates();
   q = Case::zeros(model_).q;  // num_positions(): a floating base upright at the origin
   qd = ff_torques = Eigen::VectorXd::Zero(n);

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "achd/error.hpp"
 #include "achd/simulator.hpp"
 #include "direction_sets.hpp"
 #include "held_directions.hpp"
+#include "integrators.hpp"
 #include "simulator_checks.hpp"
 #include "message_number.hpp"
 #include "tip_kinematics.hpp"
@@ -25,7 +27,15 @@ int Simulator::tip_link(const std::string& what) const {
 const std::vector<LinkDirections>& Simulator::direction_sets() const { return directions_->sets(); }
 
 LinkDirections& Simulator::set_of(int link) {
+  const size_t sets = directions_->sets().size();
   const int s = directions_->find_or_create(link);
+  if (directions_->sets().size() != sets) {
+    // The solves compute the accelerations of the links with directions alone (data()
+    // reports them; the steps read the links' motion from the kinematics).
+    std::vector<int> links;
+    for (const LinkDirections& set : directions_->sets()) links.push_back(set.link);
+    for (Data* d : {&data_[0], &data_[1], &limit_data_, &integrator_->stage_data}) d->set_link_outputs(links);
+  }
   // a new set's held angles, zero (the only allocation of a set: not in a step)
   const Eigen::Index before = held_angles.size(), after = (s + 1) * kNumDirections;
   if (after > before) {

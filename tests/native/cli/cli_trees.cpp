@@ -405,8 +405,8 @@ TEST_F(CliTrees, LockedSideJointsAreReported) {
       << "ignoring the side branches drops their mass";
 }
 
-// achd bench takes every case achd solve takes (names, blocks, a tree); --against kdl
-// needs a chain without blocks.
+// achd bench takes every case achd solve takes (names, blocks, a tree), with or without
+// --link-outputs; --against kdl needs a chain without blocks.
 TEST_F(CliTrees, BenchTakesWhatSolveTakes) {
   json named = kuka_case();
   named["q"] = {{"lwr_joint_2", 0.6}, {"lwr_joint_4", -1.2}};
@@ -428,6 +428,9 @@ TEST_F(CliTrees, BenchTakesWhatSolveTakes) {
   tree_args.insert(tree_args.end(), quick.begin(), quick.end());
   const std::string tree_out = ok("bench", kTree, tree_args);
   EXPECT_TRUE(!tree_out.empty() && json::parse(tree_out).contains("achd_ns"));
+  tree_args.push_back("--link-outputs");
+  const std::string outputs_out = ok("bench", kTree, tree_args);
+  EXPECT_TRUE(!outputs_out.empty() && json::parse(outputs_out).contains("achd_ns"));
   refused({"bench", kKuka, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case", blocks_path, "--against", "kdl"},
           "--against kdl: KDL's solver has no constraint blocks");
   refused({"bench", kTree, "--case", tree_case, "--against", "kdl"}, "--against kdl: KDL's solver takes a chain; give --tip");

@@ -1,7 +1,8 @@
 // hybrid_dynamics() never allocates: malloc/calloc/realloc and operator new are counted
 // while it runs, for every robot of robots/index.json, every constraint count 0..6, with
 // qd, f_ext and ff torques nonzero, in both conventions and both singularity policies,
-// without and with prescribed joints.
+// without and with prescribed joints; nor with some or no link outputs asked for
+// (Data::set_link_outputs).
 // Nor do the workspace forms of rnea, crba, forward_kinematics, link_velocities,
 // tip_jacobian and link_jacobian, once their outputs have their sizes.
 #include <algorithm>
@@ -234,6 +235,66 @@ TEST(NoAllocation, HybridDynamicsOnTheTreeRobotsHoldingTheirDefaultLinks) {
   }
   // quadruped, dual-arm torso, Panda with fingers, humanoid, four-bar; fixed and floating
   EXPECT_EQ(solves, 5 * 2 * 2 * 3);
+}
+
+// Solves asked for some links' accelerations or for none (Data::set_link_outputs, the
+// path `achd bench` and the simulator take): every robot of robots/index.json (the trees
+// also on a floating base), its default held links (a chain: its tip) held in 3D, with and without
+// wrenches on the links.
+TEST(NoAllocation, HybridDynamicsWithSomeOrNoLinkOutputs) {
+  std::ifstream in(kRepo + "/robots/index.json");
+  ASSERT_TRUE(in) << kRepo;
+  const nlohmann::json index = nlohmann::json::parse(in);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int solves = 0;
+  for (const auto& r : index["robots"])
+    for (bool floating : {false, true}) {
+      if (floating && r.contains("tip")) continue;  // the chains' roots are massless bases
+      achd::UrdfOptions options;
+      if (r.contains("mimic")) options.mimic = achd::mimic_joints_from_name(r["mimic"], "mimic");
+      if (r.contains("loops")) options.loops = achd::test::read_loops_file(kRepo + "/" + r["loops"].get<std::string>());
+      options.floating = floating;
+      const achd::Model m = achd::load_urdf_file(kRepo + "/" + r["urdf"].get<std::string>(),
+                                                 r["root"].get<std::string>(), r.value("tip", ""), options);
+      const int n = m.num_rates();
+      achd::Case c = achd::Case::zeros(m);
+      for (int i = m.free_joint_positions(); i < c.q.size(); ++i)
+        c.q[i] = r["q0"][i - m.free_joint_positions()].get<double>();
+      c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+      c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+      if (m.has_tip()) {
+        c.alpha = achd::ConstraintMatrix::Identity(6, 3);
+        c.beta = achd::ConstraintVector::Zero(3);
+      }
+      for (const auto& link : r.value("constraints", nlohmann::json::array())) {
+        achd::ConstraintBlock b;
+        b.link = m.link_index(link.get<std::string>());
+        b.alpha = achd::ConstraintMatrix::Identity(6, 3);
+        b.beta = achd::ConstraintVector::Zero(3);
+        c.constraints.push_back(b);
+      }
+      for (const std::vector<int>& wanted : {std::vector<int>{}, std::vector<int>{-1, m.num_links() - 1}}) {
+        achd::Data d(m);
+        d.set_link_outputs(wanted);
+        for (bool wrenches : {false, true}) {
+          c.f_ext.clear();
+          if (wrenches)
+            for (int l = 0; l < m.num_links(); ++l) c.f_ext.push_back(achd::Vector6::NullaryExpr([&] { return U(rng); }));
+          achd::Options o;
+          o.effects = achd::kAllEffects;
+          achd::hybrid_dynamics(m, d, c, o);  // the first solve of a case sizes the loop case's copies
+          EXPECT_EQ(allocations_of_solve(m, d, c, o), 0)
+              << r["name"] << (floating ? " floating" : "") << " links asked " << wanted.size();
+          ASSERT_TRUE(d.qdd.allFinite());
+          ++solves;
+        }
+      }
+    }
+  const auto chains = std::count_if(index["robots"].begin(), index["robots"].end(),
+                                    [](const nlohmann::json& r) { return r.contains("tip"); });
+  const auto trees = static_cast<long>(index["robots"].size()) - chains;
+  EXPECT_EQ(solves, static_cast<int>((chains + 2 * trees) * 2 * 2));
 }
 
 TEST(NoAllocation, WorkspaceFormsOfKinematicsAndDynamicsOnEveryRobot) {
