@@ -30,6 +30,14 @@ std::string short_number(double v) {
   return buf;
 }
 
+// A CSV field: quoted, with its quotes doubled, when it holds a comma, quote or newline.
+std::string text_cell(const std::string& t) {
+  if (t.find_first_of(",\"\n") == std::string::npos) return t;
+  std::string q = "\"";
+  for (char c : t) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 // A finite number or null.
 nlohmann::ordered_json value(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
@@ -40,15 +48,17 @@ nlohmann::ordered_json value(double v) {
 std::string study_csv(const Study& study) {
   std::ostringstream o;
   o << "kind,integrator,setting,dt_s,steps,stable,status,error_q_rad,error_qd_rad_s,change_q_rad,energy_drift,"
-       "held_drift_m,held_drift_rad,ns_per_step,cpu_s_per_sim_s,order,pareto\n";
+       "held_drift_m,held_drift_rad,substeps,stiff_substeps,rejected_substeps,ns_per_step,cpu_s_per_sim_s,order,pareto,"
+       "failure\n";
   for (const StudyRun& r : study.runs) {
     const bool s = r.stable;
     o << r.kind << ',' << r.integrator << ',' << r.setting << ',' << cell(r.dt) << ',' << r.steps << ','
       << (s ? "true" : "false") << ',' << r.status << ',' << (s ? cell(r.error_q) : "") << ',' << (s ? cell(r.error_qd) : "")
       << ',' << (r.kind == "integrator" || !s ? "" : cell(r.change_q)) << ',' << cell(r.energy_drift) << ','
       << (s ? cell(r.held_drift_linear) : "") << ',' << (s ? cell(r.held_drift_angular) : "") << ','
+      << r.substeps << ',' << r.stiff_substeps << ',' << r.rejected_substeps << ','
       << cell(r.ns_per_step) << ',' << cell(r.cpu_s_per_sim_s) << ',' << cell(r.order) << ','
-      << (r.pareto ? "true" : "false") << '\n';
+      << (r.pareto ? "true" : "false") << ',' << text_cell(r.failure) << '\n';
   }
   return o.str();
 }
@@ -94,12 +104,16 @@ nlohmann::ordered_json study_json(const Study& study) {
     row["steps"] = r.steps;
     row["stable"] = r.stable;
     row["status"] = r.status;
+    if (!r.stable) row["failure"] = r.failure;
     row["error_q_rad"] = r.stable ? value(r.error_q) : nullptr;
     row["error_qd_rad_s"] = r.stable ? value(r.error_qd) : nullptr;
     if (r.kind != "integrator") row["change_q_rad"] = r.stable ? value(r.change_q) : nullptr;
     row["energy_drift"] = value(r.energy_drift);
     row["held_drift_m"] = r.stable ? value(r.held_drift_linear) : nullptr;
     row["held_drift_rad"] = r.stable ? value(r.held_drift_angular) : nullptr;
+    row["substeps"] = r.substeps;  // up to the failed step when not ok
+    row["stiff_substeps"] = r.stiff_substeps;
+    row["rejected_substeps"] = r.rejected_substeps;
     row["ns_per_step"] = r.ns_per_step;
     row["cpu_s_per_sim_s"] = r.cpu_s_per_sim_s;
     if (r.kind == "integrator") {
@@ -138,10 +152,10 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
       const std::string label =
           (r.setting.empty() ? short_number(r.dt * 1e3) : r.setting) + (resolved ? "" : "*");
       if (r.stable && r.error_q > 0) s.points.push_back({r.cpu_s_per_sim_s, r.error_q, label, r.pareto});
-      else if (!r.stable) steps[r.status] += (steps[r.status].empty() ? "" : ", ") + short_number(r.dt * 1e3);
+      else if (!r.stable) steps[r.status] += (steps[r.status].empty() ? "" : ", ") + (r.setting.empty() ? short_number(r.dt * 1e3) + " ms" : r.setting);
     }
     for (const auto& [status, list] : steps)
-      left_out[status] += (left_out[status].empty() ? "" : "; ") + s.name + " " + list + " ms";
+      left_out[status] += (left_out[status].empty() ? "" : "; ") + s.name + " " + list;
     if (any) plot.series.push_back(s);  // the study's integrators only
   }
   const Reference& ref = study.reference;
@@ -155,9 +169,11 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
                        " rad/s, Baumgarte frequency " + short_number(study.stabilisation_frequency) +
                        " rad/s (the scene's, at every step).");
   if (left_out.count("unstable"))
-    plot.notes.push_back("Unstable (NaN/Inf), not plotted: " + left_out["unstable"] + ".");
+    plot.notes.push_back("Unstable (a step failed: NaN/Inf, or the solver or the substep control refused it), not plotted: " +
+                         left_out["unstable"] + ".");
   if (left_out.count("diverged"))
     plot.notes.push_back("Diverged (finite, error > 1 rad), not plotted: " + left_out["diverged"] + ".");
+  if (!left_out.empty()) plot.notes.push_back("Why each failed: the failure column of accuracy.csv.");
   return plot;
 }
 

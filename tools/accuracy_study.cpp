@@ -16,6 +16,10 @@
 namespace achd::cli {
 namespace {
 
+// The integrators whose held drift run_knobs() shows at the scene's Baumgarte frequency
+// (each but the scene's own).
+constexpr Integrator kDriftIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4};
+
 // The fixed-step integrators of the ladder (Dormand-Prince runs per tolerance instead).
 constexpr Integrator kLadderIntegrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler,
                                              Integrator::ImplicitEuler, Integrator::RK4};
@@ -37,6 +41,9 @@ bool holds_directions(const Scene& scene) {
   if (!(scene.options.effects & kConstraints)) return false;
   for (DirectionMode m : scene.modes)
     if (m == DirectionMode::Hold) return true;
+  for (const Scene::LinkSet& set : scene.link_directions)
+    for (DirectionMode m : set.modes)
+      if (m == DirectionMode::Hold) return true;
   return false;
 }
 
@@ -46,6 +53,11 @@ void score(const EndState& end, const Reference& ref, StudyRun& r) {
   r.error_qd = end.finite ? max_abs_difference(end.qd, ref.end.qd) : INFINITY;
   r.stable = end.finite && std::isfinite(r.error_qd) && r.error_q <= kUnstableError;
   r.status = r.stable ? "ok" : end.finite && std::isfinite(r.error_qd) ? "diverged" : "unstable";
+  if (r.stable) r.failure.clear();
+  else if (!end.finite) r.failure = end.failure;
+  else if (r.status == "unstable") r.failure = "the end state is not finite";
+  else r.failure = "ends " + number_text(r.error_q) + " rad from the reference (more than " +
+                   number_text(kUnstableError) + " rad)";
 }
 
 // Error, drifts and stability of a run that ended in `end`, against the reference.
@@ -57,6 +69,9 @@ StudyRun measure(const EndState& end, const SimulatorOptions& options, double dt
   r.steps = steps_for_duration(duration, dt);
   score(end, ref, r);
   r.energy_drift = end.energy_drift;
+  r.substeps = end.substeps;
+  r.stiff_substeps = end.stiff_substeps;
+  r.rejected_substeps = end.rejected_substeps;
   for (int k = 0; k < kNumDirections; ++k) {  // x, y, z first, then rx, ry, rz
     double& drift = k < 3 ? r.held_drift_linear : r.held_drift_angular;
     drift = std::max(drift, end.held_drift[k]);
@@ -178,7 +193,7 @@ void run_knobs(const Scene& scene, const SimulatorOptions& base, const StudyConf
     o.stabilisation_frequency = 1000;
     add("stabilisation_frequency", "1000", o);
     // The held drift the other integrators show with the scene's frequency.
-    for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RK4}) {
+    for (Integrator integrator : kDriftIntegrators) {
       if (integrator == base.integrator) continue;
       o = base;
       o.integrator = integrator;
@@ -194,9 +209,12 @@ struct KnobRuns {
 };
 KnobRuns knob_runs(const Scene& scene) {
   const bool friction = uses_friction(scene), held = holds_directions(scene);
+  int drift = 0;  // kDriftIntegrators other than the scene's
+  for (Integrator integrator : kDriftIntegrators) drift += integrator != scene.options.integrator;
   // default, velocity products, 3 tolerances, 4 dampings; 2 friction velocities; 2
-  // Baumgarte frequencies and the 2 other integrators at the default one.
-  return {9 + (friction ? 2 : 0) + (held ? 4 : 0), 1 + (held ? 2 : 0)};
+  // Baumgarte frequencies and the other integrators at the default one (each with its
+  // default run to compare with).
+  return {9 + (friction ? 2 : 0) + (held ? 2 + drift : 0), 1 + (held ? drift : 0)};
 }
 
 }  // namespace
@@ -252,8 +270,15 @@ EndState run_to_end(const Scene& scene, const SimulatorOptions& options, double 
   }
   end.q = sim.q;
   end.qd = sim.qd;
+  end.substeps = sim.substeps();
+  end.stiff_substeps = sim.stiff_substeps();
+  end.rejected_substeps = sim.rejected_substeps();
   if (conserves && max_kinetic > 0) end.energy_drift = max_energy_error / max_kinetic;
-  if (end.finite) end.held_drift = sim.max_residuals();
+  if (end.finite)  // over every link with directions (the tip's among them)
+    for (const LinkDirections& set : sim.direction_sets()) {
+      const std::array<double, kNumDirections> drift = sim.max_residuals(set.link);
+      for (int k = 0; k < kNumDirections; ++k) end.held_drift[k] = std::max(end.held_drift[k], drift[k]);
+    }
   return end;
 }
 

@@ -39,8 +39,13 @@ struct EndState {
   // max |E(t) - E(0)| / max kinetic energy over the run; NaN when the scene does not
   // conserve energy.
   double energy_drift = std::numeric_limits<double>::quiet_NaN();
-  // The largest |residual| of each held direction (m or rad); 0 for free directions.
+  // The largest |residual| of each held direction (m or rad), over every link with
+  // directions; 0 for free directions.
   std::array<double, kNumDirections> held_drift{};
+  // The integrator's accepted substeps (one per step for the fixed-step ones), of them
+  // the stiff ones (Dormand-Prince's extrapolated implicit Euler substeps), and the
+  // rejected ones.
+  std::int64_t substeps = 0, stiff_substeps = 0, rejected_substeps = 0;
 };
 
 // Told the number of steps just taken, after every step of every run of a study (the
@@ -91,11 +96,14 @@ struct StudyRun {
   bool stable = true;      // false: "unstable" or "diverged" below
   std::string status;      // "ok"; "unstable": NaN/Inf (or the solver refused the
                            // state); "diverged": finite but error_q > kUnstableError
+  std::string failure;     // why a run is not "ok": the failed step's message, or the
+                           // diverged run's error ("" when ok)
   double error_q = 0, error_qd = 0;  // against the reference
   double change_q = 0;               // knobs: max|q - q_default| (same integrator and dt)
   double energy_drift = 0;           // NaN where the scene does not conserve energy
   double held_drift_linear = 0;      // m, the largest over held linear directions
   double held_drift_angular = 0;     // rad, the largest over held angular directions
+  std::int64_t substeps = 0, stiff_substeps = 0, rejected_substeps = 0;  // EndState's
   double ns_per_step = 0;
   double cpu_s_per_sim_s = 0;        // ns_per_step * 1e-9 / dt
   double order = std::numeric_limits<double>::quiet_NaN();  // vs the previous dt

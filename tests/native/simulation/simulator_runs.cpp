@@ -199,7 +199,7 @@ TEST(AccuracyStudy, AdaptiveRunsPerToleranceAndImplicitEulerInTheLadder) {
 
 // The accuracy study's step count, which its guard (kMaxStudySteps) and the CLI's
 // progress use, is the number of steps it takes besides the reference's refinement
-// (which the study reports): on the damped swing every run is stable, so it is exact.
+// (which the study reports): where every run is stable, it is exact.
 TEST(AccuracyStudySteps, PlannedAreTaken) {
   const cli::Scene scene = cli::load_scene((kRoot / "robots/scenes/planar2_damped_swing.json").string());
   const cli::StudyConfig config = cli::default_config(scene, true);
@@ -208,6 +208,20 @@ TEST(AccuracyStudySteps, PlannedAreTaken) {
   for (const cli::StudyRun& r : study.runs) ASSERT_TRUE(r.stable) << r.kind << " " << r.integrator << " " << r.dt;
   EXPECT_EQ(static_cast<double>(taken),
             cli::planned_steps(scene, config) + static_cast<double>(study.reference.refinement_steps));
+  // With held directions and Dormand-Prince the scene's integrator, the knobs add the held
+  // drift of explicit and semi-implicit Euler and RK4, each with its default run (the
+  // undamped arm holding z and rx, short and at small steps, so that every run is stable).
+  const cli::Scene held = cli::load_scene((kRoot / "robots/scenes/kuka_lwr4_undamped_hold_z_rx.json").string());
+  ASSERT_EQ(held.options.integrator, Integrator::DormandPrince);
+  cli::StudyConfig short_config = cli::default_config(held, true);
+  short_config.duration = 0.02;
+  short_config.dts = {1e-3, 0.5e-3};
+  short_config.reference_dt = 0.125e-3;
+  taken = 0;
+  const cli::Study held_study = cli::run_study(held, short_config, [&](std::int64_t n) { taken += n; });
+  for (const cli::StudyRun& r : held_study.runs) ASSERT_TRUE(r.stable) << r.kind << " " << r.integrator << " " << r.dt;
+  EXPECT_EQ(static_cast<double>(taken),
+            cli::planned_steps(held, short_config) + static_cast<double>(held_study.reference.refinement_steps));
   // A study beyond the limit is refused before it starts, naming its step count.
   cli::StudyConfig huge = config;
   huge.duration = 1e9;
