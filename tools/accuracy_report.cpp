@@ -136,7 +136,7 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
   plot.y_label = "error: max |q(T) - q_ref(T)| (rad)";
   plot.x_marker = 1;
   plot.x_marker_label = "real time";
-  // Runs not plotted, by status: "explicit_euler 10, 5 ms; rk4 10 ms".
+  // Runs not plotted, by status: "explicit_euler 10, 5 ms; rk4 10 ms; dormand_prince rtol 0.001".
   std::map<std::string, std::string> left_out;
   for (std::size_t k = 0; k < sizeof kColors / sizeof kColors[0]; ++k) {
     std::map<std::string, std::string> steps;
@@ -152,10 +152,11 @@ LogLogPlot study_plot(const Study& study, const std::string& title) {
       const std::string label =
           (r.setting.empty() ? short_number(r.dt * 1e3) : r.setting) + (resolved ? "" : "*");
       if (r.stable && r.error_q > 0) s.points.push_back({r.cpu_s_per_sim_s, r.error_q, label, r.pareto});
-      else if (!r.stable) steps[r.status] += (steps[r.status].empty() ? "" : ", ") + (r.setting.empty() ? short_number(r.dt * 1e3) + " ms" : r.setting);
+      else if (!r.stable) steps[r.status] += (steps[r.status].empty() ? "" : ", ") + (r.setting.empty() ? short_number(r.dt * 1e3) : r.setting);
     }
+    const bool adaptive = s.name == integrator_name(Integrator::DormandPrince);  // listed by rtol, not ms
     for (const auto& [status, list] : steps)
-      left_out[status] += (left_out[status].empty() ? "" : "; ") + s.name + " " + list;
+      left_out[status] += (left_out[status].empty() ? "" : "; ") + s.name + " " + list + (adaptive ? "" : " ms");
     if (any) plot.series.push_back(s);  // the study's integrators only
   }
   const Reference& ref = study.reference;
