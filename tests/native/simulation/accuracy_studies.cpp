@@ -13,7 +13,7 @@
 //     every integrator, each row either ok with a finite error or marked unstable or
 //     diverged with the reason (the explicit ones fail at every step the quick ladder
 //     has down to 0.2 ms).
-// Release only: about 25 s there.
+// Release only: about 35 s there on a loaded 2-core machine.
 #include <gtest/gtest.h>
 
 #include <algorithm>
