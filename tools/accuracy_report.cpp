@@ -46,10 +46,12 @@ nlohmann::ordered_json value(double v) {
 }  // namespace
 
 std::string study_csv(const Study& study) {
+  // false: the error is below 1000 x the reference's own (round-off territory).
+  const auto resolved = [&](const StudyRun& r) { return r.stable && r.error_q >= 1e3 * study.reference.self_error_q; };
   std::ostringstream o;
   o << "kind,integrator,setting,dt_s,steps,stable,status,error_q_rad,error_qd_rad_s,change_q_rad,energy_drift,"
        "held_drift_m,held_drift_rad,substeps,stiff_substeps,rejected_substeps,ns_per_step,cpu_s_per_sim_s,order,pareto,"
-       "failure\n";
+       "resolved_by_reference,failure\n";
   for (const StudyRun& r : study.runs) {
     const bool s = r.stable;
     o << r.kind << ',' << r.integrator << ',' << r.setting << ',' << cell(r.dt) << ',' << r.steps << ','
@@ -58,7 +60,8 @@ std::string study_csv(const Study& study) {
       << (s ? cell(r.held_drift_linear) : "") << ',' << (s ? cell(r.held_drift_angular) : "") << ','
       << r.substeps << ',' << r.stiff_substeps << ',' << r.rejected_substeps << ','
       << cell(r.ns_per_step) << ',' << cell(r.cpu_s_per_sim_s) << ',' << cell(r.order) << ','
-      << (r.pareto ? "true" : "false") << ',' << text_cell(r.failure) << '\n';
+      << (r.pareto ? "true" : "false") << ','
+      << (r.kind != "integrator" ? "" : resolved(r) ? "true" : "false") << ',' << text_cell(r.failure) << '\n';
   }
   return o.str();
 }

@@ -12,7 +12,7 @@
 //     could fake, with stiff substeps taken at every tolerance; and its quick study lists
 //     every integrator, each row either ok with a finite error or marked unstable or
 //     diverged with the reason (the explicit ones fail at every step the quick ladder
-//     has down to 0.2 ms).
+//     has down to 0.2 ms), in the CSV and the JSON alike, and the plot's notes name them.
 // Release only: about 35 s there on a loaded 2-core machine.
 #include <gtest/gtest.h>
 
@@ -21,9 +21,12 @@
 #include <cstdio>
 #include <map>
 #include <set>
+#include <sstream>
+#include <string>
 #include <tuple>
 
 #include "achd/names.hpp"
+#include "accuracy_report.hpp"
 #include "accuracy_study.hpp"
 #include "pareto_front.hpp"
 
@@ -155,6 +158,25 @@ TEST_F(AccuracyStiffScene, StudyShowsEveryIntegratorOrWhyItFailed) {
   }
   for (Integrator integrator : kIntegrators) EXPECT_TRUE(seen.count(integrator_name(integrator))) << integrator_name(integrator);
   EXPECT_GT(failed, 0) << "the stiff scene makes some explicit step fail";
+  // The tables and the plot say the same: the CSV's last field and the JSON's "failure"
+  // hold each failed row's reason, the plot's notes name each failed integrator.
+  const nlohmann::ordered_json json = study_json(s);
+  std::istringstream csv(study_csv(s));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.substr(line.rfind(',') + 1), "failure");
+  std::string notes;
+  for (const std::string& note : study_plot(s, "stiff").notes) notes += note + "\n";
+  for (std::size_t i = 0; i < s.runs.size(); ++i) {
+    const StudyRun& r = s.runs[i];
+    ASSERT_TRUE(std::getline(csv, line));
+    const bool quoted = !r.failure.empty() && r.failure.find(',') != std::string::npos;
+    EXPECT_NE(line.find(quoted ? "\"" + r.failure + "\"" : "," + r.failure), std::string::npos) << line;
+    EXPECT_EQ(json["runs"][i].contains("failure"), !r.stable) << i;
+    if (r.stable) continue;
+    EXPECT_EQ(json["runs"][i]["failure"], r.failure);
+    EXPECT_NE(notes.find(r.integrator), std::string::npos) << notes;
+  }
 }
 
 }  // namespace
