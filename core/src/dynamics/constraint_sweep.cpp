@@ -197,7 +197,7 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
 // The off-diagonal block K_st (and K_ts) of two sources of NS and NT columns: over the
 // common part of their paths, each entry summed in a register in the order of the walk.
 // When either is relative, the bodies of P_s are marked in d.workspace.walked (by
-// constraint_sweep) and P_s ∩ P_t is the bodies of t's path found marked. Returns its
+// mutual_couplings_marked) and P_s ∩ P_t is the bodies of t's path found marked. Returns its
 // finite probe.
 template <int NS, int NT>
 double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
@@ -226,6 +226,31 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
       d.K(s.column + k, t.column + l) = d.K(t.column + l, s.column + k) = K[k][l];
       probe += K[k][l] * 0.0;
     }
+  return probe;
+}
+
+// mutual_coupling of sources a and b, dispatched on their column counts.
+inline double pair_coupling(const Model& model, Data& d, const ConstraintSource& a, const ConstraintSource& b) {
+  return with_constraint_count(a.columns, [&](auto ns) {
+    return with_constraint_count(b.columns, [&](auto nt) {
+      return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b);
+    });
+  });
+}
+
+// K's off-diagonal blocks when some source is relative: each source's path is marked in
+// walked while it pairs with the later ones (walked is 0 everywhere before and after).
+// Returns their finite probe. (Out of line: blocks on one link never come here.)
+__attribute__((noinline)) double mutual_couplings_marked(const Model& model, Data& d) {
+  const Data::Workspace& w = d.workspace;
+  unsigned char* walked = d.workspace.walked.data();
+  double probe = 0;
+  for (size_t s = 0; s < w.sources.size(); ++s) {
+    const ConstraintSource& a = w.sources[s];
+    for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 1; });
+    for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, a, w.sources[t]);
+    for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 0; });
+  }
   return probe;
 }
 
@@ -286,31 +311,20 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
   d.K.resize(m, m);
   d.G0.resize(m);
   double probe = 0;
-  for (const ConstraintSource& s : w.sources)
+  bool relative = false;
+  for (const ConstraintSource& s : w.sources) {
+    relative = relative || s.relative;
     probe += with_constraint_count(s.columns, [&](auto n) {
       constexpr int NC = decltype(n)::value;
       roll_to_base<NC>(model, d, s);
       return prescribed ? own_coupling<NC, true>(model, d, c, s) : own_coupling<NC, false>(model, d, c, s);
     });
-  // (a source coupled with a relative one has its path marked in walked while it pairs,
-  // for mutual_coupling; walked is 0 everywhere before and after)
-  int last_relative = -1;
-  for (size_t s = 0; s < w.sources.size(); ++s)
-    if (w.sources[s].relative) last_relative = static_cast<int>(s);
-  unsigned char* walked = d.workspace.walked.data();
-  for (size_t s = 0; s < w.sources.size(); ++s) {
-    const ConstraintSource& a = w.sources[s];
-    const bool mark = a.relative || last_relative > static_cast<int>(s);
-    if (mark) for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 1; });
-    for (size_t t = s + 1; t < w.sources.size(); ++t) {
-      const ConstraintSource& b = w.sources[t];
-      probe += with_constraint_count(a.columns, [&](auto ns) {
-        return with_constraint_count(b.columns, [&](auto nt) {
-          return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b);
-        });
-      });
-    }
-    if (mark) for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 0; });
+  }
+  if (relative) {
+    probe += mutual_couplings_marked(model, d);
+  } else {
+    for (size_t s = 0; s < w.sources.size(); ++s)
+      for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, w.sources[s], w.sources[t]);
   }
   if (w.free_joint_step) probe += free_joint_coupling(d);
   return probe;
