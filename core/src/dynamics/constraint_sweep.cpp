@@ -245,7 +245,7 @@ __attribute__((noinline)) double mutual_couplings_marked(const Model& model, Dat
   const Data::Workspace& w = d.workspace;
   unsigned char* walked = d.workspace.walked.data();
   double probe = 0;
-  for (size_t s = 0; s < w.sources.size(); ++s) {
+  for (size_t s = 0; s + 1 < w.sources.size(); ++s) {  // (the last pairs with none after it)
     const ConstraintSource& a = w.sources[s];
     for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 1; });
     for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, a, w.sources[t]);
