@@ -20,9 +20,9 @@
 // eq. (c) to the bodies' lowest common ancestor c_s (the base, if none), where the two
 // forces stand at one origin and add up; the sum rolls on from c_s as one column. Its
 // path P_s is the union of the two legs and the trunk from c_s: the ancestors of b_s and
-// b'_s. Eqs. (d) and (e) and the constraint torques hold over that path unchanged, and
-// P_s ∩ P_t is the union of the ancestors of the common ancestors of each end of s with
-// each end of t.
+// b'_s. Eqs. (d) and (e) and the constraint torques hold over that path unchanged; P_s ∩
+// P_t is found by marking P_s and walking P_t (O(|P_t|), no search for common ancestors:
+// the Delta robot's five loops all pass the platform's six bodies).
 #include "constraint_sweep.hpp"
 
 #include <algorithm>
@@ -196,7 +196,9 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
 
 // The off-diagonal block K_st (and K_ts) of two sources of NS and NT columns: over the
 // common part of their paths, each entry summed in a register in the order of the walk.
-// Returns its finite probe.
+// When either is relative, the bodies of P_s are marked in d.workspace.walked (by
+// mutual_couplings_marked) and P_s ∩ P_t is the bodies of t's path found marked. Returns its
+// finite probe.
 template <int NS, int NT>
 double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
   const Data::Workspace& w = d.workspace;
@@ -213,23 +215,10 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
   if (!s.relative && !t.relative) {
     for (int i = common_ancestor(model, s.body, t.body); i >= last; i = model.bodies[i].parent) add(i);
   } else {
-    // P_s ∩ P_t: the ancestors of the common ancestor of each end of s with each end of t,
-    // each body once (a path stops where it reaches one already walked)
-    const int ends_s[2] = {s.body, s.body_b}, ends_t[2] = {t.body, t.body_b};
-    int tops[4], n = 0;
-    for (int x = 0; x < (s.relative ? 2 : 1); ++x)
-      for (int y = 0; y < (t.relative ? 2 : 1); ++y) tops[n++] = common_ancestor(model, ends_s[x], ends_t[y]);
-    // (each body walked is marked, and unmarked after: the walks before cover the ancestors
-    // of their tops, so a path stops at the first marked body, its lowest common ancestor
-    // with an earlier top)
-    unsigned char* walked = d.workspace.walked.data();
-    for (int k = 0; k < n; ++k)
-      for (int i = tops[k]; i >= last && !walked[i]; i = model.bodies[i].parent) {
-        add(i);
-        walked[i] = 1;
-      }
-    for (int k = 0; k < n; ++k)
-      for (int i = tops[k]; i >= last && walked[i]; i = model.bodies[i].parent) walked[i] = 0;
+    const unsigned char* on_s = w.walked.data();
+    for_each_on_path(model, t, last, [&](int i) {
+      if (on_s[i]) add(i);
+    });
   }
   double probe = 0;
   for (int k = 0; k < NS; ++k)
@@ -237,6 +226,31 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
       d.K(s.column + k, t.column + l) = d.K(t.column + l, s.column + k) = K[k][l];
       probe += K[k][l] * 0.0;
     }
+  return probe;
+}
+
+// mutual_coupling of sources a and b, dispatched on their column counts.
+inline double pair_coupling(const Model& model, Data& d, const ConstraintSource& a, const ConstraintSource& b) {
+  return with_constraint_count(a.columns, [&](auto ns) {
+    return with_constraint_count(b.columns, [&](auto nt) {
+      return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b);
+    });
+  });
+}
+
+// K's off-diagonal blocks when some source is relative: each source's path is marked in
+// walked while it pairs with the later ones (walked is 0 everywhere before and after).
+// Returns their finite probe. (Out of line: blocks on one link never come here.)
+__attribute__((noinline)) double mutual_couplings_marked(const Model& model, Data& d) {
+  const Data::Workspace& w = d.workspace;
+  unsigned char* walked = d.workspace.walked.data();
+  double probe = 0;
+  for (size_t s = 0; s + 1 < w.sources.size(); ++s) {  // (the last pairs with none after it)
+    const ConstraintSource& a = w.sources[s];
+    for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 1; });
+    for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, a, w.sources[t]);
+    for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 0; });
+  }
   return probe;
 }
 
@@ -297,21 +311,21 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
   d.K.resize(m, m);
   d.G0.resize(m);
   double probe = 0;
-  for (const ConstraintSource& s : w.sources)
+  bool relative = false;
+  for (const ConstraintSource& s : w.sources) {
+    relative = relative || s.relative;
     probe += with_constraint_count(s.columns, [&](auto n) {
       constexpr int NC = decltype(n)::value;
       roll_to_base<NC>(model, d, s);
       return prescribed ? own_coupling<NC, true>(model, d, c, s) : own_coupling<NC, false>(model, d, c, s);
     });
-  for (size_t s = 0; s < w.sources.size(); ++s)
-    for (size_t t = s + 1; t < w.sources.size(); ++t) {
-      const ConstraintSource &a = w.sources[s], &b = w.sources[t];
-      probe += with_constraint_count(a.columns, [&](auto ns) {
-        return with_constraint_count(b.columns, [&](auto nt) {
-          return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b);
-        });
-      });
-    }
+  }
+  if (relative) {
+    probe += mutual_couplings_marked(model, d);
+  } else {
+    for (size_t s = 0; s < w.sources.size(); ++s)
+      for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, w.sources[s], w.sources[t]);
+  }
   if (w.free_joint_step) probe += free_joint_coupling(d);
   return probe;
 }

@@ -7,6 +7,7 @@
 
 #include "achd/case.hpp"
 #include "achd/data.hpp"
+#include "pair.hpp"
 
 namespace achd {
 
@@ -39,11 +40,14 @@ struct Ldlt {
     if constexpr (N > 0) return factor_dense(K);
     if constexpr (N == 0) {
       n_ = static_cast<int>(K.rows());
+      bool dense = true;
       for (int i = 0; i < n_; ++i) {
         int f = 0;
         while (f < i && K(i, f) == 0) ++f;
         first_[i] = f;
+        dense = dense && f == 0;
       }
+      if (dense) return factor_by_columns(K);
     }
     const int n = size();
     double W[C][C];  // W[i][k] = L[i][k] d_k
@@ -89,6 +93,51 @@ struct Ldlt {
       }
     }
     return true;
+  }
+
+  // factor for N = 0 when every first(i) = 0 (a dense K of more than 6 columns that is not
+  // the unrolled 12: the Delta robot's five loops, m = 15), right-looking: once column j
+  // is final, every entry (i, l) below and right of it takes its term,
+  //   A_il -= L_ij W_lj  (i >= l > j),  A = K to start,
+  // two rows i to a Pair (A is column-major like K, so rows i and i + 1 are adjacent), and
+  // columns j and j + 1 applied in one pass (column j + 1 takes column j's term first, to
+  // be final). Each entry receives the same terms in the same order (j ascending) as
+  // factor's sums, so L, D and every result are factor's to the bit, in fewer instructions
+  // (5.5 per term against 8 and more).
+  bool factor_by_columns(const CouplingMatrix& K) {
+    const int n = n_;
+    // A(i, l) = A[l * n + i], K's layout; only its lower triangle is read. The last Pair of
+    // a column reaches one row past it, into the next column's upper triangle (or the pad).
+    double A[C * C + 1];
+    std::copy(K.data(), K.data() + n * n, A);
+    A[n * n] = 0;
+    double lj[C + 1], lk[C + 1];  // L_ij and L_i,j+1 (0 past n)
+    lj[n] = lk[n] = 0;
+    // Column j final: its pivot and L_ij.
+    const auto finish = [&](int j, double* l) {
+      const double d = A[j * n + j];
+      if (!(d > 0)) return false;
+      Dinv[j] = 1 / d;
+      for (int i = j + 1; i < n; ++i) l[i] = L[i][j] = A[j * n + i] * Dinv[j];  // W_ij = A(i, j)
+      return true;
+    };
+    int j = 0;
+    for (; j + 1 < n; j += 2) {
+      if (!finish(j, lj)) return false;
+      const int k = j + 1;
+      {  // column k takes column j's term
+        const Pair w = splat(A[j * n + k]);
+        for (int i = k; i < n; i += 2) store_pair(&A[k * n + i], load_pair(&A[k * n + i]) - load_pair(&lj[i]) * w);
+      }
+      if (!finish(k, lk)) return false;
+      for (int l = k + 1; l < n; ++l) {
+        const Pair wj = splat(A[j * n + l]), wk = splat(A[k * n + l]);  // W_lj, W_lk
+        double* a = &A[l * n];
+        for (int i = l; i < n; i += 2)
+          store_pair(a + i, (load_pair(a + i) - load_pair(&lj[i]) * wj) - load_pair(&lk[i]) * wk);
+      }
+    }
+    return j == n || finish(j, lj);  // n odd: the last pivot
   }
 
   // x = K^-1 b: L y = b, then L^T x = D^-1 y.
