@@ -1,6 +1,9 @@
 #!/usr/bin/env node
 // ns per hybrid-dynamics solve: the zero-copy solver of the wasm module in Node against
-// the native CLI's `achd bench` on the same robot and case, in the same run.
+// the native CLI's `achd bench` on the same robot and case, in the same run. Both sides do
+// the same work: the zero-copy solver writes every link's acceleration (its
+// link_accelerations view), so the native side runs with `--link-outputs`, which computes
+// them too (`achd bench` alone computes none, Data::set_link_outputs({})).
 //
 //   node bench/wasm_vs_native.mjs          (native CLI: $ACHD_CLI, else build/achd)
 //
@@ -65,11 +68,12 @@ function nsPerCall(fn, n) {
   return Number(process.hrtime.bigint() - t0) / n;
 }
 
-// One native round: `achd bench` with a fixed count (its own warm-up round, then one
-// timed round on its thread's CPU clock).
+// One native round: `achd bench --link-outputs` (every link's acceleration, as the wasm
+// solver computes them) with a fixed count (its own warm-up round, then one timed round
+// on the wall clock).
 function nativeRound(cli, entry, casePath, iterations) {
   const out = execFileSync(cli, ['bench', entry.path, '--root', entry.root, '--tip', entry.tip,
-    '--case', casePath, '--iterations', String(iterations), '--repeats', '1', '--clock', 'wall'],
+    '--case', casePath, '--iterations', String(iterations), '--repeats', '1', '--clock', 'wall', '--link-outputs'],
     { encoding: 'utf8' });
   return JSON.parse(out).achd_ns;
 }

@@ -387,7 +387,10 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
     for (int i = 0; i < model.num_rates(); ++i)
       if (c.prescribed[i]) d.joint_torques[i] = d.prescribed_torques[i];
   d.constraint_wrench.setZero();
-  d.constraint_wrenches.assign(num_solve_blocks(c, d), Vector6::Zero());
+  // (resized within the capacity the Data reserved, then zeroed: a block without columns
+  // has no source below and keeps 0)
+  d.constraint_wrenches.resize(num_solve_blocks(c, d));
+  for (Vector6& w : d.constraint_wrenches) w.setZero();
   double probe = 0;
   for (const ConstraintSource& s : d.workspace.sources) {
     // the wrench w = [f; n] = alpha nu at the point p; tau_i -= z_i . (n + (p - p_i) x f)
