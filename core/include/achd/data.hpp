@@ -147,6 +147,10 @@ struct Data {
     // per column: true when alpha_k has a force part (variable_damping's kinds)
     std::array<bool, kMaxConstraintColumns> has_force;
     ConstraintVector rhs;           // K nu' = rhs: E_0^T a_0 + G_0 - beta' (scaled columns)
+    // variable_damping, when it damped a direction: the exact solve nu' = K^-1 rhs (every
+    // eigenvalue above the truncation threshold), kept if the joints' efforts allow it
+    // (hybrid_dynamics.cpp); size 0 when there is none.
+    ConstraintVector exact_nu;
     // The last constraint sweep took a floating base's free joint in one 6-DoF step
     // (free_joint_constraints.hpp): d.E then holds the columns at the root, E_0 being 0.
     bool free_joint_step = false;

@@ -284,6 +284,23 @@ __attribute__((noinline)) double add_opposite_wrench(const Model& model, Data& d
   return probe;
 }
 
+// The wrench [f; n] of source s at its point p, on every joint of its path:
+// tau_i -= z_i . (n + (p - p_i) x f) (revolute) or z_i . f (prismatic), into
+// d.joint_torques, and the opposite wrench at a relative block's second point. Returns
+// their finite probe.
+double subtract_wrench_torques(const Model& model, Data& d, const ConstraintSource& s, const Vector3& f,
+                               const Vector3& n) {
+  double probe = 0;
+  const Vector3 p = s.body < 0 ? s.arm : Vector3(d.X0[s.body].p + s.arm);
+  for (int i = s.body; i >= 0; i = model.bodies[i].parent) {
+    const JointSubspace S = body_subspace(model, d, i);
+    d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
+    probe += d.joint_torques[i] * 0.0;
+  }
+  if (s.relative) probe += add_opposite_wrench(model, d, s, f, n);
+  return probe;
+}
+
 }  // namespace
 
 int constraint_sources(const Model& model, Data& d, const Case& c) {
@@ -401,16 +418,20 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
     Vector6& out = s.block < 0 ? d.constraint_wrench : d.constraint_wrenches[s.block];
     store_pairs(out, wrench);
     probe += finite_probe(wrench);
-    const Vector3 f = out.head<3>(), n = out.tail<3>();
-    const Vector3 p = s.body < 0 ? s.arm : Vector3(d.X0[s.body].p + s.arm);
-    for (int i = s.body; i >= 0; i = model.bodies[i].parent) {
-      const JointSubspace S = body_subspace(model, d, i);
-      d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
-      probe += d.joint_torques[i] * 0.0;
-    }
-    if (s.relative) probe += add_opposite_wrench(model, d, s, f, n);
+    probe += subtract_wrench_torques(model, d, s, out.head<3>(), out.tail<3>());
   }
   return probe;
+}
+
+void constraint_force_torques(const Model& model, Data& d, const Case& c, const ConstraintVector& nu) {
+  d.joint_torques.setZero();
+  for (const ConstraintSource& s : d.workspace.sources) {
+    const ConstraintMatrix& alpha = alpha_of(c, d, s);
+    Vector6 wrench = Vector6::Zero();
+    for (int k = 0; k < s.columns; ++k)
+      wrench += alpha.col(k) * (nu[s.column + k] * d.workspace.alpha_scale[s.column + k]);
+    subtract_wrench_torques(model, d, s, wrench.head<3>(), wrench.tail<3>());
+  }
 }
 
 }  // namespace achd

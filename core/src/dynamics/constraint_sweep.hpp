@@ -52,4 +52,9 @@ void unscale_constraint_forces(Data& d);
 // two). Returns their finite probe.
 double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c, bool prescribed);
 
+// d.joint_torques = -sum_k J_k^T alpha_k s_k nu_k for forces nu given in the scaled columns
+// (before unscale_constraint_forces): the torques the joints give the constraint forces nu
+// (d.joint_torques as scratch: constraint_wrenches_and_joint_torques writes it after).
+void constraint_force_torques(const Model& model, Data& d, const Case& c, const ConstraintVector& nu);
+
 }  // namespace achd

@@ -134,6 +134,15 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
     if (w != 0.0) data.nu.noalias() += V.col(k) * (w * V.col(k).dot(data.workspace.rhs));
     ndropped += dropped[k];
   }
+  // variable_damping: beside the damped solve, the exact one (w_k = 1/sigma_k for every k),
+  // when every eigenvalue clears the truncation threshold, for hybrid_dynamics to keep if
+  // the joints' limits allow it (Options::exact_within_limits).
+  ConstraintVector& exact = data.workspace.exact_nu;
+  if (options.policy == SingularityPolicy::VariableDamping && options.exact_within_limits && ndamped &&
+      data.rank == nc) {
+    exact.setZero(nc);
+    for (int k = 0; k < nc; ++k) exact.noalias() += V.col(k) * (V.col(k).dot(data.workspace.rhs) / sigma[k]);
+  }
   data.dropped.resize(nc, ndropped);
   for (int k = 0, j = 0; k < nc; ++k)
     if (dropped[k]) data.dropped.col(j++) = V.col(k);
@@ -246,6 +255,7 @@ void solve_variable_damping(Data& data, const Options& options) {
     if (data.damped.cols()) solve_held_first(data, options);
   }
   for (int i = 0; i < nc; ++i) data.nu[i] *= scale[i];
+  for (int i = 0; i < data.workspace.exact_nu.size(); ++i) data.workspace.exact_nu[i] *= scale[i];
   data.K = K;  // sigma_min() and the caller read K as it was
   data.workspace.rhs = rhs;
 }
@@ -253,6 +263,7 @@ void solve_variable_damping(Data& data, const Options& options) {
 }  // namespace
 
 void solve_coupling(Data& data, const Options& options) {
+  data.workspace.exact_nu.resize(0);
   if (options.policy == SingularityPolicy::VariableDamping) return solve_variable_damping(data, options);
   if (options.policy == SingularityPolicy::Truncate && solve_by_ldlt(data, options)) return;
   solve_by_eigen_decomposition(data, options);

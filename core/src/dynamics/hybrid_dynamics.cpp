@@ -34,6 +34,7 @@
 // without prescribed joints runs the code it ran before.
 #include "achd/hybrid_dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -317,6 +318,46 @@ double link_accelerations(const Model& model, Data& d, const Vector6& a0, const 
   return probe;
 }
 
+// variable_damping damps the eigen-directions of K in its singular region. Where the
+// exact solve nu_e = K^-1 rhs (data.workspace.exact_nu) asks of every joint at most half
+// its effort limit and the joints move within their speed limits,
+//   r = max_i max(|tau_e,i| / effort_i, |qd_i| / (2 velocity_i)) <= 1/2,
+//   tau_e = -sum_k J_k^T alpha_k nu_e,k,
+// the motion the holds ask is possible, and the exact solve is kept: nothing is damped.
+// From r = 1/2 to 1 the solve moves to the damped nu_d by nu = nu_e + s (nu_d - nu_e),
+// s = x^2 (3 - 2 x), x = 2 r - 1 (continuous with its derivative, so the adaptive step
+// sees no jump); from r = 1 the damped solve stands. The joints counted are those the
+// constraint forces load, but not the floating base's free joint or prescribed joints
+// (not driven by efforts); one without an effort or speed limit (Model: 0, not given)
+// gives no bound, r = inf. With coupled joints, whose solves are superposed, the damped
+// solve stands too.
+void keep_the_exact_solve_within_limits(const Model& model, Data& d, const Case& c) {
+  if (!model.couplings.empty()) return;
+  constraint_force_torques(model, d, c, d.workspace.exact_nu);
+  const bool prescribed = c.any_prescribed();
+  double r = 0;
+  for (int i = 0; i < model.num_rates(); ++i) {
+    const double tau = d.joint_torques[i];
+    if (tau == 0 || i < model.free_joint_rates() || (prescribed && c.prescribed[i])) continue;
+    const JointLimits& limits = model.bodies[i].limits;
+    if (!(limits.effort > 0 && limits.velocity > 0)) return;
+    r = std::max({r, std::abs(tau) / limits.effort, std::abs(c.qd[i]) / (2 * limits.velocity)});
+  }
+  if (!(r < 1)) return;
+  if (r > 0.5) {
+    const double x = 2 * r - 1, s = x * x * (3 - 2 * x);
+    d.nu = d.workspace.exact_nu + s * (d.nu - d.workspace.exact_nu);
+    return;
+  }
+  const int nc = static_cast<int>(d.nu.size());
+  d.nu = d.workspace.exact_nu;
+  d.rank = nc;
+  d.dropped.resize(nc, 0);
+  d.damped.resize(nc, 0);
+  d.damped_sigma.resize(0);
+  d.damped_lambda.resize(0);
+}
+
 // Steps 1 to 4 on a validated case (a floating base's in the solver's coordinates).
 void solve(const Model& model, Data& d, const Case& c, const Options& o) {
   const int nc = (o.effects & kConstraints) ? num_solve_columns(c, d) : 0;
@@ -360,6 +401,7 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
     constraint_rhs(d, c, o, moving);
     if (has_driver_weights(c)) weigh_drivers(model, d, c, o, prescribed);
     solve_coupling(d, o);
+    if (d.workspace.exact_nu.size()) keep_the_exact_solve_within_limits(model, d, c);
   } else {
     d.workspace.sources.clear();
     d.workspace.free_joint_step = false;

@@ -116,6 +116,13 @@ std::string DirectionSets::held_text(const Model& model) const {
   return held;
 }
 
+bool DirectionSets::any_accelerated() const {
+  for (const LinkDirections& set : sets_)
+    for (int k = 0; k < kNumDirections; ++k)
+      if (set.held.mode[k] == DirectionMode::Accelerate) return true;
+  return false;
+}
+
 // "z = 1 m/s^2, rx of link 'hand' = 0.5 rad/s^2"
 std::string DirectionSets::accelerated_text(const Model& model) const {
   std::string accelerated;

@@ -57,6 +57,8 @@ class DirectionSets {
   // "held: z, rx" / "accelerated: ..." parts of a failed step's message ("" if none).
   std::string held_text(const Model& model) const;
   std::string accelerated_text(const Model& model) const;
+  // True when some set accelerates a direction (DirectionMode::Accelerate).
+  bool any_accelerated() const;
 
  private:
   std::vector<LinkDirections> sets_;

@@ -125,6 +125,32 @@ TEST(NoAllocation, HybridDynamicsOnEveryRobotAndConstraintCount) {
   EXPECT_EQ(solves, static_cast<int>(chains) * 7 * 6);
 }
 
+// variable_damping in its singular region, each way the joints' efforts decide: the LWR
+// at rest holding its tip in 6D beside its stretched pose keeps the exact solve (URDF
+// efforts), lies between the exact and the damped solve (efforts at 4/3 of what the exact
+// solve needs) and keeps the damped solve (no effort limits).
+TEST(NoAllocation, VariableDampingWhereTheJointEffortsDecide) {
+  const achd::Model lwr = achd::load_urdf_file(kRepo + "/robots/kuka_lwr4.urdf", "lwr_base_link", "lwr_link_7");
+  achd::Case c = achd::Case::zeros(lwr);
+  c.q << 0.3, 0.15, -0.2, -0.15, 0.4, 0.1, 0.1;
+  c.alpha = achd::ConstraintMatrix::Identity(6, 6);
+  c.beta = achd::ConstraintVector::Zero(6);
+  achd::Options o;
+  o.policy = achd::SingularityPolicy::VariableDamping;
+  achd::Data exact(lwr);
+  achd::Options truncate;
+  truncate.policy = achd::SingularityPolicy::Truncate;
+  achd::hybrid_dynamics(lwr, exact, c, truncate);
+  for (double effort : {-1.0, exact.joint_torques.cwiseAbs().maxCoeff() / 0.75, 0.0}) {
+    achd::Model m = lwr;
+    if (effort >= 0)
+      for (achd::Body& b : m.bodies) b.limits.effort = effort;
+    achd::Data d(m);
+    EXPECT_EQ(allocations_of_solve(m, d, c, o), 0) << "effort " << effort;
+    EXPECT_EQ(d.damped.cols() == 0, effort < 0) << "effort " << effort;
+  }
+}
+
 // Constraint blocks on any links: 1 to 6 blocks on random links of every chain robot, up
 // to 36 columns in all (the largest capacity), so that the several-block sweep and the
 // coupling solve of more than 6 columns run, under every policy, with driver weights.

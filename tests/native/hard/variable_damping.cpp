@@ -1,7 +1,9 @@
 // The variable_damping policy on its own (solver level): bounded where truncate's
-// constraint forces grow without bound, and the exact solve where nothing is near
-// singular.
+// constraint forces grow without bound, the exact solve where nothing is near singular,
+// and near a singularity where the joints' efforts allow the exact solve.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -74,6 +76,49 @@ TEST(VariableDamping, EqualsTruncateAwayFromTheRegion) {
       EXPECT_LE((a.qdd - b.qdd).norm(), 1e-15 * a.qdd.norm()) << r.name;
     }
   }
+}
+
+// Next to a singularity but not at it, the exact solve is kept where the joints' efforts
+// allow it. The LWR at rest holding its tip in 6D beside its stretched pose has an
+// eigenvalue of K (scaled by kind) in the singular region, 5.3e-3 of the largest, but
+// holding it needs a few N m of its joints, far below their URDF efforts: variable_damping
+// gives truncate's exact solve and damps nothing. With no effort limits (0: not given) the
+// same case is damped; with every effort set so that the exact solve needs r = 3/4 of it,
+// the solve lies halfway (s = 1/2) between the exact and the damped one; from r = 1 it is
+// the damped one.
+TEST(VariableDamping, KeepsTheExactSolveWhereTheJointEffortsAllowIt) {
+  const Model lwr = load_urdf_file(ACHD_SOURCE_DIR "/robots/kuka_lwr4.urdf", "lwr_base_link", "lwr_link_7");
+  Case c = Case::zeros(lwr);
+  c.q << 0.3, 0.15, -0.2, -0.15, 0.4, 0.1, 0.1;
+  c.alpha = ConstraintMatrix::Identity(6, 6);
+  c.beta = ConstraintVector::Zero(6);
+  const Options vd = policy(SingularityPolicy::VariableDamping);
+  auto with_efforts = [&](double effort) {
+    Model m = lwr;
+    for (Body& b : m.bodies) b.limits.effort = effort;
+    return m;
+  };
+  Data exact(lwr), kept(lwr), damped(lwr);
+  hybrid_dynamics(lwr, exact, c, policy(SingularityPolicy::Truncate));
+  hybrid_dynamics(lwr, kept, c, vd);
+  const Model unbounded = with_efforts(0);
+  hybrid_dynamics(unbounded, damped, c, vd);
+  ASSERT_GE(damped.damped.cols(), 1) << "the case is meant to be in the singular region";
+  EXPECT_GT((damped.nu - exact.nu).norm(), 1e-3 * exact.nu.norm());
+  EXPECT_EQ(kept.damped.cols(), 0);
+  EXPECT_EQ(kept.rank, 6);
+  EXPECT_LE((kept.nu - exact.nu).norm(), 1e-12 * exact.nu.norm()) << kept.nu.transpose() << " / " << exact.nu.transpose();
+  EXPECT_LE((kept.qdd - exact.qdd).norm(), 1e-9);
+  // ff = 0: the exact solve's joint torques are those its constraint forces take.
+  const double largest = exact.joint_torques.cwiseAbs().maxCoeff();
+  for (int i = 0; i < lwr.num_rates(); ++i) EXPECT_LT(std::abs(exact.joint_torques[i]), lwr.bodies[i].limits.effort / 2);
+  const Model halfway = with_efforts(largest / 0.75), beyond = with_efforts(largest / 1.5);
+  Data h(halfway), b(beyond);
+  hybrid_dynamics(halfway, h, c, vd);
+  hybrid_dynamics(beyond, b, c, vd);
+  EXPECT_LE((h.nu - (exact.nu + damped.nu) / 2).norm(), 1e-9 * exact.nu.norm());
+  EXPECT_GE(h.damped.cols(), 1);
+  EXPECT_EQ((b.nu - damped.nu).norm(), 0.0);
 }
 
 }  // namespace
