@@ -49,9 +49,9 @@ struct Options {
   double singular_region = 5e-3;    // variable_damping: eps relative to sigma_max of K scaled by kind (coupling_solve.cpp)
   double max_damping = 2e-2;        // variable_damping: lambda_max, the same way (defaults: docs/guide/hard-cases.md)
   // variable_damping: keep the exact solve in the singular region where the joints' effort
-  // and speed limits allow it (hybrid_dynamics.cpp); the simulator keeps it while every
+  // limits allow it (hybrid_dynamics.cpp); the simulator keeps it while every
   // direction is held, and turns it off while one is accelerated (pushed)
-  bool exact_within_limits = true;
+  bool exact_within_efforts = true;
   double friction_velocity = 0.05;  // friction = F tanh(qd / friction_velocity)
 };
 

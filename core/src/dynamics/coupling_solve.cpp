@@ -136,9 +136,9 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
   }
   // variable_damping: beside the damped solve, the exact one (w_k = 1/sigma_k for every k),
   // when every eigenvalue clears the truncation threshold, for hybrid_dynamics to keep if
-  // the joints' limits allow it (Options::exact_within_limits).
+  // the joints' efforts allow it (Options::exact_within_efforts).
   ConstraintVector& exact = data.workspace.exact_nu;
-  if (options.policy == SingularityPolicy::VariableDamping && options.exact_within_limits && ndamped &&
+  if (options.policy == SingularityPolicy::VariableDamping && options.exact_within_efforts && ndamped &&
       data.rank == nc) {
     exact.setZero(nc);
     for (int k = 0; k < nc; ++k) exact.noalias() += V.col(k) * (V.col(k).dot(data.workspace.rhs) / sigma[k]);

@@ -320,18 +320,18 @@ double link_accelerations(const Model& model, Data& d, const Vector6& a0, const 
 
 // variable_damping damps the eigen-directions of K in its singular region. Where the
 // exact solve nu_e = K^-1 rhs (data.workspace.exact_nu) asks of every joint at most half
-// its effort limit and the joints move within their speed limits,
-//   r = max_i max(|tau_e,i| / effort_i, |qd_i| / (2 velocity_i)) <= 1/2,
-//   tau_e = -sum_k J_k^T alpha_k nu_e,k,
+// its effort limit,
+//   r = max_i |tau_e,i| / effort_i <= 1/2,   tau_e = -sum_k J_k^T alpha_k nu_e,k,
 // the motion the holds ask is possible, and the exact solve is kept: nothing is damped.
 // From r = 1/2 to 1 the solve moves to the damped nu_d by nu = nu_e + s (nu_d - nu_e),
 // s = x^2 (3 - 2 x), x = 2 r - 1 (continuous with its derivative, so the adaptive step
 // sees no jump); from r = 1 the damped solve stands. The joints counted are those the
 // constraint forces load, but not the floating base's free joint or prescribed joints
-// (not driven by efforts); one without an effort or speed limit (Model: 0, not given)
-// gives no bound, r = inf. With coupled joints, whose solves are superposed, the damped
+// (not driven by efforts); one without an effort limit (Model: 0, not given) gives no
+// bound, r = inf. (The joints' speed limits are no test: an undamped arm's free swing
+// beside its stretched pose passes them while the exact solve holds it.) With coupled joints, whose solves are superposed, the damped
 // solve stands too.
-void keep_the_exact_solve_within_limits(const Model& model, Data& d, const Case& c) {
+void keep_the_exact_solve_within_efforts(const Model& model, Data& d, const Case& c) {
   if (!model.couplings.empty()) return;
   constraint_force_torques(model, d, c, d.workspace.exact_nu);
   const bool prescribed = c.any_prescribed();
@@ -339,9 +339,9 @@ void keep_the_exact_solve_within_limits(const Model& model, Data& d, const Case&
   for (int i = 0; i < model.num_rates(); ++i) {
     const double tau = d.joint_torques[i];
     if (tau == 0 || i < model.free_joint_rates() || (prescribed && c.prescribed[i])) continue;
-    const JointLimits& limits = model.bodies[i].limits;
-    if (!(limits.effort > 0 && limits.velocity > 0)) return;
-    r = std::max({r, std::abs(tau) / limits.effort, std::abs(c.qd[i]) / (2 * limits.velocity)});
+    const double effort = model.bodies[i].limits.effort;
+    if (!(effort > 0)) return;
+    r = std::max(r, std::abs(tau) / effort);
   }
   if (!(r < 1)) return;
   if (r > 0.5) {
@@ -401,7 +401,7 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
     constraint_rhs(d, c, o, moving);
     if (has_driver_weights(c)) weigh_drivers(model, d, c, o, prescribed);
     solve_coupling(d, o);
-    if (d.workspace.exact_nu.size()) keep_the_exact_solve_within_limits(model, d, c);
+    if (d.workspace.exact_nu.size()) keep_the_exact_solve_within_efforts(model, d, c);
   } else {
     d.workspace.sources.clear();
     d.workspace.free_joint_step = false;

@@ -67,10 +67,10 @@ void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAn
   apply_joint_control(x.q, x.qd);
   case_.q = x.q;
   case_.qd = x.qd;
-  // A hold asks for no motion along its direction: where the joints' limits allow it, the
+  // A hold asks for no motion along its direction: where the joints' efforts allow it, the
   // exact solve keeps it next to a singularity. A pushed direction asks the arm to move,
   // and into the edge of its workspace: there variable_damping's region decides.
-  solver_.exact_within_limits = options_.solver.exact_within_limits && !directions_->any_accelerated();
+  solver_.exact_within_efforts = options_.solver.exact_within_efforts && !directions_->any_accelerated();
   hybrid_dynamics(model_, out, case_, solver_);
 }
 
