@@ -190,14 +190,16 @@ class Simulator : public SimulationState {
   // The step's parts (simulator.cpp): its checks and inputs, the chosen integrator, and
   // what follows a good step (trajectories, limits, events, anchors).
   void check_step(double dt);
-  void advance(double dt, double w_n, Data& first);
+  void advance(double dt, double w_n, double zeta, Data& first);
   void finish_step(const Data& first);
   // x' = f(x) (evaluate.cpp): joint accelerations (into `out`) and held-angle rates at
   // state x, at its time x.t (the prescribed joints' accelerations are their
-  // trajectories' then); and the held-angle rates alone, from the kinematics.
-  void evaluate(const SimulationState& x, double w_n, Data& out, HeldAngles& angle_rates);
+  // trajectories' then), the held directions, loops and couplings stabilised at w_n and
+  // zeta; and the held-angle rates alone, from the kinematics.
+  void evaluate(const SimulationState& x, double w_n, double zeta, Data& out, HeldAngles& angle_rates);
   // The solve of a linearly implicit step of h from x (evaluate.cpp).
-  void evaluate_implicit(const SimulationState& x, double h, double w_n, Data& out, HeldAngles& angle_rates);
+  void evaluate_implicit(const SimulationState& x, double h, double w_n, double zeta, Data& out,
+                         HeldAngles& angle_rates);
   void held_angle_rates(const SimulationState& x, HeldAngles& angle_rates);
   // The tip's link index; an achd::Error naming `what` on a tree.
   int tip_link(const std::string& what) const;
@@ -218,7 +220,7 @@ class Simulator : public SimulationState {
   // off their stops are freed (one solve when a joint rests on a stop); after it, the
   // joints that reached a limit stop by an inelastic impact that the held directions
   // respect, and rest on it (their acceleration prescribed as 0 in every solve).
-  void update_limit_stops(double w_n);
+  void update_limit_stops(double w_n, double zeta);
   void stop_at_limits();
   void solve_impact(const char* what);
   // Re-anchors the held directions with bit k set in bits[s] of set s where the point is

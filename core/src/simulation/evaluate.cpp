@@ -20,7 +20,7 @@
 
 namespace achd {
 
-void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAngles& angle_rates) {
+void Simulator::evaluate(const SimulationState& x, double w_n, double zeta, Data& out, HeldAngles& angle_rates) {
   if (!x.q.allFinite() || !x.qd.allFinite())
     throw Error("the stage's state is not finite (" + non_finite_joint(model_, x.q, x.qd) + ")");
   body_motion(model_, x.q, x.qd, X0_, r_, v_);
@@ -32,7 +32,7 @@ void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAn
     const TipState at = link_state(model_, X0_, v_, set.link, set.point);
     const double* angle = x.held_angles.data() + s * kNumDirections;
     ConstraintVector& beta = case_.constraints[b].beta;
-    direction_targets(set.held, at, angle, w_n, options_.stabilisation_damping,
+    direction_targets(set.held, at, angle, w_n, zeta,
                       options_.effects & kVelocityProducts, beta);
     // beta is the acceleration the solver enforces along each held or accelerated
     // direction, in index order (direction_columns).
@@ -50,7 +50,7 @@ void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAn
   }
   // Loop joints: each closure error decays as a held direction's does (loop_closure.hpp).
   if (!model_.loops.empty()) {
-    loop_targets(model_, X0_, v_, w_n, options_.stabilisation_damping, options_.effects & kVelocityProducts,
+    loop_targets(model_, X0_, v_, w_n, zeta, options_.effects & kVelocityProducts,
                  case_.loop_beta);
     for (int j = 0; j < case_.loop_beta.size(); ++j)
       if (!std::isfinite(case_.loop_beta[j])) throw Error(loop_beta_not_finite(model_, j, case_.loop_beta[j]));
@@ -61,7 +61,7 @@ void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAn
   //   e'' = -2 zeta w e' - w^2 e.
   for (size_t j = 0; j < model_.couplings.size(); ++j) {
     const JointCoupling& cj = model_.couplings[j];
-    case_.coupling_beta[j] = -2 * options_.stabilisation_damping * w_n * coupling_rate_error(model_, cj, x.qd) -
+    case_.coupling_beta[j] = -2 * zeta * w_n * coupling_rate_error(model_, cj, x.qd) -
                              w_n * w_n * coupling_position_error(model_, cj, x.q);
   }
   apply_joint_control(x.q, x.qd);
@@ -77,7 +77,8 @@ void Simulator::evaluate(const SimulationState& x, double w_n, Data& out, HeldAn
 // The solve of a linearly implicit step of h (integrators/extrapolated_implicit_euler.cpp):
 // with h c_i + h^2 kp_i added to joint i's axial inertia (Case::extra_inertia, swapped in
 // and out: no allocation) and the PD torque kp (q* - q - h qd) - kd qd.
-void Simulator::evaluate_implicit(const SimulationState& x, double h, double w_n, Data& out, HeldAngles& angle_rates) {
+void Simulator::evaluate_implicit(const SimulationState& x, double h, double w_n, double zeta, Data& out,
+                                  HeldAngles& angle_rates) {
   IntegratorWorkspace& ws = *integrator_;
   const PassiveTerms passive{solver_.effects, solver_.friction_velocity, control_on_ ? &control_.kd : nullptr,
                              control_on_ ? &control_.kp : nullptr};
@@ -89,7 +90,7 @@ void Simulator::evaluate_implicit(const SimulationState& x, double h, double w_n
     control_lead_ = 0;
   };
   try {
-    evaluate(x, w_n, out, angle_rates);
+    evaluate(x, w_n, zeta, out, angle_rates);
   } catch (...) {
     restore();
     throw;

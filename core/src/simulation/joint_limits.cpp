@@ -68,7 +68,7 @@ int Simulator::limit_stop(int joint) const {
   return limit_stop_[joint];
 }
 
-void Simulator::update_limit_stops(double w_n) {
+void Simulator::update_limit_stops(double w_n, double zeta) {
   const int n = model_.num_rates();
   bool resting = false;
   for (int i = 0; i < n; ++i) {
@@ -82,7 +82,7 @@ void Simulator::update_limit_stops(double w_n) {
   if (!resting) return;
   // The step's first solve, with the stops' joints prescribed: the torque each stop exerts.
   integrator_->stage = 0;
-  evaluate(*this, w_n, limit_data_, limit_angle_rate_);
+  evaluate(*this, w_n, zeta, limit_data_, limit_angle_rate_);
   for (int i = 0; i < n; ++i) {
     if (!limit_stop_[i]) continue;
     const double ff = case_.ff_torques.size() ? case_.ff_torques[i] : 0.0;

@@ -111,7 +111,7 @@ void Simulator::reset(const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
 
 void Simulator::step(double dt) {
   check_step(dt);
-  const double w_n = options_.stabilisation_frequency;
+  const double w_n = options_.stabilisation_frequency, zeta = options_.stabilisation_damping;
   // The state a failed step returns to.
   saved_.q = q;
   saved_.qd = qd;
@@ -129,8 +129,8 @@ void Simulator::step(double dt) {
   };
   Data& first = data_[1 - current_];
   try {
-    update_limit_stops(w_n);
-    advance(dt, w_n, first);
+    update_limit_stops(w_n, zeta);
+    advance(dt, w_n, zeta, first);
     stop_at_limits();
   } catch (const Error& e) {
     undo();
@@ -173,12 +173,14 @@ void Simulator::check_step(double dt) {
 }
 
 // One step of the chosen integrator from this state, its first solve into `first`.
-void Simulator::advance(double dt, double w_n, Data& first) {
+void Simulator::advance(double dt, double w_n, double zeta, Data& first) {
   IntegratorWorkspace& ws = *integrator_;
-  auto f = [this, w_n](const SimulationState& x, Data& out, HeldAngles& rates) { evaluate(x, w_n, out, rates); };
+  auto f = [this, w_n, zeta](const SimulationState& x, Data& out, HeldAngles& rates) {
+    evaluate(x, w_n, zeta, out, rates);
+  };
   auto rates = [this](const SimulationState& x, HeldAngles& r) { held_angle_rates(x, r); };
-  auto implicit = [this, w_n](const SimulationState& x, double h, Data& out, HeldAngles& r) {
-    evaluate_implicit(x, h, w_n, out, r);
+  auto implicit = [this, w_n, zeta](const SimulationState& x, double h, Data& out, HeldAngles& r) {
+    evaluate_implicit(x, h, w_n, zeta, out, r);
   };
   switch (options_.integrator) {
     case Integrator::ExplicitEuler: explicit_euler(model_, ws, *this, dt, f, first); break;
@@ -190,7 +192,10 @@ void Simulator::advance(double dt, double w_n, Data& first) {
       break;
     case Integrator::ImplicitEuler: {
       const PassiveTerms passive{solver_.effects, solver_.friction_velocity, control_on_ ? &control_.kd : nullptr};
-      implicit_euler(model_, ws, *this, dt, passive, case_.extra_inertia, f, rates, first);
+      // the held directions', loops' and couplings' stabilisation at the step's end too
+      const Stabilisation s = implicit_stabilisation(w_n, zeta, dt);
+      auto f_end = [this, s](const SimulationState& x, Data& out, HeldAngles& r) { evaluate(x, s.w, s.zeta, out, r); };
+      implicit_euler(model_, ws, *this, dt, passive, case_.extra_inertia, f_end, rates, first);
       break;
     }
   }

@@ -124,6 +124,13 @@ struct PassiveTerms {
 // friction by its effects, kd and kp when given), kp_i its derivative in -q_i.
 void implicit_inertia(const Model& model, const PassiveTerms& passive, const Eigen::VectorXd& qd, double h,
                       Eigen::VectorXd& out);
+// The held directions', loops' and couplings' stabilisation e'' = -2 zeta w e' - w^2 e
+// (e a constraint's error) taken at the step's end (implicit_euler.cpp): the w and zeta
+// whose beta at the step's start enforces it.
+struct Stabilisation {
+  double w, zeta;
+};
+Stabilisation implicit_stabilisation(double w, double zeta, double dt);
 void implicit_euler(const Model& model, IntegratorWorkspace& ws, SimulationState& x, double dt,
                     const PassiveTerms& passive, Eigen::VectorXd& solve_extra_inertia, Evaluate evaluate,
                     AngleRates angle_rates, Data& first);
