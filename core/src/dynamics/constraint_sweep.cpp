@@ -32,11 +32,13 @@
 
 #include "constraint_count.hpp"
 #include "constraint_pairs.hpp"
+#include "driver_priorities.hpp"
 #include "finite_probe.hpp"
 #include "free_joint.hpp"
 #include "free_joint_constraints.hpp"
 #include "joint_subspace.hpp"
 #include "loop_blocks.hpp"
+#include "shared_second_body.hpp"
 #include "solve_blocks.hpp"
 
 namespace achd {
@@ -306,10 +308,13 @@ int constraint_sources(const Model& model, Data& d, const Case& c) {
 
 double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescribed) {
   use_free_joint_step(model, d, c);
-  const Data::Workspace& w = d.workspace;
+  Data::Workspace& w = d.workspace;
   const int m = static_cast<int>(d.E.cols());
   d.K.resize(m, m);
   d.G0.resize(m);
+  // (a driver weight reads every block's EZ_i along its whole path: the legs then roll apart)
+  w.shared_body = has_driver_weights(c) ? -1 : shared_second_body(d, last_body(d));
+  if (w.shared_body >= 0) return shared_second_body_sweep(model, d, c, prescribed, w.shared_body);
   double probe = 0;
   bool relative = false;
   for (const ConstraintSource& s : w.sources) {
@@ -360,6 +365,7 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
 
 void constraint_torques(const Model& model, Data& d) {
   // (the inward sweep has set them to 0)
+  if (d.workspace.shared_body >= 0) return shared_constraint_torques(model, d);
   for (const ConstraintSource& s : d.workspace.sources)
     with_constraint_count(s.columns, [&](auto n) { add_constraint_torques<decltype(n)::value>(model, d, s); });
   if (d.workspace.free_joint_step) free_joint_constraint_torques(model, d);
