@@ -313,7 +313,8 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
   d.K.resize(m, m);
   d.G0.resize(m);
   // (a driver weight reads every block's EZ_i along its whole path: the legs then roll apart)
-  w.shared_body = has_driver_weights(c) ? -1 : shared_second_body(d, last_body(d));
+  w.shared_body = shared_second_body(d, last_body(d));
+  if (w.shared_body >= 0 && has_driver_weights(c)) w.shared_body = -1;
   if (w.shared_body >= 0) return shared_second_body_sweep(model, d, c, prescribed, w.shared_body);
   double probe = 0;
   bool relative = false;
@@ -398,6 +399,11 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
   d.constraint_wrenches.resize(num_solve_blocks(c, d));
   for (Vector6& w : d.constraint_wrenches) w.setZero();
   double probe = 0;
+  // A shared second body (shared_second_body.hpp): the sum of what each block's wrench at
+  // P is at Q, [f; n + (q - p_b) x f], taken about its origin (arm_b = 0)
+  ConstraintSource shared;
+  shared.body_b = d.workspace.shared_body;
+  Vector3 shared_f = Vector3::Zero(), shared_n = Vector3::Zero();
   for (const ConstraintSource& s : d.workspace.sources) {
     // the wrench w = [f; n] = alpha nu at the point p; tau_i -= z_i . (n + (p - p_i) x f)
     // (revolute) or z_i . f (prismatic), for each body on the path
@@ -414,8 +420,14 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
       d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
       probe += d.joint_torques[i] * 0.0;
     }
-    if (s.relative) probe += add_opposite_wrench(model, d, s, f, n);
+    if (s.relative && shared.body_b < 0) probe += add_opposite_wrench(model, d, s, f, n);
+    if (shared.body_b >= 0) {  // [f; n] at Q, moved to the shared body's origin
+      shared_f += f;
+      shared_n += n + s.arm_b.cross(f);
+    }
   }
+  // the blocks' opposite wrenches summed at their shared second body: one walk along its path
+  if (shared.body_b >= 0) probe += add_opposite_wrench(model, d, shared, shared_f, shared_n);
   return probe;
 }
 
