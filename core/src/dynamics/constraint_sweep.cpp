@@ -286,6 +286,15 @@ __attribute__((noinline)) double add_opposite_wrench(const Model& model, Data& d
   return probe;
 }
 
+// The sum of the opposite wrenches at a shared second body b's origin, along b's path.
+// (Out of line: other blocks never come here.)
+__attribute__((noinline)) double add_shared_opposite_wrench(const Model& model, Data& d, int b, const Vector3& f,
+                                                            const Vector3& n) {
+  ConstraintSource shared;  // acting at b's origin: arm_b = 0
+  shared.body_b = b;
+  return add_opposite_wrench(model, d, shared, f, n);
+}
+
 }  // namespace
 
 int constraint_sources(const Model& model, Data& d, const Case& c) {
@@ -399,10 +408,9 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
   d.constraint_wrenches.resize(num_solve_blocks(c, d));
   for (Vector6& w : d.constraint_wrenches) w.setZero();
   double probe = 0;
-  // A shared second body (shared_second_body.hpp): the sum of what each block's wrench at
-  // P is at Q, [f; n + (q - p_b) x f], taken about its origin (arm_b = 0)
-  ConstraintSource shared;
-  shared.body_b = d.workspace.shared_body;
+  // A shared second body b (shared_second_body.hpp): the sum of what each block's wrench
+  // at P is at Q, [f; n + (q - p_b) x f], taken about b's origin
+  const int shared_body = d.workspace.shared_body;
   Vector3 shared_f = Vector3::Zero(), shared_n = Vector3::Zero();
   for (const ConstraintSource& s : d.workspace.sources) {
     // the wrench w = [f; n] = alpha nu at the point p; tau_i -= z_i . (n + (p - p_i) x f)
@@ -420,14 +428,15 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
       d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
       probe += d.joint_torques[i] * 0.0;
     }
-    if (s.relative && shared.body_b < 0) probe += add_opposite_wrench(model, d, s, f, n);
-    if (shared.body_b >= 0) {  // [f; n] at Q, moved to the shared body's origin
+    if (shared_body < 0) {
+      if (s.relative) probe += add_opposite_wrench(model, d, s, f, n);
+    } else {  // [f; n] at Q, moved to b's origin
       shared_f += f;
       shared_n += n + s.arm_b.cross(f);
     }
   }
   // the blocks' opposite wrenches summed at their shared second body: one walk along its path
-  if (shared.body_b >= 0) probe += add_opposite_wrench(model, d, shared, shared_f, shared_n);
+  if (shared_body >= 0) probe += add_shared_opposite_wrench(model, d, shared_body, shared_f, shared_n);
   return probe;
 }
 
