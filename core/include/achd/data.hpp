@@ -136,6 +136,12 @@ struct Data {
     // ez[s.ez + i * stride], stride its column count rounded up to even, the slot after an
     // odd count 0 (the columns are held two to a pair: constraint_pairs.hpp)
     std::vector<double> ez;
+    // Relative blocks that all end on one second body (shared_second_body.hpp): that body
+    // (-1: the last sweep took each block's legs), the EZ_i of six unit wrenches there at
+    // each body on its path (6 per body), and each column's force at its origin (6 each).
+    int shared_body = -1;
+    std::vector<double> shared_ez;
+    std::array<double, 6 * kMaxConstraintColumns> shared_C;
     std::vector<int> path;          // scratch: the bodies from one body to the base
     std::vector<unsigned char> walked;  // scratch: 1 at the bodies a walk has passed, else 0
     // Driver priorities (driver_priorities.cpp): per body the bias of f_ext alone and of

@@ -32,11 +32,13 @@
 
 #include "constraint_count.hpp"
 #include "constraint_pairs.hpp"
+#include "driver_priorities.hpp"
 #include "finite_probe.hpp"
 #include "free_joint.hpp"
 #include "free_joint_constraints.hpp"
 #include "joint_subspace.hpp"
 #include "loop_blocks.hpp"
+#include "shared_second_body.hpp"
 #include "solve_blocks.hpp"
 
 namespace achd {
@@ -286,10 +288,9 @@ __attribute__((noinline)) double add_opposite_wrench(const Model& model, Data& d
 
 // The wrench [f; n] of source s at its point p, on every joint of its path:
 // tau_i -= z_i . (n + (p - p_i) x f) (revolute) or z_i . f (prismatic), into
-// d.joint_torques, and the opposite wrench at a relative block's second point. Returns
-// their finite probe.
-double subtract_wrench_torques(const Model& model, Data& d, const ConstraintSource& s, const Vector3& f,
-                               const Vector3& n) {
+// d.joint_torques. Returns its finite probe.
+inline double subtract_wrench_torques(const Model& model, Data& d, const ConstraintSource& s, const Vector3& f,
+                                      const Vector3& n) {
   double probe = 0;
   const Vector3 p = s.body < 0 ? s.arm : Vector3(d.X0[s.body].p + s.arm);
   for (int i = s.body; i >= 0; i = model.bodies[i].parent) {
@@ -297,8 +298,16 @@ double subtract_wrench_torques(const Model& model, Data& d, const ConstraintSour
     d.joint_torques[i] -= S.rotational ? S.z.dot(n + (p - d.X0[i].p).cross(f)) : S.z.dot(f);
     probe += d.joint_torques[i] * 0.0;
   }
-  if (s.relative) probe += add_opposite_wrench(model, d, s, f, n);
   return probe;
+}
+
+// The sum of the opposite wrenches at a shared second body b's origin, along b's path.
+// (Out of line: other blocks never come here.)
+__attribute__((noinline)) double add_shared_opposite_wrench(const Model& model, Data& d, int b, const Vector3& f,
+                                                            const Vector3& n) {
+  ConstraintSource shared;  // acting at b's origin: arm_b = 0
+  shared.body_b = b;
+  return add_opposite_wrench(model, d, shared, f, n);
 }
 
 }  // namespace
@@ -323,10 +332,14 @@ int constraint_sources(const Model& model, Data& d, const Case& c) {
 
 double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescribed) {
   use_free_joint_step(model, d, c);
-  const Data::Workspace& w = d.workspace;
+  Data::Workspace& w = d.workspace;
   const int m = static_cast<int>(d.E.cols());
   d.K.resize(m, m);
   d.G0.resize(m);
+  // (a driver weight reads every block's EZ_i along its whole path: the legs then roll apart)
+  w.shared_body = shared_second_body(d, last_body(d));
+  if (w.shared_body >= 0 && has_driver_weights(c)) w.shared_body = -1;
+  if (w.shared_body >= 0) return shared_second_body_sweep(model, d, c, prescribed, w.shared_body);
   double probe = 0;
   bool relative = false;
   for (const ConstraintSource& s : w.sources) {
@@ -377,6 +390,7 @@ void constraint_rhs(Data& d, const Case& c, const Options& o, bool moving) {
 
 void constraint_torques(const Model& model, Data& d) {
   // (the inward sweep has set them to 0)
+  if (d.workspace.shared_body >= 0) return shared_constraint_torques(model, d);
   for (const ConstraintSource& s : d.workspace.sources)
     with_constraint_count(s.columns, [&](auto n) { add_constraint_torques<decltype(n)::value>(model, d, s); });
   if (d.workspace.free_joint_step) free_joint_constraint_torques(model, d);
@@ -409,6 +423,10 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
   d.constraint_wrenches.resize(num_solve_blocks(c, d));
   for (Vector6& w : d.constraint_wrenches) w.setZero();
   double probe = 0;
+  // A shared second body b (shared_second_body.hpp): the sum of what each block's wrench
+  // at P is at Q, [f; n + (q - p_b) x f], taken about b's origin
+  const int shared_body = d.workspace.shared_body;
+  Vector3 shared_f = Vector3::Zero(), shared_n = Vector3::Zero();
   for (const ConstraintSource& s : d.workspace.sources) {
     // the wrench w = [f; n] = alpha nu at the point p; tau_i -= z_i . (n + (p - p_i) x f)
     // (revolute) or z_i . f (prismatic), for each body on the path
@@ -418,8 +436,17 @@ double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const 
     Vector6& out = s.block < 0 ? d.constraint_wrench : d.constraint_wrenches[s.block];
     store_pairs(out, wrench);
     probe += finite_probe(wrench);
-    probe += subtract_wrench_torques(model, d, s, out.head<3>(), out.tail<3>());
+    const Vector3 f = out.head<3>(), n = out.tail<3>();
+    probe += subtract_wrench_torques(model, d, s, f, n);
+    if (shared_body < 0) {
+      if (s.relative) probe += add_opposite_wrench(model, d, s, f, n);
+    } else {  // [f; n] at Q, moved to b's origin
+      shared_f += f;
+      shared_n += n + s.arm_b.cross(f);
+    }
   }
+  // the blocks' opposite wrenches summed at their shared second body: one walk along its path
+  if (shared_body >= 0) probe += add_shared_opposite_wrench(model, d, shared_body, shared_f, shared_n);
   return probe;
 }
 
@@ -430,7 +457,9 @@ void constraint_force_torques(const Model& model, Data& d, const Case& c, const 
     Vector6 wrench = Vector6::Zero();
     for (int k = 0; k < s.columns; ++k)
       wrench += alpha.col(k) * (nu[s.column + k] * d.workspace.alpha_scale[s.column + k]);
-    subtract_wrench_torques(model, d, s, wrench.head<3>(), wrench.tail<3>());
+    const Vector3 f = wrench.head<3>(), n = wrench.tail<3>();
+    subtract_wrench_torques(model, d, s, f, n);
+    if (s.relative) add_opposite_wrench(model, d, s, f, n);
   }
 }
 

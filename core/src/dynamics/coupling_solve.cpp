@@ -57,16 +57,17 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
   return true;
 }
 
-// m = 12 (four points held in 3D, two poses in 6D) has its own unrolled factor when K is
-// dense (a floating base, or blocks sharing joints): every row's envelope starts at column
+// m = 12 (four points held in 3D, two poses in 6D) and m = 15 (five points held in 3D: the
+// Delta robot's loops) have their own unrolled factor when K is dense (a floating base, or
+// blocks sharing joints): every row's envelope starts at column
 // 0, so Ldlt<0> would do the same operations in the same order, with loop bounds read at
 // run time. A K of separate blocks (legs on a fixed base) keeps Ldlt<0>'s envelope.
 bool solve_by_ldlt(Data& data, const Options& options) {
   const int m = static_cast<int>(data.K.rows());
-  if (m == 12) {
+  if (m == 12 || m == 15) {
     bool dense = true;
     for (int i = 1; i < m; ++i) dense = dense && data.K(i, 0) != 0;
-    if (dense) return solve_by_ldlt_n<12>(data, options);
+    if (dense) return m == 12 ? solve_by_ldlt_n<12>(data, options) : solve_by_ldlt_n<15>(data, options);
   }
   return with_coupling_size(m, [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
 }

@@ -405,6 +405,7 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
   } else {
     d.workspace.sources.clear();
     d.workspace.free_joint_step = false;
+    d.workspace.shared_body = -1;
     d.E.resize(6, 0);
     d.rank = 0;
     d.K.resize(0, 0);

@@ -45,6 +45,7 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
   w.driver_qdd.assign(2 * n, 0.0);
   w.virtual_force.assign(n, Vector6::Zero());
   w.ez.assign(static_cast<size_t>(n) * 2 * constraint_capacity, 0.0);
+  w.shared_ez.assign(static_cast<size_t>(n) * 6, 0.0);
   coupling_forces = Eigen::VectorXd::Zero(model.couplings.size());
   if (!model.couplings.empty()) {
     // (copies of the case go here: room for every input, so that copying allocates nothing)

@@ -413,3 +413,31 @@ TEST(NoAllocation, HybridDynamicsWithLoopJoints) {
     }
   }
 }
+
+// The Delta robot's five loops, every one ending on the platform: the sweep that rolls the
+// platform's path once for all of them (shared_second_body.hpp), every policy.
+TEST(NoAllocation, HybridDynamicsWithLoopsSharingTheirSecondBody) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> U(-1, 1);
+  achd::UrdfOptions options;
+  options.loops = achd::test::read_loops_file(kRepo + "/robots/delta.loops.json");
+  const achd::Model m = achd::load_urdf_file(kRepo + "/robots/delta.urdf", "", "", options);
+  achd::Data d(m);
+  const int n = m.num_rates();
+  achd::Case c = achd::Case::zeros(m);
+  for (int i = 0; i < c.q.size(); ++i) c.q[i] = U(rng);
+  c.qd = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+  c.ff_torques = Eigen::VectorXd::NullaryExpr(n, [&] { return U(rng); });
+  c.f_ext.assign(m.num_links(), achd::Vector6::Zero());
+  for (auto& w : c.f_ext) w = achd::Vector6::NullaryExpr([&] { return U(rng); });
+  c.loop_beta = Eigen::VectorXd::NullaryExpr(m.num_loop_columns(), [&] { return U(rng); });
+  for (auto policy : {achd::SingularityPolicy::Truncate, achd::SingularityPolicy::Damped,
+                      achd::SingularityPolicy::VariableDamping}) {
+    achd::Options o;
+    o.policy = policy;
+    o.effects = achd::kAllEffects;
+    EXPECT_EQ(allocations_of_solve(m, d, c, o), 0);
+    EXPECT_GE(d.workspace.shared_body, 0);
+    ASSERT_TRUE(d.qdd.allFinite() && d.nu.allFinite());
+  }
+}

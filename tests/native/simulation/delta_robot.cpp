@@ -12,6 +12,7 @@
 #include <complex>
 #include <cstdio>
 #include <cstdlib>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -374,5 +375,37 @@ TEST(DeltaRobot, PrescribedShouldersHoldTheStaticTorquesOfVirtualWork) {
     EXPECT_LT(d.qdd.cwiseAbs().maxCoeff(), 1e-9) << "P " << P.transpose();  // the locked mechanism stays
     std::printf("P (%g, %g, %g): shoulder torques %.12f %.12f %.12f N m, virtual work differs by %.3g (relative)\n",
                 P.x(), P.y(), P.z(), tau[0], tau[1], tau[2], (tau - tau_vw).norm() / tau_vw.norm());
+  }
+}
+
+// The five loops all end on the platform, so the sweep rolls six unit wrenches up the
+// platform's path once and takes each loop's second leg from them
+// (shared_second_body.hpp): at closed poses, moving, with torques and wrenches on the
+// links, the solve gives the textbook reference's qdd, nu and joint torques
+// with the loops as relative Case::constraints blocks on the open tree.
+TEST(DeltaRobot, LoopsThroughTheSharedPlatformGiveTheReferenceSolve) {
+  const achd::Model closed = delta(), open = delta(false);
+  achd::Data d(closed);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (const Eigen::Vector3d& P : kPoses) {
+    achd::Case c = achd::Case::zeros(closed);
+    c.q = closed_q(closed, P);
+    c.qd = Eigen::VectorXd::NullaryExpr(closed.num_rates(), [&] { return U(rng); });
+    c.ff_torques = Eigen::VectorXd::NullaryExpr(closed.num_rates(), [&] { return U(rng); });
+    c.gravity = kGravity;
+    c.f_ext.assign(closed.num_links(), achd::Vector6::Zero());
+    for (auto& w : c.f_ext) w = achd::Vector6::NullaryExpr([&] { return U(rng); });
+    achd::Options o;
+    o.effects = achd::kAllEffects;
+    achd::hybrid_dynamics(closed, d, c, o);
+    ASSERT_EQ(d.workspace.shared_body, closed.links[link(closed, "platform")].body);
+    achd::Case r = c;  // the loops as relative blocks of the open tree
+    r.constraints = d.workspace.loop_blocks;
+    const achd::ReferenceSolution ref = achd::pv_reference(open, r, o);
+    const double scale = 1 + ref.nu.cwiseAbs().maxCoeff();
+    EXPECT_LT((d.qdd - ref.qdd).cwiseAbs().maxCoeff(), 1e-9 * (1 + ref.qdd.cwiseAbs().maxCoeff())) << "P " << P.transpose();
+    EXPECT_LT((d.nu - ref.nu).cwiseAbs().maxCoeff(), 1e-9 * scale) << "P " << P.transpose();
+    EXPECT_LT((d.joint_torques - ref.joint_torques).cwiseAbs().maxCoeff(), 1e-9 * scale) << "P " << P.transpose();
   }
 }

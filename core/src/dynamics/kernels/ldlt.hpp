@@ -14,8 +14,8 @@ namespace achd {
 // K = L D L^T for an n x n K (n = N fixed, so that the loops unroll, or N = 0 and n =
 // K's size), L unit lower triangular, D diagonal, kept with the pivots' reciprocals. No
 // square roots: one division per column is the whole sequential part.
-// With N = 0 (more than 6 columns, several blocks; a dense K of 12 has N = 12, see
-// solve_by_ldlt) the factor skips K's envelope: row i's entries left of first(i), its
+// With N = 0 (more than 6 columns, several blocks; a dense K of 12 or 15 has N = 12 or
+// 15, see solve_by_ldlt) the factor skips K's envelope: row i's entries left of first(i), its
 // first nonzero, are exact zeros that stay zero in L, so every sum starts at first(i)
 // (blocks on different limbs of a fixed-base tree couple nothing: K is block diagonal
 // and costs the sum of its blocks). Skipping exact zeros changes no result.
@@ -73,20 +73,21 @@ struct Ldlt {
 
   // factor for N > 0 (every first(i) = 0): the same operations in the same order, its
   // triangular loops unrolled, which clang does not do by itself for N = 12 (the factor,
-  // solve and bounds of the floating quadruped's K: 4.2k instructions rolled, 2.0k).
+  // solve and bounds of the floating quadruped's K: 4.2k instructions rolled, 2.0k) or 15
+  // (the Delta robot's five loops: 6.3k right-looking by columns, 4.0k).
   bool factor_dense(const CouplingMatrix& K) {
     double W[C][C];  // W[i][k] = L[i][k] d_k
-#pragma GCC unroll 12
+#pragma GCC unroll 15
     for (int j = 0; j < N; ++j) {
       double d = K(j, j);
-#pragma GCC unroll 12
+#pragma GCC unroll 15
       for (int k = 0; k < j; ++k) d -= L[j][k] * W[j][k];
       if (!(d > 0)) return false;
       Dinv[j] = 1 / d;
-#pragma GCC unroll 12
+#pragma GCC unroll 15
       for (int i = j + 1; i < N; ++i) {
         double w = K(i, j);
-#pragma GCC unroll 12
+#pragma GCC unroll 15
         for (int k = 0; k < j; ++k) w -= L[i][k] * W[j][k];
         W[i][j] = w;
         L[i][j] = w * Dinv[j];
@@ -96,7 +97,7 @@ struct Ldlt {
   }
 
   // factor for N = 0 when every first(i) = 0 (a dense K of more than 6 columns that is not
-  // the unrolled 12: the Delta robot's five loops, m = 15), right-looking: once column j
+  // the unrolled 12 or 15), right-looking: once column j
   // is final, every entry (i, l) below and right of it takes its term,
   //   A_il -= L_ij W_lj  (i >= l > j),  A = K to start,
   // two rows i to a Pair (A is column-major like K, so rows i and i + 1 are adjacent), and
