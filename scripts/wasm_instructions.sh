@@ -72,6 +72,7 @@ for (const [f, c] of cost) console.log(f, c);
 "
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+cd "$work"  # where V8's --perf-basic-prof leaves its isolate logs
 count() {  # one Node run of $2 solves with $1 constraints: its total, then per wasm function
   local out=$work/$1-$2
   valgrind --tool=callgrind --smc-check=all --dump-instr=yes --compress-pos=no --compress-strings=no \
