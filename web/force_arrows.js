@@ -19,18 +19,19 @@ const UP = new THREE.Vector3(0, 1, 0);  // three's cylinders and cones are built
 const SHORTEST = 1e-9;
 
 class Arrow {
-  // heads: 1 (a force) or 2 (a moment); radius: the shaft's, m.
-  constructor(color, heads, radius) {
+  // heads: 1 (a force) or 2 (a moment); radius: the shaft's, m; order: three's renderOrder,
+  // the higher drawn later, over the other.
+  constructor(color, heads, radius, order) {
     const material = new THREE.MeshBasicMaterial({ color, depthTest: false, depthWrite: false, transparent: true });
     this.group = new THREE.Group();
-    this.group.renderOrder = 10;
+    this.group.renderOrder = order;
     this.headLength = radius * 7;
     this.shaft = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, 1, 12), material);
     this.heads = [];
     const cone = new THREE.ConeGeometry(radius * 2.6, 1, 16);
     for (let k = 0; k < heads; k++) this.heads.push(new THREE.Mesh(cone, material));
     for (const mesh of [this.shaft, ...this.heads]) {
-      mesh.renderOrder = 10;
+      mesh.renderOrder = order;
       this.group.add(mesh);
     }
     this.group.visible = false;
@@ -100,8 +101,10 @@ export class ForceArrows {
       const pair = { name: '', wrench: new Float64Array(6), force: null, moment: null };
       if (this.enabled && this.group) {
         const radius = this.view.radius * 0.55;
-        pair.force = new Arrow(FORCE_COLOR, 1, radius);
-        pair.moment = new Arrow(MOMENT_COLOR, 2, radius * 0.8);
+        // The force over the moment: both start at the link's origin, and the moment's two
+        // heads would hide a short force arrow.
+        pair.force = new Arrow(FORCE_COLOR, 1, radius, 11);
+        pair.moment = new Arrow(MOMENT_COLOR, 2, radius * 0.8, 10);
         this.group.add(pair.force.group, pair.moment.group);
       }
       this.pairs.push(pair);
