@@ -187,9 +187,9 @@ test('the page recovers: Reset after a failure, a new robot, plot axes', async (
   }
 });
 
-// The simulator's default variable_damping policy and its fixed physics defaults (issue
-// 14) carry it: before them the page stopped at t = 2.183 s with "the acceleration to
-// enforce along direction y is not finite".
+// The simulator's default variable_damping policy and its fixed physics defaults (the
+// stabilisation frequency and damping ratio) carry it: before them the page stopped at
+// t = 2.183 s with "the acceleration to enforce along direction y is not finite".
 test('a direction driven into the workspace boundary is reported and the page keeps stepping', async () => {
   const session = await openPage({ hash: BOUNDARY_HASH });
   const { page, consoleErrors } = session;
