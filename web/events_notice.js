@@ -2,7 +2,8 @@
 // resumed a held or accelerated direction near a configuration where the robot cannot
 // follow it (sim.events(): {t, step, link, direction, kind, sigma_min, unmet}; a loop joint's: loop
 // instead of link), newest last, and
-// which directions are lost now (released and not yet resumed), for the toggles.
+// which directions of each link are lost now (released and not yet resumed), for the
+// toggles of the link they show.
 
 // The list (and `recent`, for achdDemo.state()) keeps the newest events; a chattering
 // boundary must not grow the page.
@@ -23,7 +24,7 @@ export class EventsNotice {
 
   clear() {
     this.recent = [];
-    this.lost = new Set();
+    this.lost = new Map();  // link name -> Set of its lost direction names
     this.list.replaceChildren();
     this.none.hidden = false;
   }
@@ -31,8 +32,12 @@ export class EventsNotice {
   // events: new events in time order, t on the page's clock.
   add(events) {
     for (const e of events) {
-      if (e.loop === undefined && e.kind === 'released') this.lost.add(e.direction);
-      else if (e.loop === undefined && e.kind === 'resumed') this.lost.delete(e.direction);
+      if (e.loop === undefined && e.kind === 'released') {
+        if (!this.lost.has(e.link)) this.lost.set(e.link, new Set());
+        this.lost.get(e.link).add(e.direction);
+      } else if (e.loop === undefined && e.kind === 'resumed') {
+        this.lost.get(e.link)?.delete(e.direction);
+      }
       const item = document.createElement('li');
       item.className = e.kind;
       item.dataset.direction = e.direction;
@@ -53,8 +58,13 @@ export class EventsNotice {
     }
   }
 
+  // The lost directions of `link` (a Set of names, empty when none).
+  lostOn(link) {
+    return this.lost.get(link) ?? new Set();
+  }
+
   // A direction the user sets anew is no longer the simulator's lost one.
-  forget(direction) {
-    this.lost.delete(direction);
+  forget(link, direction) {
+    this.lost.get(link)?.delete(direction);
   }
 }

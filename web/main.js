@@ -106,7 +106,7 @@ window.achdDemo = {
       playing: page.playing,
       error: page.failure?.message ?? null,
       events: notice.recent.map((e) => ({ ...e })),
-      lost: [...notice.lost],
+      lost: [...notice.lostOn(page.sim.selected)],
       plots: readouts.plotRanges(),
       look: { meshes: page.look.meshes?.map((m) => ({ ...m })) ?? null, problems: [...page.look.problems] },
       share: page.share && { ...page.share },
@@ -381,8 +381,8 @@ function setPlaying(on) {
 function setDirection(name, mode) {
   page.settings.directions[name] = mode;
   if (page.sim) page.sim.applyDirection(name);
-  notice.forget(name);
-  controls.showLost(notice.lost);
+  notice.forget(page.sim.selected, name);
+  controls.showLost(notice.lostOn(page.sim.selected));
   controls.show(page.settings, page.playing);
   writeHash();
 }
@@ -393,8 +393,7 @@ function selectLink(name, point) {
   page.sim.select(name);
   if (point) page.sim.setPoint(name, point);
   page.settings.link = name === page.sim.robot.tip ? null : name;
-  notice.clear();
-  controls.showLost(notice.lost);
+  controls.showLost(notice.lostOn(name));
   controls.show(page.settings, page.playing);
   showSelected();
   writeHash();
@@ -565,7 +564,7 @@ function clearRun() {
   page.failure = null;
   errorBox.hidden = true;
   notice.clear();
-  controls.showLost(notice.lost);
+  controls.showLost(notice.lostOn(page.sim?.selected));
   readouts.clear();
 }
 
@@ -862,7 +861,7 @@ function showEvents() {
   const fresh = page.sim.newEvents();
   if (!fresh.length) return;
   notice.add(fresh);
-  controls.showLost(notice.lost);
+  controls.showLost(notice.lostOn(page.sim.selected));
 }
 
 // Frames read performance.now(), not rAF's frame start time, which can precede the
