@@ -25,9 +25,15 @@ int cmd_accuracy(int argc, char** argv) {
   const double planned = planned_steps(scene, config);
   catch_interrupt();
   Progress progress([&](std::int64_t done) {
+    // The plan is an estimate: a reference refined further (its error above a tenth of
+    // the best row's) or an adaptive row's substeps can take more, and a percentage past
+    // 100 would say nothing.
     char text[96];
-    std::snprintf(text, sizeof text, "%lld of about %.0f steps (%.0f%%)", static_cast<long long>(done), planned,
-                  100.0 * static_cast<double>(done) / planned);
+    if (static_cast<double>(done) <= planned)
+      std::snprintf(text, sizeof text, "%lld of about %.0f steps (%.0f%%)", static_cast<long long>(done), planned,
+                    100.0 * static_cast<double>(done) / planned);
+    else
+      std::snprintf(text, sizeof text, "%lld steps, past the %.0f planned", static_cast<long long>(done), planned);
     return "accuracy " + scene.source + ": " + text;
   });
   Study study;
