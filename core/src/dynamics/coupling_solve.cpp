@@ -23,12 +23,62 @@ namespace {
 // more).
 constexpr double kFactorMinRatio = 1e-11;
 
+// sigma_max(K) <= (sum sigma_k^4)^(1/4) = ||K^2||_F^(1/2) for the symmetric n x n K, within
+// n^(1/4) of it (||K||_F = (sum sigma_k^2)^(1/2) is within n^(1/2)), rounded up: each
+// computed entry of K^2 is within n u ||K_i|| ||K_j|| of the exact one, so ||K^2||_F is
+// within n u ||K||_F^2 of the computed one's norm. O(n^3 / 2), no allocation.
+[[gnu::noinline]] double sigma_max_bound(const CouplingMatrix& K) {
+  const int n = static_cast<int>(K.rows());
+  const double u = std::numeric_limits<double>::epsilon();
+  double sum = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i <= j; ++i) {
+      const double c = K.col(i).dot(K.col(j));  // (K^2)_ij, K symmetric
+      sum += (i == j ? 1 : 2) * c * c;
+    }
+  const double fro2 = K.squaredNorm();
+  const double norm2 = std::sqrt(sum) * (1 + (n * n + 2) * u) + (n + 2) * u * fro2 * (1 + (n * n + 2) * u);
+  return std::sqrt(norm2) * (1 + 4 * u);
+}
+
+// True when every eigenvalue of the n x n K (factored as f) is provably above the truncation
+// threshold `truncation`, above kFactorMinRatio * trace(K) and above variable_damping's
+// singular region eps = singular_region * sigma_max: then the eigen-decomposition would
+// truncate and damp nothing. The region is taken at an upper bound of sigma_max, first
+// ||K||_F = (sum sigma_k^2)^(1/2) (within n^(1/2) of it; trace(K) = sum sigma_k can be n
+// sigma_max), then, if the lower bounds of lambda_min do not clear that, sigma_max_bound's
+// tighter one, and raised by a margin of many times the round-off of both this proof and
+// the eigen-decomposition's eigenvalues. The last test, K - threshold 1 positive definite
+// (its LDL^T has positive pivots; the factor's backward error, below n (n + 1) u ||K||, is
+// within the margin), proves every eigenvalue above the threshold in two O(n^3) passes
+// (sigma_max_bound, the factor) where the eigen-decomposition takes many. Not inlined:
+// its frame (a copy of K and a factor) would otherwise be truncate's too.
+template <int N>
+[[gnu::noinline]] bool outside_singular_region(const Ldlt<N>& f, const CouplingMatrix& K, double truncation,
+                                               const Options& options) {
+  const int n = f.size();
+  const double u = std::numeric_limits<double>::epsilon();
+  const double trace = K.trace();
+  const auto threshold = [&](double sigma_max) {
+    return std::max({truncation, options.singular_region * sigma_max + 16 * (n * n + n) * u * trace,
+                     kFactorMinRatio * trace});
+  };
+  const double frobenius = threshold(K.norm() * (1 + (n * n + 2) * u));
+  const double room = 1 - 64 * n * u;
+  if (room * determinant_bound_of_lambda_min(f, trace) > frobenius ||
+      room * row_sum_bound_of_lambda_min(f) > frobenius)
+    return true;
+  CouplingMatrix shifted = K;
+  shifted.diagonal().array() -= threshold(sigma_max_bound(K));
+  Ldlt<N> g;
+  return g.factor(shifted);
+}
+
 // The fast path of truncate and variable_damping for an n x n K: when the lower bound of
-// its smallest eigenvalue is above the truncation threshold, above
-// kFactorMinRatio * trace(K) >= kFactorMinRatio * sigma_max and (variable_damping) above
-// the singular region singular_region * trace(K) >= singular_region * sigma_max, nothing
-// is truncated or damped, and nu = K^-1 rhs is accurate by LDL^T. False (nothing written)
-// when K needs the eigen-decomposition.
+// its smallest eigenvalue is above the truncation threshold and above
+// kFactorMinRatio * trace(K) >= kFactorMinRatio * sigma_max (and, variable_damping,
+// outside_singular_region), nothing is truncated or damped, and nu = K^-1 rhs is accurate
+// by LDL^T. False (nothing written) when K needs the eigen-decomposition.
 template <int N>
 bool solve_by_ldlt_n(Data& data, const Options& options) {
   const CouplingMatrix& K = data.K;
@@ -36,18 +86,20 @@ bool solve_by_ldlt_n(Data& data, const Options& options) {
   if (!f.factor(K)) return false;
   const int n = f.size();
   const double trace = K.trace();
-  double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
-  if (options.policy == SingularityPolicy::VariableDamping)
-    threshold = std::max(threshold, options.singular_region * trace);
-  auto clears = [&](double below) { return below > threshold && below >= kFactorMinRatio * trace; };
-  // The test is lower_bound_of_lambda_min's, O(n^3). A cheaper bound b <= lambda_min
-  // settles it first when it can: 1 / trace(K^-1) >= lambda_min / n >= b / n, so b / n
-  // clearing (less 64 n ulps for the round-off of both) means the trace bound clears too,
-  // and the path taken, and so every result, is the same to the bit.
-  const double room = (1 - 64 * n * std::numeric_limits<double>::epsilon()) / n;
-  if (!clears(room * determinant_bound_of_lambda_min(f, trace)) && !clears(room * row_sum_bound_of_lambda_min(f)) &&
-      !clears(lower_bound_of_lambda_min(f)))
-    return false;
+  const double threshold = options.absolute_tolerance ? options.tolerance : options.tolerance * trace;
+  if (options.policy == SingularityPolicy::VariableDamping) {
+    if (!outside_singular_region(f, K, threshold, options)) return false;
+  } else {
+    auto clears = [&](double below) { return below > threshold && below >= kFactorMinRatio * trace; };
+    // The test is lower_bound_of_lambda_min's, O(n^3). A cheaper bound b <= lambda_min
+    // settles it first when it can: 1 / trace(K^-1) >= lambda_min / n >= b / n, so b / n
+    // clearing (less 64 n ulps for the round-off of both) means the trace bound clears too,
+    // and the path taken, and so every result, is the same to the bit.
+    const double room = (1 - 64 * n * std::numeric_limits<double>::epsilon()) / n;
+    if (!clears(room * determinant_bound_of_lambda_min(f, trace)) && !clears(room * row_sum_bound_of_lambda_min(f)) &&
+        !clears(lower_bound_of_lambda_min(f)))
+      return false;
+  }
   f.solve(data.workspace.rhs, data.nu);
   data.rank = n;
   data.dropped.resize(n, 0);

@@ -6,8 +6,12 @@
 // UR5 with z, rx held and y pushed failed at t = 2.183 s ("the acceleration to enforce
 // along direction y is not finite"), the LWR at 1.976 s.
 // The other held directions stay within 1e-6 (m or rad) at every step from 0.5 s (the
-// stabilisation transient) to the first event and after the last (measured with the
-// default dormand_prince: 3e-13..2.2e-11 before, 1e-15..1.7e-7 after).
+// stabilisation transient) to the first event and, those the run ends following (no
+// event of theirs, or a resumption last), after the last (measured with the default
+// dormand_prince: 3e-13..2.2e-11 before, 1e-15..1.7e-7 after). A held direction released
+// and not resumed by the end is not followed there: the mixed chain pushed along x ends
+// with z released at 59.76 s or with z resumed at 59.77 s depending on the last bits of
+// its solves (some 350 events in 60 s).
 // The mixed chain's prismatic joint j2 extends without bound under the default limits
 // ('report': to 1000 m in 60 s), so it has no workspace boundary there; its suite runs
 // with limits 'clamp', where its URDF limits (j2 in [-0.1, 0.3] m) make the boundary.
@@ -15,6 +19,7 @@
 // while j2 strikes its stop, and drifts 4.6e-5 m after its last resumption.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -69,13 +74,13 @@ TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirectio
 
   constexpr double dt = 1e-3;
   const std::int64_t steps = steps_for_duration(60.0, dt);
-  // Worst held residual per step, checked against the events afterwards.
-  std::vector<double> worst(static_cast<std::size_t>(steps), 0.0);
+  // The held residuals per step, checked against the events afterwards.
+  std::vector<std::array<double, kNumDirections>> residual(static_cast<std::size_t>(steps));
   for (std::int64_t s = 0; s < steps; ++s) {
     ASSERT_NO_THROW(sim.step(dt)) << name_of(bc);
     ASSERT_TRUE(sim.q.allFinite() && sim.qd.allFinite()) << name_of(bc) << " at t = " << sim.t;
     const auto res = sim.residuals();
-    for (int k : bc.held) worst[s] = std::max(worst[s], std::abs(res[k]));
+    for (int k : bc.held) residual[s][k] = std::abs(res[k]);
   }
   EXPECT_EQ(sim.t, 60.0) << name_of(bc);
   EXPECT_EQ(sim.events_not_kept(), 0) << name_of(bc);
@@ -92,11 +97,16 @@ TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirectio
   // The held residuals: after step s the state is the one after s + 1 steps; an event at
   // `step` describes the state after `step` steps.
   const std::int64_t from = steps_for_duration(0.5, dt), first = events.front().step, last = events.back().step;
+  std::array<bool, kNumDirections> followed_at_end;
+  followed_at_end.fill(true);
+  for (const DirectionEvent& e : events) followed_at_end[e.direction] = e.kind == DirectionEventKind::Resumed;
   double before = 0, after = 0;
   for (std::int64_t s = from; s < steps; ++s) {
     const std::int64_t state = s + 1;
-    if (state < first) before = std::max(before, worst[s]);
-    if (state > last) after = std::max(after, worst[s]);
+    for (int k : bc.held) {
+      if (state < first) before = std::max(before, residual[s][k]);
+      if (state > last && followed_at_end[k]) after = std::max(after, residual[s][k]);
+    }
   }
   EXPECT_LE(before, 1e-6) << name_of(bc) << ": before the first event, t = " << events.front().t;
   EXPECT_LE(after, 1e-6) << name_of(bc) << ": after the last event, t = " << events.back().t;

@@ -8,12 +8,21 @@
 //     largest kinetic energy, no direction event. (When the region alone decided, z and rx
 //     were released at t = 0, the tip turned 0.11 rad and 28% of the energy was lost in
 //     2 s.)
+//   - The floating humanoid crouched on both soles held in 6D under a stiff joint PD, kp
+//     1500 and kd 30 (robots/scenes/humanoid_stiff_hold.json), 10 s: every held residual
+//     <= 1e-9, no direction event; Dormand-Prince detects the stiffness (its hands' decay
+//     rates reach about 1e5 1/s) and most substeps are the extrapolated implicit Euler's,
+//     at most 20000 substeps in all (18793 measured: 7779 plain Dormand-Prince ones before
+//     the detection at 0.185 s). Its soles' coupling matrix is outside variable_damping's
+//     singular region on every solve but one, proved without an eigen-decomposition: 0.16 s
+//     CPU per simulated second measured (0.31 when each solve took the eigen-decomposition).
 // The CPU time is std::clock's: this process's, which a loaded machine's other work does
 // not count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 
@@ -26,6 +35,7 @@ namespace {
 struct Figures {
   double residual = 0, energy_drift = 0, cpu_per_s = 0;
   std::size_t events = 0;
+  std::int64_t substeps = 0, stiff_substeps = 0;
 };
 
 // Runs the scene with its own options (the simulator's defaults unless it sets them)
@@ -48,10 +58,12 @@ Figures run_scene(const char* file) {
   f.cpu_per_s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC / sim.t;
   f.energy_drift = max_dE / max_T;
   f.events = sim.events().size();
+  f.substeps = sim.substeps();
+  f.stiff_substeps = sim.stiff_substeps();
   std::printf("%s, %.2f s: held residual %.3g, energy drift %.3g (max T %.4g J), %zu events, %lld substeps "
-              "(%lld rejected), %.3g s CPU per simulated s\n",
-              file, sim.t, f.residual, f.energy_drift, max_T, f.events, static_cast<long long>(sim.substeps()),
-              static_cast<long long>(sim.rejected_substeps()), f.cpu_per_s);
+              "(%lld rejected, %lld stiff), %.3g s CPU per simulated s\n",
+              file, sim.t, f.residual, f.energy_drift, max_T, f.events, static_cast<long long>(f.substeps),
+              static_cast<long long>(sim.rejected_substeps()), static_cast<long long>(f.stiff_substeps), f.cpu_per_s);
   return f;
 }
 
@@ -60,6 +72,14 @@ TEST(HardScenes, UndampedLwrHoldsSixDirectionsBesideItsStretchedPose) {
   EXPECT_LE(f.residual, 1e-9);
   EXPECT_LE(f.energy_drift, 1e-8);
   EXPECT_EQ(f.events, 0u);
+}
+
+TEST(HardScenes, FloatingHumanoidHoldsBothSolesUnderAStiffJointPd) {
+  const Figures f = run_scene("humanoid_stiff_hold.json");
+  EXPECT_LE(f.residual, 1e-9);
+  EXPECT_EQ(f.events, 0u);
+  EXPECT_GT(f.stiff_substeps, f.substeps / 2);  // the stiffness was detected and kept
+  EXPECT_LE(f.substeps, 20000);
 }
 
 }  // namespace

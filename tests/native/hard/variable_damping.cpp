@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include <Eigen/Eigenvalues>
 
 #include "achd/achd.hpp"
+#include "coupling_solve.hpp"
 
 #include "hard_stretched_arm.hpp"
 #include "robot_index.hpp"
@@ -119,6 +121,45 @@ TEST(VariableDamping, KeepsTheExactSolveWhereTheJointEffortsAllowIt) {
   EXPECT_LE((h.nu - (exact.nu + damped.nu) / 2).norm(), 1e-9 * exact.nu.norm());
   EXPECT_GE(h.damped.cols(), 1);
   EXPECT_EQ((b.nu - damped.nu).norm(), 0.0);
+}
+
+// The singular region's edge, at the solve of K itself (solve_coupling): K = V diag(sigma)
+// V^T of 6 and 12 position columns (one kind: the scaling keeps the eigenvalue ratios),
+// sigma_max = 1, the others spread over [0.05, 1], the smallest at ratio * singular_region.
+// Just inside the region (ratio 1 - 1e-6) exactly one direction is damped: the
+// eigen-decomposition-free proof that K is outside the region must fail there. Just
+// outside it and beyond (1 + 1e-6, 1.5, 3, 10: where a region taken at trace(K) >= sigma_max
+// needs the eigen-decomposition) nothing is damped and nu = K^-1 rhs to round-off.
+TEST(VariableDamping, SingularRegionEdgeAtTheCouplingSolve) {
+  const Model m = load_urdf_file(std::string(ACHD_SOURCE_DIR) + "/robots/kuka_lwr4.urdf", "lwr_base_link", "lwr_link_7");
+  Data d(m);
+  Options o = policy(SingularityPolicy::VariableDamping);
+  o.exact_within_efforts = false;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1), spread(0.05, 1);
+  for (int n : {6, 12}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      const Eigen::MatrixXd V = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return U(rng); }).householderQr().householderQ();
+      for (double ratio : {1 - 1e-6, 1 + 1e-6, 1.5, 3.0, 10.0}) {
+        Eigen::VectorXd sigma = Eigen::VectorXd::NullaryExpr(n, [&] { return spread(rng); });
+        sigma[0] = 1;
+        sigma[n - 1] = ratio * o.singular_region;
+        const Eigen::MatrixXd K = V * sigma.asDiagonal() * V.transpose();
+        d.K = (K + K.transpose()) / 2;
+        d.workspace.rhs = ConstraintVector::NullaryExpr(n, [&] { return U(rng); });
+        for (int i = 0; i < n; ++i) d.workspace.has_force[i] = true;
+        const Eigen::VectorXd exact = Eigen::MatrixXd(d.K).llt().solve(Eigen::VectorXd(d.workspace.rhs));
+        solve_coupling(d, o);
+        if (ratio < 1) {
+          EXPECT_EQ(d.damped.cols(), 1) << "n " << n << " trial " << trial;
+          continue;
+        }
+        EXPECT_EQ(d.damped.cols(), 0) << "n " << n << " trial " << trial << " ratio " << ratio;
+        EXPECT_EQ(d.rank, n);
+        EXPECT_LE((Eigen::VectorXd(d.nu) - exact).norm(), 1e-11 * exact.norm()) << "n " << n << " ratio " << ratio;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -3,18 +3,19 @@
 //   - The floating humanoid on both soles held in 6D under kp 1500, kd 30 (its hands' and
 //     wrists' decay rates kd / m reach about 1e5 1/s) runs 10 s: soles within 1e-9, no
 //     direction event, most substeps stiff, at most 1 s CPU per simulated second (plain
-//     Dormand-Prince took 3.1 s/s; measured 0.31 to 0.36 s/s on a loaded 2-core machine,
-//     above the 0.1 s/s aimed at). It still moves slowly after seconds (|qd| about 0.01),
-//     and at rtol 1e-9 the extrapolation's error falls about tenfold a row: 5 rows (15
-//     solves) a 1 ms substep, and no row count does better at its own largest substep
-//     (14 to 17 solves per ms for 4 to 6 rows), so dt = 1 ms is not what binds; about 22000
-//     solves per simulated s (47000 of the 10 s run's are plain Dormand-Prince's before the
-//     stiffness is detected at 0.185 s). Half of the instructions are the eigen-decomposition
-//     the variable-damping policy falls back to on the soles' near-singular coupling
-//     (12.8e9 for the first second, 7.1e9 under the truncate policy, same substeps).
+//     Dormand-Prince took 3.1 s/s; 0.31 to 0.36 s/s while every solve took the
+//     variable-damping policy's eigen-decomposition, 0.15 to 0.16 since its soles' coupling
+//     is proved outside the singular region without one, on a loaded 2-core machine: above
+//     the 0.1 s/s aimed at). It still moves slowly after seconds (|qd| about 0.01), and at
+//     rtol 1e-9 the extrapolation's error falls about tenfold a row: 5 rows (15 solves) a
+//     1 ms substep, and no row count does better at its own largest substep (14 to 17
+//     solves per ms for 4 to 6 rows), so dt = 1 ms is not what binds; about 17000 solves per
+//     simulated s (47000 of the 10 s run's 227000 are plain Dormand-Prince's before the
+//     stiffness is detected at 0.185 s). robots/scenes/humanoid_stiff_hold.json is this
+//     scene (tests/native/hard/hard_scenes.cpp).
 //   - The dual-arm torso holding both hands in 6D under kp 1e4, kd 100 runs 10 s: hands
-//     within 1e-9, at most 0.1 s CPU per simulated second (0.05 measured; plain
-//     Dormand-Prince 0.39).
+//     within 1e-9, at most 0.1 s CPU per simulated second (0.02 measured, 0.05 before the
+//     eigen-decomposition-free proof; plain Dormand-Prince 0.39).
 //   - The stiff substeps keep the accuracy the tolerances ask: the humanoid's first 0.5 s
 //     (stiff from about 0.19 s) at the default tolerances and at rtol 1e-11, atol 1e-13
 //     (where the substeps the accuracy needs are below Dormand-Prince's stability bound:
