@@ -580,8 +580,10 @@ export interface LoadOptions {
    * default false (the root link is the fixed base). */
   floating?: boolean;
   /** the links' inertias: 'accept' (default: loaded whenever the dynamics are defined, odd
-   * ones listed in Robot.warnings), 'strict' (odd ones refused) or 'repair' (made
-   * physical with the least change, a massless moving link given a floor mass; listed). */
+   * ones listed in Robot.warnings, a joint that moves no mass held at 0 or the middle of
+   * its limits, listed), 'strict' (odd ones and joints that move nothing refused) or
+   * 'repair' (made physical with the least change, a massless moving link given a floor
+   * mass; listed). */
   inertia?: 'accept' | 'strict' | 'repair';
   /** loop joints closing the tree (a loops file's "loops" list): each its links, its frame
    * on each (they coincide while the loop is closed), its type and axis (frame a). */

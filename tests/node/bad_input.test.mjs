@@ -55,8 +55,9 @@ const badUrdfs = [
     /mass \[nan\]/],
   ['Inf inertia', robot(link('a') + link('b', inertial('1', 'inf')) + joint('j', 'revolute', 'a', 'b')), 'a', 'b',
     /ixx/],
-  ['moving a massless link', robot(link('a') + link('b', '') + joint('j', 'revolute', 'a', 'b')), 'a', 'b',
-    /joint 'j' moves nothing.*D = S\^T IA S = 0/],
+  ['a point mass on the joint axis', robot(link('a') + link('b', '<inertial><origin xyz="0 0 0.5"/><mass value="1"/>' +
+    '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>') + joint('j', 'revolute', 'a', 'b')), 'a', 'b',
+  /joint 'j' moves nothing.*D = S\^T IA S = 0/],
   ['a later coaxial joint frees the motion', robot(link('a') + link('b', '') + link('c') +
     joint('j1', 'revolute', 'a', 'b') +
     '<joint name="j2" type="continuous"><parent link="b"/><child link="c"/><axis xyz="0 0 1"/></joint>'),

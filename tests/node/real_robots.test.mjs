@@ -1,7 +1,7 @@
 // The robots people have, in JS as in the CLI: every URDF of the example-robot-data
 // collection (robots/example-robot-data) loads in wasm exactly when `achd info` loads it,
 // with the same joints and the same warnings, or fails with the same message; the
-// inertia option does what --inertia does; the Panda's coupled fingers solve in wasm to
+// inertia option does what --inertia does (the default holds a massless finger); the Panda's coupled fingers solve in wasm to
 // the bit as natively (nu_owners included); an SRDF pose is the pose `achd info --srdf`
 // lists; and Solo12 stands on its held feet under the frequency/hold controller.
 import assert from 'node:assert/strict';
@@ -67,7 +67,7 @@ test('every URDF of the collection loads in wasm exactly as in the CLI', async (
   console.log(`# ${loaded} of ${files.length} load with the defaults in wasm and natively`);
 });
 
-test('the inertia option: strict refuses what accept warns about, repair loads a massless finger', async () => {
+test('the inertia option: strict refuses what accept warns about or holds, repair gives a massless finger mass', async () => {
   const talos = readFileSync(join(CORPUS, 'talos_data/robots/talos_reduced.urdf'), 'utf8');
   const accepted = achd.loadURDF(talos);
   assert.ok(accepted.warnings.length > 0 && accepted.warnings.every((w) => /^link '/.test(w)), accepted.warnings.join('\n'));
@@ -77,7 +77,14 @@ test('the inertia option: strict refuses what accept warns about, repair loads a
     /loadURDF: options.inertia: expected 'accept' or 'strict' or 'repair', got 'lenient'/);
   const gripperPath = join(CORPUS, 'bravo7_description/urdf/bravo7_gripper.urdf');
   const gripper = readFileSync(gripperPath, 'utf8');
-  assert.throws(() => achd.loadURDF(gripper), /moves nothing.*--inertia repair/);
+  // The default holds both massless fingers, as the CLI does, one warning each.
+  const held = achd.loadURDF(gripper);
+  assert.deepEqual(held.warnings, (await nativeInfo(gripperPath)).warnings);
+  assert.deepEqual(held.warnings.map((w) => w.match(/^joint '(\w+)' moves nothing: .* locked at 0 /)?.[1]),
+    ['bravo_finger1_joint', 'bravo_finger2_joint'], held.warnings.join('\n'));
+  assert.equal(held.jointNames.length, 6);
+  held.delete();
+  assert.throws(() => achd.loadURDF(gripper, { inertia: 'strict' }), /moves nothing.*--inertia repair/);
   const repaired = achd.loadURDF(gripper, { inertia: 'repair' });
   const native = await nativeInfo(gripperPath, ['--inertia', 'repair']);
   assert.deepEqual(repaired.warnings, native.warnings);

@@ -19,8 +19,9 @@ export function installAchd(Module) {
   // hangs from) or 'ignore' (dropped, as KDL's chain does); achd::SideBranches' order.
   // options.floating: true for a free joint between the world and the root link (its 7
   // positions [x, y, z, qx, qy, qz, qw] and 6 rates [v; w] come first).
-  // options.inertia: 'accept' (default: odd inertias loaded, listed in robot.warnings),
-  // 'strict' (refused) or 'repair' (made physical, listed); achd::InertiaPolicy's order.
+  // options.inertia: 'accept' (default: odd inertias loaded, joints that move no mass
+  // held, listed in robot.warnings), 'strict' (refused) or 'repair' (made physical,
+  // listed); achd::InertiaPolicy's order.
   // options.loops: loop joints closing the tree, [{name, link_a, origin_a: {xyz, rpy},
   // link_b, origin_b, type, axis, directions}] (as in a loops file; robot.loops).
   // options.srdf: SRDF text whose named poses (group_states) become robot.poses;

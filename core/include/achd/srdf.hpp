@@ -42,4 +42,8 @@ const SrdfPose& find_srdf_pose(const std::vector<SrdfPose>& poses, const std::st
 // limits when 0 is outside them; a floating base at the identity pose.
 Eigen::VectorXd default_pose(const Model& model);
 
+// The value default_pose gives a joint with limits [lower, upper]: 0, or the middle of
+// them when 0 is outside them (the loader holds a joint that moves nothing there too).
+double default_joint_value(double lower, double upper);
+
 }  // namespace achd

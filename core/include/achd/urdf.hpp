@@ -13,9 +13,12 @@ namespace achd {
 // How the loader takes the links' <inertial> elements (link_inertia.hpp has the rules):
 // Accept (the default) loads every inertia whose dynamics are defined, a moment within
 // the file's round-off of zero counting as zero and a violated triangle inequality loaded
-// as written, each such link reported in Model::warnings; Strict refuses both; Repair
-// makes each inertia physical with the least change and gives a body whose joint moves
-// nothing a floor mass, reporting every change in Model::warnings.
+// as written, each such link reported in Model::warnings, and holds a joint that moves no
+// mass (its link and every link after it without inertia) as `locked` would, at 0 or the
+// middle of its limits (a <mimic> group by its leader), reported in Model::warnings;
+// Strict refuses all three; Repair makes each inertia physical with the least change and
+// gives a body whose joint moves nothing a floor mass, reporting every change in
+// Model::warnings.
 enum class InertiaPolicy { Accept, Strict, Repair };
 
 // What to do with a movable joint that has a <mimic> element (its position a multiple of
@@ -65,8 +68,9 @@ constexpr int kMaxUrdfNesting = 100;
 // or joint on malformed XML, elements nested deeper than kMaxUrdfNesting, unknown links,
 // a tip not below the root, unsupported joint types (floating, planar), mimic joints
 // (unless options.mimic is Independent), inertias the policy refuses, geometry whose
-// numbers overflow, joints that move nothing, or a tree without a movable joint (unless
-// floating). What it loaded but found odd, or repaired, is in Model::warnings.
+// numbers overflow, joints that move nothing (those the policy neither holds nor
+// repairs), or a tree without a movable joint (unless floating). What it loaded but found
+// odd, held, or repaired, is in Model::warnings.
 Model load_urdf_file(const std::string& path, const std::string& root, const std::string& tip,
                      const UrdfOptions& options = {});
 Model load_urdf_string(const std::string& xml, const std::string& root, const std::string& tip,

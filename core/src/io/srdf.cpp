@@ -64,12 +64,16 @@ std::vector<SrdfPose> read_srdf_poses(const std::string& xml, const std::string&
   return poses;
 }
 
+double default_joint_value(double lower, double upper) {
+  return 0 < lower || 0 > upper ? 0.5 * (lower + upper) : 0.0;
+}
+
 Eigen::VectorXd default_pose(const Model& model) {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model.num_positions());
   if (model.floating) q[6] = 1;  // qw: the identity orientation
   for (int i = model.free_joint_rates(); i < model.num_rates(); ++i) {
     const JointLimits& l = model.bodies[i].limits;
-    if (0 < l.lower || 0 > l.upper) q[model.position_index(i)] = 0.5 * (l.lower + l.upper);
+    q[model.position_index(i)] = default_joint_value(l.lower, l.upper);
   }
   return q;
 }

@@ -21,8 +21,8 @@
 #include "achd/kinematics.hpp"
 #include "console_capture.hpp"
 #include "coupled_joints.hpp"
-#include "free_motions.hpp"
 #include "link_inertia.hpp"
+#include "massless_joints.hpp"
 #include "read_text_file.hpp"
 #include "urdf_elements.hpp"
 #include "xml_depth.hpp"
@@ -321,26 +321,6 @@ void check_locked_names(const urdf::ModelInterface& urdf_model, const Model& mod
   }
 }
 
-// Under the repair policy, each body whose joint moves nothing (no mass or inertia after it
-// along its motion: a massless finger) gets floor_inertia, until every joint moves
-// something; each repair is a warning naming the joint and its link.
-void repair_joints_moving_nothing(Model& model) {
-  double robot_mass = 0;
-  for (const Body& b : model.bodies) robot_mass += b.inertia.topLeftCorner<3, 3>().trace() / 3;
-  if (!std::isfinite(robot_mass)) return;  // validate() names the overflow
-  const Matrix6 floor = floor_inertia(robot_mass);
-  for (int round = 0; round < model.num_rates(); ++round) {
-    const int i = joint_moving_nothing_at_checks(model);
-    if (i < 0) return;
-    Body& b = model.bodies[i];
-    b.inertia += floor;
-    model.warnings.push_back("joint '" + b.joint_name + "' moved nothing (no mass or inertia after it along its "
-                             "motion): link '" + b.link_name + "' was given a floor mass of " +
-                             inertia_number(floor(0, 0)) + " kg and a rotational inertia of " +
-                             inertia_number(floor(3, 3)) + " kg m^2 at its joint");
-  }
-}
-
 // The last checks of a loaded model: the repairs the policy allows, then validate().
 void finish(Model& model, const UrdfOptions& options) {
   if (model.num_rates() == 0 && !model.has_tip())
@@ -361,6 +341,8 @@ void finish(Model& model, const UrdfOptions& options) {
   add_loops(model, options.loops);
 }
 
+// The model of the tree or chain as the URDF and the options give it, not yet checked
+// (finish).
 Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
             const std::string& root_given, const std::string& tip, const UrdfOptions& options,
             const std::string& source) {
@@ -382,7 +364,6 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
     for (const auto& j : subtree_joints(urdf_model, walk, *root_link, {})) walk.add_link(*j);
     walk.add_couplings();
     check_locked_names(urdf_model, model, options);
-    finish(model, options);
     return model;
   }
 
@@ -421,6 +402,24 @@ Model build(const urdf::ModelInterface& urdf_model, const OriginAngles& angles,
   }
   walk.add_couplings();
   check_locked_names(urdf_model, model, options);
+  return model;
+}
+
+// The model build() walks, checked (finish): under the default inertia policy, first
+// walked again with the joints that move no mass held (massless_joints.hpp), each such
+// joint (or coupled group) a warning.
+Model build_checked(const urdf::ModelInterface& urdf_model, const OriginAngles& angles, const std::string& root,
+                    const std::string& tip, const UrdfOptions& options, const std::string& source) {
+  Model model = build(urdf_model, angles, root, tip, options, source);
+  if (options.inertia == InertiaPolicy::Accept) {
+    const MasslessLocks locks = massless_joint_locks(model);
+    if (!locks.values.empty()) {
+      UrdfOptions held = options;
+      held.locked.insert(locks.values.begin(), locks.values.end());
+      model = build(urdf_model, angles, root, tip, held, source);
+      model.warnings.insert(model.warnings.end(), locks.warnings.begin(), locks.warnings.end());
+    }
+  }
   finish(model, options);
   return model;
 }
@@ -457,7 +456,7 @@ Model load(const std::string& text, const std::string& root, const std::string& 
   if (!parsed || !why.empty())
     throw Error(source + ": cannot parse URDF" + (why.empty() ? std::string() : ": " + why));
   try {
-    return build(*parsed, read_origin_angles(xml), root, tip, options, source);
+    return build_checked(*parsed, read_origin_angles(xml), root, tip, options, source);
   } catch (const Error& e) {
     const std::string msg = e.what();
     throw Error(msg.rfind(source + ":", 0) == 0 ? msg : source + ": " + msg);

@@ -1,17 +1,19 @@
-// Why five URDFs of example-robot-data still need --inertia repair (real_robots.cpp checks
-// that they do): each is measured here to need it for a physical reason, not for a limit of
-// the loader; Romeo and the grippers load with the defaults once the massless part is held.
+// Why the URDFs of example-robot-data that once needed --inertia repair load as they do
+// (real_robots.cpp checks the table): each is measured here, the option one still needs
+// shown to be for a physical reason, not for a limit of the loader.
 // - romeo.urdf: each hand is a <mimic> group (a leader and eleven followers) with no mass
 //   anywhere, its leader's link included: coupling the fingers gives the group no mass,
-//   so its motion is undefined; the error names the group and its leader, and holding the
-//   leader holds its followers at their coupled positions.
+//   so its motion is undefined; the default holds each hand by its leader, its followers at
+//   their coupled positions, one warning per hand (strict refuses it, naming the group).
 // - romeo_laas_small.urdf: LHipPitch_link's rotational inertia has a principal moment of
-//   -0.0027 kg m^2, over ten thousand times the file's round-off: a genuine negative moment;
-//   and two grippers that are massless joints of their own.
-// - the three Bravo7 grippers: two massless fingers, independent joints (no <mimic>).
-// And, on small trees, the two cases of a coupled joint that moves nothing, a leader
-// held with a cycle of <mimic>s, and a held leader whose follower's coupled position is
-// outside the follower's limits.
+//   -0.0027 kg m^2, over ten thousand times the file's round-off: a genuine negative
+//   moment, which still needs --inertia repair; its two massless grippers are held.
+// - the three Bravo7 grippers: two massless fingers, independent joints (no <mimic>),
+//   held by the default.
+// And, on small trees, the cases of a coupled joint that moves nothing (a massless group
+// held by its leader within every follower's limits, a massless follower of a leader that
+// moves mass refused), a leader held with a cycle of <mimic>s, and a held leader whose
+// follower's coupled position is outside the follower's limits.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -70,21 +72,37 @@ int count_containing(const std::vector<std::string>& lines, const std::string& p
 const char* kRomeo = "romeo_description/urdf/romeo.urdf";
 
 // Romeo's hands: every link of a hand has mass 0, the leader's (RHand, LHand) too, and
-// eleven <mimic> joints follow each leader. The error names the group, not only the joint
-// that validate() finds first.
-TEST(RealRobotsOptions, RomeoHandIsAMasslessCoupledGroupNamedByItsLeader) {
-  const std::string why = load_error(kRomeo, {});
-  EXPECT_TRUE(contains(why, "joint 'RThumb3' moves nothing, nor does any joint coupled with it: "
-                            "joint 'RHand' and the 11 joints coupled to it (<mimic>) have no mass or inertia"))
-      << why;
-  EXPECT_TRUE(contains(why, "--inertia repair")) << why;
-  EXPECT_TRUE(contains(why, "--lock RHand=VALUE holds the joints that follow it too")) << why;
-  EXPECT_EQ(why.find('\n'), std::string::npos) << why;
-  // Holding the right hand leaves the left one, named the same way.
-  UrdfOptions right;
-  right.locked = {{"RHand", 0.5}};
-  const std::string left = load_error(kRomeo, right);
-  EXPECT_TRUE(contains(left, "joint 'LHand' and the 11 joints coupled to it (<mimic>) have no mass")) << left;
+// eleven <mimic> joints follow each leader. The default holds each hand by its leader at 0,
+// one warning per hand naming the group, exactly as --lock RHand=0 --lock LHand=0 does.
+TEST(RealRobotsOptions, RomeoHandsAreMasslessCoupledGroupsTheDefaultHolds) {
+  const Model model = load_urdf_file(path_of(kRomeo), "", "");
+  EXPECT_EQ(model.num_rates(), 55 - 24);  // the 24 hand joints held
+  EXPECT_TRUE(model.couplings.empty());
+  ASSERT_EQ(model.locked_joints.size(), 24u);
+  for (const LockedJoint& l : model.locked_joints) EXPECT_EQ(l.value, 0.0) << l.name;
+  for (const char* hand : {"RHand", "LHand"}) {
+    SCOPED_TRACE(hand);
+    const std::string h = hand;
+    EXPECT_EQ(count_containing(model.warnings, "joint '" + h + "' and the 11 joints coupled to it (<mimic>) move "
+                                               "nothing: their links and every link after them carry no mass"),
+              1);
+    EXPECT_EQ(count_containing(model.warnings, "'" + h + "' locked at 0 (as --lock " + h + "=0 does), each joint "
+                                               "coupled to it at its multiplier times that plus its offset"),
+              1);
+  }
+  UrdfOptions held;
+  held.locked = {{"RHand", 0}, {"LHand", 0}};
+  const Model by_hand = load_urdf_file(path_of(kRomeo), "", "", held);
+  EXPECT_EQ(by_hand.warnings.size() + 2, model.warnings.size());
+  ASSERT_EQ(by_hand.num_links(), model.num_links());
+  const Eigen::VectorXd q = default_pose(model);
+  const std::vector<Transform> a = forward_kinematics(model, q), b = forward_kinematics(by_hand, q);
+  for (int l = 0; l < model.num_links(); ++l) {
+    SCOPED_TRACE(model.links[l].name);
+    EXPECT_EQ(a[l].p, b[l].p);
+    EXPECT_EQ(a[l].R, b[l].R);
+  }
+  expect_solves(model);
 }
 
 // Held by their leaders, the hands stand where their couplings put them (each follower at
@@ -135,14 +153,10 @@ TEST(RealRobotsOptions, RomeoLaasSmallHipHasAGenuineNegativeMoment) {
   const double r2 = 5e-8 * 5e-8, r11 = 5e-11 * 5e-11, r10 = 5e-10 * 5e-10;
   const double roundoff = std::sqrt(r2 + r2 + r2 + 2 * (r11 + r2 + r10));  // ixx iyy izz; 2 (ixy ixz iyz)
   EXPECT_LT(least, -1e4 * roundoff);
-  // The default refuses the hip's body, with the grippers held or not.
-  const std::string psd = "link 'LHipPitch_link': spatial inertia is not positive semi-definite";
+  // The default refuses the hip's body (the grippers, which it holds, are not why).
   const std::string why = load_error(kRomeoLaas, {});
-  EXPECT_TRUE(contains(why, psd)) << why;
-  UrdfOptions grippers_held;
-  grippers_held.locked = {{"l_gripper_joint", 0}, {"r_gripper_joint", 0}};
-  const std::string held_why = load_error(kRomeoLaas, grippers_held);
-  EXPECT_TRUE(contains(held_why, psd)) << held_why;
+  EXPECT_TRUE(contains(why, "link 'LHipPitch_link': spatial inertia is not positive semi-definite")) << why;
+  EXPECT_TRUE(contains(why, "--inertia repair")) << why;
   // Repaired, each fix is a warning: the hips' moments and the grippers' floor masses.
   UrdfOptions repair;
   repair.inertia = InertiaPolicy::Repair;
@@ -158,13 +172,33 @@ TEST(RealRobotsOptions, RomeoLaasSmallHipHasAGenuineNegativeMoment) {
 }
 
 // The Bravo7 grippers: the two fingers are joints of their own (no <mimic>) whose links
-// have no mass; with both held, each robot loads with the defaults.
-TEST(RealRobotsOptions, Bravo7FingersAreIndependentMasslessJoints) {
+// have no mass; the default holds both at 0, as --lock does, one warning each; strict
+// refuses them and repair gives them floor masses.
+TEST(RealRobotsOptions, Bravo7FingersAreIndependentMasslessJointsTheDefaultHolds) {
   for (const char* file : {"bravo7_description/urdf/bravo7_gripper.urdf",
                            "bluevolta_description/urdf/bluevolta_bravo7_gripper.urdf",
                            "falcon_description/urdf/falcon_bravo7_gripper.urdf"}) {
     SCOPED_TRACE(file);
-    const std::string why = load_error(file, {});
+    const Model model = load_urdf_file(path_of(file), "", "");
+    EXPECT_EQ(model.num_rates(), 6);
+    EXPECT_TRUE(model.couplings.empty());
+    ASSERT_EQ(model.warnings.size(), 2u);
+    for (const char* finger : {"bravo_finger1_joint", "bravo_finger2_joint"})
+      EXPECT_EQ(count_containing(model.warnings, "joint '" + std::string(finger) +
+                                                     "' moves nothing: its link and every link after it carry no "
+                                                     "mass, so no torque moves it and its acceleration is undefined; "
+                                                     "locked at 0 (as --lock " + finger + "=0 does)"),
+                1);
+    UrdfOptions held;
+    held.locked = {{"bravo_finger1_joint", 0}, {"bravo_finger2_joint", 0}};
+    const Model by_hand = load_urdf_file(path_of(file), "", "", held);
+    EXPECT_TRUE(by_hand.warnings.empty());
+    ASSERT_EQ(by_hand.num_rates(), model.num_rates());
+    for (int i = 0; i < model.num_rates(); ++i) EXPECT_EQ(by_hand.bodies[i].inertia, model.bodies[i].inertia);
+    expect_solves(model);
+    UrdfOptions strict;
+    strict.inertia = InertiaPolicy::Strict;
+    const std::string why = load_error(file, strict);
     EXPECT_TRUE(contains(why, "joint 'bravo_finger2_joint' moves nothing: the links after it have no mass")) << why;
     EXPECT_FALSE(contains(why, "coupled")) << why;
     UrdfOptions repair;
@@ -172,12 +206,6 @@ TEST(RealRobotsOptions, Bravo7FingersAreIndependentMasslessJoints) {
     const Model repaired = load_urdf_file(path_of(file), "", "", repair);
     EXPECT_TRUE(repaired.couplings.empty());
     EXPECT_EQ(count_containing(repaired.warnings, "moved nothing"), 2);
-    UrdfOptions held;
-    held.locked = {{"bravo_finger1_joint", 0}, {"bravo_finger2_joint", 0}};
-    const Model model = load_urdf_file(path_of(file), "", "", held);
-    EXPECT_EQ(model.num_rates(), 6);
-    EXPECT_TRUE(model.warnings.empty());
-    expect_solves(model);
   }
 }
 
@@ -213,24 +241,56 @@ std::string string_error(const std::string& xml, const UrdfOptions& options) {
 }
 
 // A massless follower of a leader with mass: the group moves something, but the coupled
-// solve solves the uncoupled tree, where the follower moves nothing; said so. A massless
-// leader too: nothing defines the group's motion; said so.
+// solve solves the uncoupled tree, where the follower moves nothing; said so, and the
+// default does not hold it (holding it would break the coupling). A massless leader too:
+// nothing defines the group's motion; strict says so, the default holds the group.
 TEST(RealRobotsOptions, ACoupledJointThatMovesNothingNamesItsCase) {
   const std::string massive_leader = string_error(coupled_tree(1, 3), {});
   EXPECT_TRUE(contains(massive_leader, "joint 'follow' moves nothing: the links after it have no mass")) << massive_leader;
   EXPECT_TRUE(contains(massive_leader, "it is one of joint 'lead' and the 1 joint coupled to it (<mimic>), which move "
                                        "something, but the coupled solve still needs each coupled joint"))
       << massive_leader;
-  const std::string massless = string_error(coupled_tree(0, 3), {});
+  UrdfOptions strict;
+  strict.inertia = InertiaPolicy::Strict;
+  const std::string massless = string_error(coupled_tree(0, 3), strict);
   EXPECT_TRUE(contains(massless, "joint 'follow' moves nothing, nor does any joint coupled with it: joint 'lead' and "
                                  "the 1 joint coupled to it (<mimic>) have no mass or inertia"))
       << massless;
-  // An uncoupled massless joint keeps validate()'s message.
-  UrdfOptions independent;
+  // An uncoupled massless joint keeps validate()'s message (strict), and is held by default.
+  UrdfOptions independent = strict;
   independent.mimic = MimicJoints::Independent;
   const std::string alone = string_error(coupled_tree(1, 3), independent);
   EXPECT_TRUE(contains(alone, "joint 'follow' moves nothing")) << alone;
   EXPECT_FALSE(contains(alone, "coupled")) << alone;
+  independent.inertia = InertiaPolicy::Accept;
+  const Model held_alone = load_urdf_string(coupled_tree(1, 3), "", "", independent);
+  ASSERT_EQ(held_alone.locked_joints.size(), 1u);
+  EXPECT_EQ(held_alone.locked_joints[0].name, "follow");
+  EXPECT_EQ(held_alone.locked_joints[0].value, 0.0);
+}
+
+// A massless group held by the default: its leader at 0 when that keeps the follower
+// (2 lead + 0.1) within its limits; else at the middle of the leader values that do:
+// follower limits [0, 0.05] allow lead in [-0.05, -0.025], so lead -0.0375, follow 0.025.
+TEST(RealRobotsOptions, TheDefaultHoldsAMasslessGroupWithinEveryFollowersLimits) {
+  const Model wide = load_urdf_string(coupled_tree(0, 3), "", "");
+  ASSERT_EQ(wide.num_rates(), 1);
+  EXPECT_EQ(wide.bodies[0].joint_name, "other");
+  std::map<std::string, double> at;
+  for (const LockedJoint& l : wide.locked_joints) at[l.name] = l.value;
+  EXPECT_EQ(at.at("lead"), 0.0);
+  EXPECT_EQ(at.at("follow"), 0.1);
+  ASSERT_EQ(wide.warnings.size(), 1u);
+  EXPECT_EQ(wide.warnings[0].rfind("joint 'lead' and the 1 joint coupled to it (<mimic>) move nothing", 0), 0u)
+      << wide.warnings[0];
+  const Model narrow = load_urdf_string(coupled_tree(0, 0.05), "", "");
+  at.clear();
+  for (const LockedJoint& l : narrow.locked_joints) at[l.name] = l.value;
+  EXPECT_NEAR(at.at("lead"), -0.0375, 1e-15);
+  EXPECT_NEAR(at.at("follow"), 0.025, 1e-15);
+  EXPECT_TRUE(contains(narrow.warnings[0], "'lead' locked at -0.0375 (as --lock lead=-0.0375 does)"))
+      << narrow.warnings[0];
+  expect_solves(narrow);
 }
 
 // Holding a leader holds its follower at 2 * 0.3 + 0.1; a follower whose coupled position

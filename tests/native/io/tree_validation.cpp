@@ -32,16 +32,17 @@ std::string hub(const std::string& xyz3, const std::string& axis3) {
          joint("j3", "hub", "b", xyz3, axis3) + link("b", true) + "</robot>";
 }
 
-std::string load_error(const std::string& urdf) {
+std::string load_error(const std::string& urdf, const UrdfOptions& options = {}) {
   try {
-    load_urdf_string(urdf, "base", "");
+    load_urdf_string(urdf, "base", "", options);
   } catch (const Error& e) {
     return e.what();
   }
   return "";
 }
 
-// Both branches take j1's turn up (each has a joint on its axis): j1 moves nothing.
+// Both branches take j1's turn up (each has a joint on its axis): j1 moves nothing, though
+// mass follows it, so the default does not hold it either.
 TEST(TreeValidation, AJointWhoseEveryBranchTakesItsMotionUpMovesNothing) {
   const std::string why = load_error(hub("0 0 0.2", "0 0 1"));
   EXPECT_NE(why.find("URDF: joint 'j1' moves nothing"), std::string::npos) << why;
@@ -58,13 +59,21 @@ TEST(TreeValidation, OneBranchThatCannotTakeTheMotionUpIsEnough) {
 }
 
 // A massless leaf on one branch, a massive body on a sibling branch after it: the leaf's
-// joint moves nothing (the chain-only check took the sibling for its child and let it pass).
+// joint moves nothing (the chain-only check took the sibling for its child and let it
+// pass); strict refuses it, the default holds it and the sibling moves.
 TEST(TreeValidation, AMasslessLeafBeforeASiblingMovesNothing) {
   const std::string urdf = "<robot name='leaf'>" + link("base", false) + joint("empty", "base", "nothing", "0 0 0.1", "0 0 1") +
                            link("nothing", false) + joint("arm", "base", "mass", "0.3 0 0", "1 0 0") + link("mass", true) +
                            "</robot>";
-  const std::string why = load_error(urdf);
+  UrdfOptions strict;
+  strict.inertia = InertiaPolicy::Strict;
+  const std::string why = load_error(urdf, strict);
   EXPECT_NE(why.find("URDF: joint 'empty' moves nothing"), std::string::npos) << why;
+  const Model m = load_urdf_string(urdf, "base", "");
+  ASSERT_EQ(m.num_rates(), 1);
+  EXPECT_EQ(m.bodies[0].joint_name, "arm");
+  ASSERT_EQ(m.locked_joints.size(), 1u);
+  EXPECT_EQ(m.locked_joints[0].name, "empty");
 }
 
 }  // namespace
