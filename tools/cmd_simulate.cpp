@@ -203,6 +203,7 @@ int cmd_simulate(int argc, char** argv) {
     j["kind"] = kDirectionEventKindNames[static_cast<int>(e.kind)];
     j["sigma_min"] = e.sigma_min;
     j["unmet"] = e.unmet;
+    j["effort_ratio"] = e.effort_ratio;
     events.push_back(j);
   }
   out["events"] = events;  // direction events (Simulator::events())

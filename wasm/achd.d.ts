@@ -335,13 +335,17 @@ export interface DirectionEvent {
   /** the loop joint whose direction (of its loop frame) it is (absent for a link's). */
   loop?: string;
   direction: Direction;
-  /** limited: damped with an effect; released: damping dominates, not followed; resumed:
+  /** limited: damped (or a push partly given up for the efforts) with an effect; released:
+   * damping dominates, or the push is wholly given up: not followed; resumed:
    * followed again for 0.05 s (a released held direction then holds where the tip is). */
   kind: DirectionEventKind;
   /** the coupling matrix's smallest singular value in that solve. */
   sigma_min: number;
   /** |acceleration asked - delivered| along the direction in that solve (m/s^2 or rad/s^2). */
   unmet: number;
+  /** max |tau_i| / effort_i the pushed directions would take from the joints in that solve
+   * (above 1 a push gives way; 0 without pushes). */
+  effort_ratio: number;
 }
 
 /** Options of Simulator.step. */

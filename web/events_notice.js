@@ -1,6 +1,6 @@
 // The page's notice of simulation events: each time the simulator limited, released or
 // resumed a held or accelerated direction near a configuration where the robot cannot
-// follow it (sim.events(): {t, step, link, direction, kind, sigma_min, unmet}; a loop joint's: loop
+// follow it (sim.events(): {t, step, link, direction, kind, sigma_min, unmet, effort_ratio}; a loop joint's: loop
 // instead of link), newest last, and
 // which directions of each link are lost now (released and not yet resumed), for the
 // toggles of the link they show.
@@ -44,9 +44,10 @@ export class EventsNotice {
       item.dataset.kind = e.kind;
       const sigma = Number.isFinite(e.sigma_min) ? `, σmin ${e.sigma_min.toExponential(1)}` : '';
       const unmet = e.kind !== 'resumed' && Number.isFinite(e.unmet) ? `, unmet ${e.unmet.toExponential(1)}` : '';
+      const effort = e.effort_ratio > 1 ? `, effort ×${e.effort_ratio.toFixed(2)}` : '';
       const where = e.loop !== undefined ? `loop ${e.loop}` : e.link;
       item.textContent = `t = ${e.t.toFixed(3)} s (step ${e.step}): ${e.direction} ${WHAT[e.kind] ?? e.kind}` +
-        ` at ${where}${sigma}${unmet}`;
+        ` at ${where}${sigma}${unmet}${effort}`;
       this.list.append(item);
       this.recent.push(e);
     }

@@ -109,7 +109,7 @@ test('a loop the arm cannot close: sim.events() name the loop as the CLI summary
     assert.ok(events.some((e) => e.kind === 'released'), JSON.stringify(events));
     assert.equal(events.length, summary.events.length);
     for (const [i, e] of events.entries()) {
-      assert.deepEqual(Object.keys(e), ['t', 'step', 'loop', 'direction', 'kind', 'sigma_min', 'unmet']);
+      assert.deepEqual(Object.keys(e), ['t', 'step', 'loop', 'direction', 'kind', 'sigma_min', 'unmet', 'effort_ratio']);
       const c = summary.events[i];
       assert.deepEqual([e.t, e.loop, e.direction, e.kind], [c.t, c.loop, c.direction, c.kind], `event ${i}`);
     }

@@ -329,16 +329,16 @@ export class Simulator extends AchdHandle {
     });
   }
   // Direction events since createSimulator() or reset() (copies), oldest first:
-  // {t, step, link, direction, kind, sigma_min, unmet} as in the CLI summary's "events"
+  // {t, step, link, direction, kind, sigma_min, unmet, effort_ratio} as in the CLI summary's "events"
   // ({t, step, loop, ...} for a loop joint's direction).
   events() {
     const ptr = this._live(), n = achdWasm.module._achd_sim_events(ptr, 0);
     const k = achdConstants();
-    return achdWithScratch(8 * n, (p) => {
+    return achdWithScratch(9 * n, (p) => {
       achdWasm.module._achd_sim_events(ptr, 8 * p);
       const h = achdWasm.module.HEAPF64;
       return Array.from({ length: n }, (_, i) => {
-        const e = p + 8 * i;
+        const e = p + 9 * i;
         const out = { t: h[e], step: h[e + 1] };
         if (h[e + 3] >= 0) out.loop = this._robot.loops[h[e + 3]].name;
         else out.link = this._linkNames[h[e + 2]];
@@ -346,6 +346,7 @@ export class Simulator extends AchdHandle {
         out.kind = k.direction_event_kinds[h[e + 5]];
         out.sigma_min = h[e + 6];
         out.unmet = h[e + 7];
+        out.effort_ratio = h[e + 8];
         return out;
       });
     });

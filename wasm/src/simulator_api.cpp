@@ -252,10 +252,10 @@ ACHD_EXPORT const char* achd_sim_options(const achd::Simulator* sim) {
   return json.c_str();
 }
 
-// Direction events (Simulator::events()): their count, and with out != nullptr eight
+// Direction events (Simulator::events()): their count, and with out != nullptr nine
 // doubles each: t, step, link (index after the root; -1 for a loop's), loop (index into
 // the model's loops; -1 for a link's), direction (0..5), kind (index into
-// direction_event_kinds of achd_constants()), sigma_min, unmet.
+// direction_event_kinds of achd_constants()), sigma_min, unmet, effort_ratio.
 ACHD_EXPORT int achd_sim_events(const achd::Simulator* sim, double* out) {
   const std::vector<achd::DirectionEvent>& events = sim->events();
   if (out)
@@ -268,6 +268,7 @@ ACHD_EXPORT int achd_sim_events(const achd::Simulator* sim, double* out) {
       *out++ = static_cast<int>(e.kind);
       *out++ = e.sigma_min;
       *out++ = e.unmet;
+      *out++ = e.effort_ratio;
     }
   return static_cast<int>(events.size());
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The inputs of one hybrid-dynamics solve (the case format, docs/design.md section 5),
 // owned by the caller and reused between solves.
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,6 +38,11 @@ struct ConstraintBlock {
   ConstraintMatrix alpha = ConstraintMatrix(6, 0);  // unit constraint forces, columns
   ConstraintVector beta = ConstraintVector(0);      // one per column of alpha
   ConstraintVector w_fext, w_ff;  // driver priorities per column (Case::w_fext, w_ff)
+  // Columns that give way to the joints' efforts (bit k: column k; 0: none): where
+  // following them would take a joint past its effort limit, the variable_damping solve
+  // gives them up
+  // (yield_to_efforts.hpp, Data::yielded). The simulator's pushed directions.
+  std::uint8_t yields = 0;
 };
 
 struct Case {

@@ -87,6 +87,11 @@ struct Data {
   // damping lambda (K's units, the scaled columns'); k = 0 when the solve was exact.
   CouplingMatrix damped;
   ConstraintVector damped_sigma, damped_lambda;
+  // The blocks' yielding columns (ConstraintBlock::yields, variable_damping): effort_ratio, the largest
+  // |tau_i| / effort_i the constraint forces would take from a joint if they were followed,
+  // and how far the solve gave them up for it, yielded in [0, 1] (0: followed; 1: their
+  // nu is 0, the other columns solved without them). Both 0 without yielding columns.
+  double effort_ratio = 0, yielded = 0;
 
   // ---- the sweeps' quantities per body (Featherstone's names; index = body) ----
   // The sweeps use base axes everywhere, and express body i's vectors and inertias about

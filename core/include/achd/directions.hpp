@@ -56,7 +56,9 @@ struct LinkDirections {
 // thresholds). A direction is lost while the damping acts on it and the solve leaves more
 // than w^2 1e-9 of its acceleration undelivered (w the stabilisation frequency: a constant
 // unmet acceleration u settles, under the stabilisation, as a position error u / w^2);
-// damping whose effect stays below that is no event.
+// damping whose effect stays below that is no event. An accelerated (pushed) direction is
+// also lost while the solve gives it up because following it would take a joint past its
+// effort limit (effort_ratio > 1), and released once it is wholly given up (ratio >= 2).
 //   Limited:  lost, with the damping below the singular value it acts on;
 //   Released: lost, with the damping dominating (lambda >= sigma): not followed;
 //   Resumed:  not lost for 0.05 s. A released Hold direction resumes from where the
@@ -72,6 +74,9 @@ struct DirectionEvent {
   DirectionEventKind kind;
   double sigma_min;    // the coupling matrix's smallest singular value in that solve
   double unmet;        // |acceleration asked - delivered| along the direction (m/s^2 or rad/s^2)
+  // max_i |tau_i| / effort_i the pushed directions' solve would take from the joints
+  // (Data::effort_ratio): above 1 a push gives way (yield_to_efforts.hpp); 0 without pushes
+  double effort_ratio;
 };
 // The events a Simulator keeps (reserved at construction; later ones are counted in
 // Simulator::events_not_kept()).

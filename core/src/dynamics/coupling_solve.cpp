@@ -322,6 +322,40 @@ void solve_coupling(Data& data, const Options& options) {
   solve_by_eigen_decomposition(data, options);
 }
 
+void solve_coupling_without(const Data& data, const Options& options, const bool* given_up, ConstraintVector& nu) {
+  const int nc = static_cast<int>(data.K.rows());
+  int h[kMaxConstraintColumns], nh = 0;
+  for (int i = 0; i < nc; ++i)
+    if (!given_up[i]) h[nh++] = i;
+  nu.setZero(nc);
+  if (nh == 0) return;
+  // K_HH and rhs_H scaled by kind, as solve_variable_damping scales K
+  double largest[2] = {0, 0};
+  for (int i = 0; i < nh; ++i) {
+    const int kind = !data.workspace.has_force[h[i]];
+    largest[kind] = std::max(largest[kind], data.K(h[i], h[i]));
+  }
+  ConstraintVector scale(nh), rhs(nh);
+  for (int i = 0; i < nh; ++i) {
+    const double l = largest[!data.workspace.has_force[h[i]]];
+    scale[i] = l > 0 ? 1 / std::sqrt(l) : 1.0;
+    rhs[i] = data.workspace.rhs[h[i]] * scale[i];
+  }
+  CouplingMatrix K(nh, nh);
+  for (int i = 0; i < nh; ++i)
+    for (int j = 0; j < nh; ++j) K(i, j) = data.K(h[i], h[j]) * scale[i] * scale[j];
+  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(K);
+  const ConstraintVector sigma = eig.eigenvalues().cwiseMax(0.0);
+  const double sigma_max = sigma.maxCoeff();
+  ConstraintVector nu_h = ConstraintVector::Zero(nh);
+  for (int k = 0; k < nh; ++k) {
+    const double w =
+        variable_damping_gain(sigma[k], options.singular_region * sigma_max, options.max_damping * sigma_max);
+    if (w != 0.0) nu_h.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(rhs));
+  }
+  for (int i = 0; i < nh; ++i) nu[h[i]] = nu_h[i] * scale[i];
+}
+
 double sigma_min(const Data& data) {
   const int nc = static_cast<int>(data.K.rows());
   if (nc == 0) return 0;

@@ -53,6 +53,7 @@
 #include "overflow_error.hpp"
 #include "solve_blocks.hpp"
 #include "virtual_wrenches.hpp"
+#include "yield_to_efforts.hpp"
 #include "spatial_pairs.hpp"
 
 namespace achd {
@@ -402,7 +403,11 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
     if (has_driver_weights(c)) weigh_drivers(model, d, c, o, prescribed);
     solve_coupling(d, o);
     if (d.workspace.exact_nu.size()) keep_the_exact_solve_within_efforts(model, d, c);
+    if (o.policy == SingularityPolicy::VariableDamping) yield_to_efforts(model, d, c, o);  // yielding columns
+    else d.effort_ratio = d.yielded = 0;
   } else {
+    d.effort_ratio = 0;
+    d.yielded = 0;
     d.workspace.sources.clear();
     d.workspace.free_joint_step = false;
     d.workspace.shared_body = -1;

@@ -105,7 +105,7 @@ bool plainly_valid(const Model& model, const Case& c, int capacity) {
   for (const ConstraintBlock& b : c.constraints) {
     const Eigen::Index k = b.alpha.cols();
     if (b.link < 0 || b.link >= model.num_links() || k > kMaxConstraints || b.beta.size() != k) return false;
-    if (b.link_b < -1 || b.link_b >= model.num_links() || b.link_b == b.link) return false;
+    if (b.link_b < -1 || b.link_b >= model.num_links() || b.link_b == b.link || (b.yields >> k)) return false;
     if (!weights_valid(b.w_fext, k) || !weights_valid(b.w_ff, k)) return false;
     s += finite_probe(b.point.data(), 3) + finite_probe(b.alpha.data(), 6 * k) + finite_probe(b.beta.data(), k) +
          (b.link_b >= 0 ? finite_probe(b.point_b.data(), 3) : 0.0);
@@ -174,6 +174,10 @@ void check_blocks(const Model& model, const Case& c) {
     check_columns(block.alpha, block.beta, field);
     check_weights(block.w_fext, static_cast<int>(block.alpha.cols()), field + "w_fext");
     check_weights(block.w_ff, static_cast<int>(block.alpha.cols()), field + "w_ff");
+    for (int k = static_cast<int>(block.alpha.cols()); k < 8; ++k)
+      if (block.yields >> k & 1u)
+        throw Error(field + "yields: bit " + std::to_string(k) + " names a column the block does not have (it has " +
+                    std::to_string(block.alpha.cols()) + ")");
   }
 }
 

@@ -15,7 +15,9 @@ namespace {
 // direction stays within kUnmetPosition of its hold, m or rad). It is released when the
 // damping dominates (lambda >= sigma: sigma below 0.71 of the region), and resumed once
 // it has not been lost for kResumeAfter seconds: the hysteresis that keeps a robot
-// sitting on the edge of the region from producing an event per step.
+// sitting on the edge of the region from producing an event per step. A pushed direction
+// given up for the joints' efforts is lost the same way (limited while the solve moves
+// away from it, released once it is wholly given up).
 constexpr double kReleasedRatio = 1.0;
 constexpr double kResumeAfter = 0.05;
 constexpr double kUnmetPosition = 1e-9;
@@ -78,7 +80,8 @@ void DirectionEventLog::update(const Model& model, const std::vector<LinkDirecti
   }
   const Eigen::Index nc = static_cast<Eigen::Index>(column_.size());
   const Eigen::Index ndamped = first.damped.rows() == nc ? first.damped.cols() : 0;
-  if (ndamped) {
+  const bool yielded = first.yielded > 0 && first.nu.size() == nc;
+  if (ndamped || yielded) {
     // What the solve leaves undelivered along column j, in m/s^2 or rad/s^2: the
     // residual of K nu = rhs, r = K_s nu' - rhs' in the scaled columns alpha_j s_j
     // (nu' = nu / s), divided by s_j.
@@ -101,8 +104,16 @@ void DirectionEventLog::update(const Model& model, const std::vector<LinkDirecti
     lost_[s][k] = true;
     ratio_[s][k] = std::max(ratio_[s][k], r);
   }
+  // Pushed directions the solve gave up for the joints' efforts (yield_to_efforts.hpp):
+  // lost while it did with an effect, released once wholly given up (yielded = 1).
+  for (Eigen::Index j = 0; yielded && j < nc; ++j) {
+    const auto [s, k] = column_[j];
+    if (s >= nsets || sets[s].held.mode[k] != DirectionMode::Accelerate || !(unmet_[s][k] > unmet_tolerance)) continue;
+    lost_[s][k] = true;
+    ratio_[s][k] = std::max(ratio_[s][k], first.yielded >= 1 ? kReleasedRatio : 0.0);
+  }
   bool any = false;
-  DirectionEvent e{t, step, -1, -1, 0, DirectionEventKind::Limited, 0.0, 0.0};
+  DirectionEvent e{t, step, -1, -1, 0, DirectionEventKind::Limited, 0.0, 0.0, 0.0};
   for (int s = 0; s < nsets; ++s) resumed[s] = 0;
   for (int s = 0; s < nsets + nloops; ++s) {
     const bool loop = s >= nsets;
@@ -120,7 +131,10 @@ void DirectionEventLog::update(const Model& model, const std::vector<LinkDirecti
       else if (state[k] == State::Ok && lost_[row][k]) next = State::Limited;
       else if (state[k] != State::Ok && !lost_[row][k] && t - last_lost_[row][k] >= kResumeAfter) next = State::Ok;
       if (next == state[k]) continue;
-      if (!any) e.sigma_min = sigma_min(first);  // computed once, only when something changed
+      if (!any) {  // computed once, only when something changed
+        e.sigma_min = sigma_min(first);
+        e.effort_ratio = first.effort_ratio;
+      }
       any = true;
       e.link = loop ? -1 : sets[s].link;
       e.loop = loop ? s - nsets : -1;

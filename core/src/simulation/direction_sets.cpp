@@ -75,6 +75,13 @@ void DirectionSets::write_blocks(std::vector<ConstraintBlock>& blocks) {
     b.point = set.point;
     direction_columns(set.held, b.alpha);
     direction_weights(set.held, b.w_fext, b.w_ff);
+    // a pushed (accelerated) direction gives way where the joints' efforts cannot follow it
+    b.yields = 0;
+    for (int k = 0, column = 0; k < kNumDirections; ++k) {
+      if (!set.held.active(k)) continue;
+      if (set.held.mode[k] == DirectionMode::Accelerate) b.yields |= 1u << column;
+      ++column;
+    }
     block_set_.push_back(s);
   }
 }

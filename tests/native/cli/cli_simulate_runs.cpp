@@ -277,7 +277,7 @@ TEST_F(CliSimulateRuns, BoundaryRunReportsDirectionEventsInTheSummary) {
   for (const auto& e : summary["events"]) {
     std::vector<std::string> keys;
     for (const auto& item : e.items()) keys.push_back(item.key());
-    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "link", "direction", "kind", "sigma_min", "unmet"}));
+    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "link", "direction", "kind", "sigma_min", "unmet", "effort_ratio"}));
     EXPECT_EQ(e["link"], "wrist_3_link");
     if (e["kind"] != "resumed") EXPECT_GT(e["unmet"].get<double>(), 1e-5) << e.dump();
     y_released = y_released || (e["direction"] == "y" && e["kind"] == "released");
@@ -310,7 +310,7 @@ TEST_F(CliSimulateRuns, LoopEventsNameTheLoop) {
   for (const auto& e : summary["events"]) {
     std::vector<std::string> keys;
     for (const auto& item : e.items()) keys.push_back(item.key());
-    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "loop", "direction", "kind", "sigma_min", "unmet"}));
+    EXPECT_EQ(keys, (std::vector<std::string>{"t", "step", "loop", "direction", "kind", "sigma_min", "unmet", "effort_ratio"}));
     EXPECT_EQ(e["loop"], "pin");
   }
   EXPECT_TRUE(summary["released_s"].empty());

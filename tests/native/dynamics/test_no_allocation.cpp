@@ -151,6 +151,33 @@ TEST(NoAllocation, VariableDampingWhereTheJointEffortsDecide) {
   }
 }
 
+// Columns that give way to the joints' efforts (ConstraintBlock::yields): the UR5 near its
+// stretched elbow holding rx with z pushed, each way the efforts decide (followed, partly
+// given up, wholly given up), with and without variable_damping's exact solve.
+TEST(NoAllocation, PushedColumnsGivingWayToTheJointEfforts) {
+  const achd::Model m = achd::load_urdf_file(kRepo + "/robots/ur5.urdf", "base_link", "wrist_3_link");
+  achd::Case c = achd::Case::zeros(m);
+  c.q << 0.2, -1.0, 0.05, -1.5, -1.4, 0.3;
+  achd::ConstraintBlock& b = c.constraints.emplace_back();
+  b.link = m.link_index("wrist_3_link");
+  b.alpha = achd::ConstraintMatrix::Zero(6, 2);
+  b.alpha(2, 0) = b.alpha(3, 1) = 1;
+  b.beta = achd::ConstraintVector::Zero(2);
+  b.yields = 1;
+  int seen[3] = {0, 0, 0};
+  for (bool exact : {false, true})
+    for (double beta_z = 0.1; beta_z < 1e5; beta_z *= 3) {
+      b.beta[0] = beta_z;
+      achd::Options o;
+      o.policy = achd::SingularityPolicy::VariableDamping;
+      o.exact_within_efforts = exact;
+      achd::Data d(m);
+      EXPECT_EQ(allocations_of_solve(m, d, c, o), 0) << "beta_z " << beta_z;
+      ++seen[d.yielded == 0 ? 0 : d.yielded < 1 ? 1 : 2];
+    }
+  for (int regime : seen) EXPECT_GT(regime, 0);
+}
+
 // Constraint blocks on any links: 1 to 6 blocks on random links of every chain robot, up
 // to 36 columns in all (the largest capacity), so that the several-block sweep and the
 // coupling solve of more than 6 columns run, under every policy, with driver weights.

@@ -7,7 +7,9 @@
 // along direction y is not finite"), the LWR at 1.976 s.
 // The other held directions stay within 1e-6 (m or rad) at every step from 0.5 s (the
 // stabilisation transient) to the first event and, those the run ends following (no
-// event of theirs, or a resumption last), after the last (measured with the default
+// event of theirs, or a resumption last), from 0.1 s after the last (the transient of a
+// resumption: the mixed chain pushed along x, its z resumed at 59.83 s with the tip
+// moving along z, is 6.1e-5 m off 0.013 s later and 9e-7 after 0.073 s) (measured with the default
 // dormand_prince: 3e-13..2.2e-11 before, 1e-15..1.7e-7 after). A held direction released
 // and not resumed by the end is not followed there: the mixed chain pushed along x ends
 // with z released at 59.76 s or with z resumed at 59.77 s depending on the last bits of
@@ -97,6 +99,10 @@ TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirectio
   // The held residuals: after step s the state is the one after s + 1 steps; an event at
   // `step` describes the state after `step` steps.
   const std::int64_t from = steps_for_duration(0.5, dt), first = events.front().step, last = events.back().step;
+  // A resumed direction restarts where the tip is, but with the tip's speed along it: the
+  // stabilisation (w = 100 rad/s, critically damped) takes it back within 1e-6 in about
+  // 0.07 s, so the residuals after the last event count from 0.1 s after it.
+  const std::int64_t settle = steps_for_duration(0.1, dt);
   std::array<bool, kNumDirections> followed_at_end;
   followed_at_end.fill(true);
   for (const DirectionEvent& e : events) followed_at_end[e.direction] = e.kind == DirectionEventKind::Resumed;
@@ -105,7 +111,7 @@ TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirectio
     const std::int64_t state = s + 1;
     for (int k : bc.held) {
       if (state < first) before = std::max(before, residual[s][k]);
-      if (state > last && followed_at_end[k]) after = std::max(after, residual[s][k]);
+      if (state > last + settle && followed_at_end[k]) after = std::max(after, residual[s][k]);
     }
   }
   EXPECT_LE(before, 1e-6) << name_of(bc) << ": before the first event, t = " << events.front().t;

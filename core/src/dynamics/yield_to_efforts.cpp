@@ -1,0 +1,42 @@
+#include "yield_to_efforts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "constraint_sweep.hpp"
+#include "coupling_solve.hpp"
+
+namespace achd {
+
+void yield_to_efforts(const Model& model, Data& d, const Case& c, const Options& options) {
+  d.effort_ratio = 0;
+  d.yielded = 0;
+  // The yielding columns, in nu's order: the tip's columns (none yield), then each block's.
+  bool yielding[kMaxConstraintColumns] = {false};
+  bool any = false;
+  int column = static_cast<int>(c.alpha.cols());
+  for (const ConstraintBlock& b : c.constraints) {
+    for (int k = 0; k < b.alpha.cols(); ++k, ++column) {
+      yielding[column] = b.yields >> k & 1u;
+      any = any || yielding[column];
+    }
+  }
+  if (!any) return;
+  constraint_force_torques(model, d, c, d.nu);
+  const bool prescribed = c.any_prescribed();
+  double r = 0;
+  for (int i = model.free_joint_rates(); i < model.num_rates(); ++i) {
+    const double effort = model.bodies[i].limits.effort;
+    if (!(effort > 0) || (prescribed && c.prescribed[i])) continue;
+    r = std::max(r, std::abs(d.joint_torques[i]) / effort);
+  }
+  d.effort_ratio = r;
+  if (!(r > 1)) return;
+  const double x = std::min(r - 1, 1.0), s = x * x * (3 - 2 * x);
+  ConstraintVector given_up;
+  solve_coupling_without(d, options, yielding, given_up);
+  d.nu += s * (given_up - d.nu);
+  d.yielded = s;
+}
+
+}  // namespace achd
