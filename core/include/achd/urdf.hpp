@@ -37,7 +37,8 @@ struct UrdfOptions {
   SideBranches side_branches = SideBranches::Merge;
   // Positions (rad or m) of movable joints held fixed (Model::locked_joints): any joint of
   // the tree or chain named here, the <mimic> joints that follow one (at multiplier * value
-  // + offset, unless named too), and a chain's side joints (locked at 0 unless named).
+  // + offset, unless named too), and a chain's side joints (unless named: locked at 0, or
+  // the middle of their limits when 0 is outside them).
   // Naming a joint that is not a movable joint of what is loaded is an error.
   std::map<std::string, double> locked;
   // A floating base: a free joint between the world and the root link (Model::floating),

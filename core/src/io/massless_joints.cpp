@@ -46,6 +46,15 @@ MasslessLocks massless_joint_locks(const Model& model) {
   }
   std::vector<std::vector<int>> members(n);
   for (int k = first; k < n; ++k) members[group_of(up, k)].push_back(k);
+  // Each member's position as a[k] * q_leader + b[k], composed down the couplings (set
+  // per group, for its members only: a long massless chain costs O(n)).
+  std::vector<double> a(n, 0), b(n, 0);
+  std::vector<bool> known(n, false);
+  // An uncoupled joint locked below another: the topmost such joint above it, whose one
+  // warning counts and names the joints after it (top[k] = k at the top; -1: not locked).
+  std::vector<int> top(n, -1);
+  std::vector<std::vector<std::string>> after(n);
+  std::vector<std::size_t> warning_of(n, 0);
 
   for (int g = first; g < n; ++g) {
     const std::vector<int>& group = members[g];
@@ -53,9 +62,10 @@ MasslessLocks massless_joint_locks(const Model& model) {
     const auto leads = std::find_if(group.begin(), group.end(), [&](int k) { return coupling_of[k] < 0; });
     if (leads == group.end()) continue;  // a cycle of <mimic>s: no joint leads
     const int leader = *leads;
-    // Each member's position as a[k] * q_leader + b[k], composed down the couplings.
-    std::vector<double> a(n, 0), b(n, 0);
-    std::vector<bool> known(n, false);
+    for (int k : group) {
+      known[k] = false;
+      a[k] = b[k] = 0;
+    }
     a[leader] = 1;
     known[leader] = true;
     for (std::size_t placed = 1; placed < group.size();) {
@@ -92,6 +102,14 @@ MasslessLocks massless_joint_locks(const Model& model) {
     const std::string held = "locked at " + inertia_number(value) + " (as --lock " + name + "=" +
                              inertia_number(value) + " does)";
     if (group.size() == 1) {
+      const int parent = model.bodies[leader].parent;
+      if (parent >= first && top[parent] >= 0) {  // told in the warning of the joint above it
+        top[leader] = top[parent];
+        after[top[leader]].push_back(name);
+        continue;
+      }
+      top[leader] = leader;
+      warning_of[leader] = out.warnings.size();
       out.warnings.push_back("joint '" + name + "' moves nothing: its link and every link after it carry no mass, "
                              "so no torque moves it and its acceleration is undefined; " + held + "; " + way_out("it"));
       continue;
@@ -102,6 +120,18 @@ MasslessLocks massless_joint_locks(const Model& model) {
                            "every link after them carry no mass, so no torque moves them and their accelerations are "
                            "undefined; '" + name + "' " + held + ", each joint coupled to it at its multiplier times "
                            "that plus its offset; " + way_out("them"));
+  }
+  // A massless subtree is one warning: its top joint's, naming the first joints after it.
+  for (int k = first; k < n; ++k) {
+    if (top[k] != k || after[k].empty()) continue;
+    const std::vector<std::string>& names = after[k];
+    std::string listed;
+    for (std::size_t i = 0; i < names.size() && i < 3; ++i) listed += (i ? ", '" : "'") + names[i] + "'";
+    if (names.size() > 3) listed += " and " + std::to_string(names.size() - 3) + " more";
+    std::string& w = out.warnings[warning_of[k]];
+    w += "; the " + std::to_string(names.size()) + " joint" + (names.size() > 1 ? "s" : "") + " after it (" + listed +
+         ") " + (names.size() > 1 ? "move nothing either and are" : "moves nothing either and is") +
+         " locked the same way, each at 0 or the middle of its limits when 0 is outside them";
   }
   return out;
 }

@@ -19,6 +19,7 @@
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
+#include "achd/srdf.hpp"
 #include "console_capture.hpp"
 #include "coupled_joints.hpp"
 #include "link_inertia.hpp"
@@ -131,9 +132,8 @@ class Walk {
     model_.links.push_back({j.child_link_name, child.body, child.offset});
   }
 
-  // Places j's child link rigidly on its parent's body, j (if movable) locked at its
-  // options.locked value or 0 and listed in Model::locked_joints; the link is not a link
-  // of the model (a chain's links are its path's).
+  // Places j's child link rigidly on its parent's body, j (if movable) locked (rigid_offset);
+  // the link is not a link of the model (a chain's links are its path's).
   void add_side_link(const urdf::Joint& j) {
     const Placed& parent = placed_.at(j.parent_link_name);
     const Matrix6 inertia = child_inertia(j);
@@ -206,7 +206,7 @@ class Walk {
 
   // The frame of j's child link relative to the body its parent link rides on, j fixed or
   // (if movable) locked at its options.locked value (or its held leader's, locked_value) or
-  // 0, listed in Model::locked_joints.
+  // else default_joint_value (0, or the middle of its limits), listed in Model::locked_joints.
   Transform rigid_offset(const urdf::Joint& j, const Placed& parent) {
     Transform X = origin(j, parent);
     if (j.type == urdf::Joint::FIXED) return X;
@@ -215,6 +215,7 @@ class Walk {
     const Body b = make_body(j, X, parent.body, R_axis);
     double value = 0;
     const bool given = locked_value(j, value);
+    if (!given) value = default_joint_value(b.limits.lower, b.limits.upper);  // 0, or the middle of its limits
     const bool named = options_.locked.count(j.name) > 0;
     if (!std::isfinite(value))
       throw Error("locked " + where + ": value is not finite" +
