@@ -163,7 +163,8 @@ class Simulator : public SimulationState {
   Transform tip_pose() const;
   Vector6 tip_velocity() const;
   // Loop joint `loop` (Model::loops index): its closure error now (the largest over its
-  // held directions, m or rad: loop_closure.hpp) and the largest since reset().
+  // held directions, m or rad: loop_closure.hpp) and the largest since reset() while the
+  // loop was enforced (a direction of it released: not counted; loop_released_seconds).
   double loop_error(int loop) const;
   double loop_drift(int loop) const;
   double kinetic_energy() const;

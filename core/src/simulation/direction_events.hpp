@@ -43,6 +43,12 @@ class DirectionEventLog {
   double released_seconds(int s, int k, double t) const;
   // The same for direction k of loop joint l.
   double loop_released_seconds(int l, int k, double t) const { return released_seconds(loop_set(l), k, t); }
+  // Whether some direction of loop joint l is released now.
+  bool loop_released(int l) const {
+    for (State s : state_[loop_set(l)])
+      if (s == State::Released) return true;
+    return false;
+  }
 
   const std::vector<DirectionEvent>& events() const { return events_; }
   std::int64_t not_kept() const { return not_kept_; }

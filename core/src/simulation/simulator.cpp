@@ -168,8 +168,10 @@ void Simulator::check_step(double dt) {
   clock.start(t, dt);
   body_motion(model_, q, qd, X0_, r_, v_);
   directions_->record_residuals(model_, X0_, v_, held_angles);
+  // a loop's closure error counts while the loop is enforced (no direction released)
   for (size_t l = 0; l < model_.loops.size(); ++l)
-    loop_drift_[l] = std::max(loop_drift_[l], achd::loop_error(model_, model_.loops[l], X0_, v_));
+    if (!directions_->events().loop_released(static_cast<int>(l)))
+      loop_drift_[l] = std::max(loop_drift_[l], achd::loop_error(model_, model_.loops[l], X0_, v_));
 }
 
 // One step of the chosen integrator from this state, its first solve into `first`.
