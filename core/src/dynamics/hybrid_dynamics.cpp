@@ -81,8 +81,8 @@ void joint_forces(const Model& model, Data& d, const Case& c, const Options& o, 
   if (o.effects & kDamping)
     for (int i = 0; i < n; ++i) w.tau[i] -= model.bodies[i].damping * c.qd[i];
   if (o.effects & kFriction)
-    for (int i = 0; i < n; ++i)
-      w.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
+    for (int i = 0; i < n; ++i)  // (tanh is the costliest term here: skipped where it has no effect)
+      if (model.bodies[i].friction != 0) w.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
 }
 
 const SpatialVector kZero{};
