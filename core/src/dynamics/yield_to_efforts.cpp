@@ -11,6 +11,9 @@ namespace achd {
 void yield_to_efforts(const Model& model, Data& d, const Case& c, const Options& options) {
   d.effort_ratio = 0;
   d.yielded = 0;
+  // Coupled joints superpose several solves (joint_couplings.hpp), which a nonlinear
+  // yield inside each would break: their columns are followed as asked.
+  if (!model.couplings.empty()) return;
   // The yielding columns, in nu's order: the tip's columns (none yield), then each block's.
   bool yielding[kMaxConstraintColumns] = {false};
   bool any = false;

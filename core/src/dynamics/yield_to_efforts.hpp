@@ -12,7 +12,8 @@
 //   nu = nu + s (nu_w - nu),  s = x^2 (3 - 2 x),  x = r - 1,
 // continuous with its derivative, so the adaptive step sees no jump; from r = 2, nu_w
 // stands. r is measured on the solve with the yielding columns, so the push is followed
-// again as soon as its torques fall back within the efforts.
+// again as soon as its torques fall back within the efforts. On a model with coupled
+// joints, whose solve superposes several (joint_couplings.hpp), nothing yields.
 #include "achd/case.hpp"
 #include "achd/data.hpp"
 #include "achd/model.hpp"

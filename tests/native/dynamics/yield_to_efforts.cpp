@@ -98,6 +98,33 @@ TEST(YieldToEfforts, FollowsWithinTheEffortsAndGivesWayBeyondThem) {
   EXPECT_GT(beyond, 0);
 }
 
+// On a robot with coupled joints (the Panda arm with its <mimic> fingers), whose solve
+// superposes several, nothing yields: the marked column is followed as asked, to the bit,
+// even where its torques are far past the efforts.
+TEST(YieldToEfforts, NothingYieldsOnARobotWithCoupledJoints) {
+  const Model m = load_urdf_file(kRepo + "/robots/panda_fingers.urdf", "", "");
+  ASSERT_FALSE(m.couplings.empty());
+  Case c = Case::zeros(m);
+  ASSERT_EQ(m.num_positions(), 9);
+  c.q << 0.1, -0.785, 0.1, -2.356, 0.1, 1.571, 0.785, 0.02, 0.02;  // its robots/index.json pose
+  ConstraintBlock& b = c.constraints.emplace_back();
+  b.link = m.link_index("panda_hand");
+  b.alpha = ConstraintMatrix::Zero(6, 1);
+  b.alpha(2, 0) = 1;
+  b.beta = ConstraintVector::Constant(1, 1e4);  // 10^4 m/s^2: far past any effort
+  Options vd;
+  vd.policy = SingularityPolicy::VariableDamping;
+  vd.exact_within_efforts = false;
+  Data followed(m), marked(m);
+  hybrid_dynamics(m, followed, c, vd);
+  b.yields = 1;
+  hybrid_dynamics(m, marked, c, vd);
+  EXPECT_GT(effort_ratio(m, followed), 2);
+  EXPECT_EQ(marked.yielded, 0);
+  EXPECT_EQ(marked.qdd, followed.qdd);
+  EXPECT_EQ(marked.nu, followed.nu);
+}
+
 // A bit naming a column the block does not have is refused with the field's name.
 TEST(YieldToEfforts, RefusesABitBeyondTheBlocksColumns) {
   const Ur5 u;
