@@ -4,6 +4,7 @@
 // quantities follow, named as in docs/design.md, section 6.4; `workspace` holds what only
 // the sweeps' schedule needs.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "achd/case.hpp"
@@ -162,6 +163,9 @@ struct Data {
     // eigenvalue above the truncation threshold), kept if the joints' efforts allow it
     // (hybrid_dynamics.cpp); size 0 when there is none.
     ConstraintVector exact_nu;
+    // variable_damping: the columns that gave way in the last solve, or were chosen to
+    // (solve_held_first; Options::gives_way; bit j: column j), 0 when none was.
+    std::uint64_t gave_way = 0;
     // The last constraint sweep took a floating base's free joint in one 6-DoF step
     // (free_joint_constraints.hpp): d.E then holds the columns at the root, E_0 being 0.
     bool free_joint_step = false;

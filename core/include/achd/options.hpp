@@ -52,6 +52,13 @@ struct Options {
   // limits allow it (hybrid_dynamics.cpp); the simulator keeps it while every
   // direction is held, and turns it off while one is accelerated (pushed)
   bool exact_within_efforts = true;
+  // variable_damping, when a direction is damped: the columns that give way to the others
+  // (bit j: column j of nu), solved in the Schur complement while the others are solved
+  // exactly (coupling_solve.cpp, solve_held_first). 0: the columns the damped
+  // eigen-directions point to (each one's largest component), decided from the state.
+  // The simulator fixes them for the rest of a step after its first solve that decides,
+  // so that a step's right-hand side does not jump where the largest component changes.
+  std::uint64_t gives_way = 0;
   double friction_velocity = 0.05;  // friction = F tanh(qd / friction_velocity)
 };
 

@@ -231,25 +231,34 @@ double variable_damping_gain(double sigma, double eps, double lambda_max) {
 
 // After solve_by_eigen_decomposition has damped some eigen-directions of K (data.K,
 // data.workspace.rhs: the scaled K' and rhs): the columns L those directions belong to
-// (each one's largest component) give way, and the others H are solved exactly, so that
-// a lost direction does not take the accuracy of the held ones with it. With K in
-// blocks, nu_H = K_HH^-1 (rhs_H - K_HL nu_L), and nu_L solves the Schur complement
-// S = K_LL - K_LH K_HH^-1 K_HL (the coupling of L once H is enforced) with the same
-// variable damping. False (nothing written) when every column gives way, when two
-// damped directions fall on one column, or when K_HH has an eigenvalue in the singular
-// region itself: then the plain variable damping stands.
+// (each one's largest component; or Options::gives_way) give way, and the others H are
+// solved exactly, so that a lost direction does not take the accuracy of the held ones
+// with it. With K in blocks, nu_H = K_HH^-1 (rhs_H - K_HL nu_L), and nu_L solves the
+// Schur complement S = K_LL - K_LH K_HH^-1 K_HL (the coupling of L once H is enforced)
+// with the same variable damping. Where K_HH itself nears the singular region, its
+// smallest eigenvalue k from 2 eps down to eps, the solve moves to the plain variable
+// damping (data.nu on entry) by nu = nu_vd + s (nu_hf - nu_vd), s = x^2 (3 - 2x),
+// x = k / eps - 1, so that the right-hand side of a simulation stays continuous there.
+// False (data.nu left as the plain variable damping) when every column gives way, when
+// two damped directions fall on one column (columns decided here), or k <= eps.
 bool solve_held_first(Data& data, const Options& options) {
   const int nc = static_cast<int>(data.K.rows()), ndamped = static_cast<int>(data.damped.cols());
   bool gives_way[kMaxConstraintColumns] = {false};
   int nl = 0;
-  for (int j = 0; j < ndamped; ++j) {
-    Eigen::Index column = 0;
-    data.damped.col(j).cwiseAbs().maxCoeff(&column);
-    nl += !gives_way[column];
-    gives_way[column] = true;
+  if (options.gives_way) {
+    for (int i = 0; i < nc; ++i) nl += gives_way[i] = options.gives_way >> i & 1u;
+  } else {
+    for (int j = 0; j < ndamped; ++j) {
+      Eigen::Index column = 0;
+      data.damped.col(j).cwiseAbs().maxCoeff(&column);
+      nl += !gives_way[column];
+      gives_way[column] = true;
+    }
+    if (nl != ndamped) return false;
   }
   const int nh = nc - nl;
-  if (nl != ndamped || nh == 0) return false;
+  if (nl == 0 || nh == 0) return false;
+  for (int i = 0; i < nc; ++i) data.workspace.gave_way |= static_cast<std::uint64_t>(gives_way[i]) << i;
   int h[kMaxConstraintColumns], l[kMaxConstraintColumns];
   for (int i = 0, a = 0, b = 0; i < nc; ++i) (gives_way[i] ? l[b++] : h[a++]) = i;
   const CouplingMatrix& K = data.K;
@@ -266,6 +275,7 @@ bool solve_held_first(Data& data, const Options& options) {
   // H must itself be clear of the singular region, or its exact solve is unbounded.
   const double khh_min = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(Khh, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
   if (!(khh_min > eps)) return false;
+  const double x = std::min(khh_min / eps - 1, 1.0), blend = x * x * (3 - 2 * x);
   const Eigen::LLT<CouplingMatrix> llt(Khh);
   if (llt.info() != Eigen::Success) return false;
   const CouplingMatrix X = llt.solve(Khl);  // K_HH^-1 K_HL
@@ -282,8 +292,9 @@ bool solve_held_first(Data& data, const Options& options) {
     if (w != 0.0) nu_l.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(b));
   }
   const ConstraintVector nu_h = y - X * nu_l;
-  for (int i = 0; i < nh; ++i) data.nu[h[i]] = nu_h[i];
-  for (int i = 0; i < nl; ++i) data.nu[l[i]] = nu_l[i];
+  const auto mix = [blend](double vd, double hf) { return blend == 1 ? hf : vd + blend * (hf - vd); };
+  for (int i = 0; i < nh; ++i) data.nu[h[i]] = mix(data.nu[h[i]], nu_h[i]);
+  for (int i = 0; i < nl; ++i) data.nu[l[i]] = mix(data.nu[l[i]], nu_l[i]);
   return true;
 }
 
@@ -317,6 +328,7 @@ void solve_variable_damping(Data& data, const Options& options) {
 
 void solve_coupling(Data& data, const Options& options) {
   data.workspace.exact_nu.resize(0);
+  data.workspace.gave_way = 0;
   if (options.policy == SingularityPolicy::VariableDamping) return solve_variable_damping(data, options);
   if (options.policy == SingularityPolicy::Truncate && solve_by_ldlt(data, options)) return;
   solve_by_eigen_decomposition(data, options);

@@ -418,6 +418,7 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
     d.damped.resize(0, 0);
     d.damped_sigma.resize(0);
     d.damped_lambda.resize(0);
+    d.workspace.gave_way = 0;
   }
   // Each step returns the finite probe of what it wrote (0, or NaN if a number is not
   // finite): checked once, at the end, and named only if it fails.

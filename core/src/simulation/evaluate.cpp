@@ -72,6 +72,11 @@ void Simulator::evaluate(const SimulationState& x, double w_n, double zeta, Data
   // and into the edge of its workspace: there variable_damping's region decides.
   solver_.exact_within_efforts = options_.solver.exact_within_efforts && !directions_->any_accelerated();
   hybrid_dynamics(model_, out, case_, solver_);
+  // The columns that give way to the held ones (Options::gives_way): the first solve of a
+  // step that chooses them fixes them until the step ends (check_step resets them), so
+  // that the step's right-hand side does not jump where the damped direction's largest
+  // component passes from one column to another.
+  if (!solver_.gives_way) solver_.gives_way = out.workspace.gave_way;
 }
 
 // The solve of a linearly implicit step of h (integrators/extrapolated_implicit_euler.cpp):

@@ -162,5 +162,57 @@ TEST(VariableDamping, SingularRegionEdgeAtTheCouplingSolve) {
   }
 }
 
+// The columns that give way (Options::gives_way): a solve with one direction in the
+// singular region reports the column its damped eigen-direction points to
+// (Data::workspace.gave_way, one bit), and the same solve told those columns gives the
+// same nu to the bit; told another column, that one gives way, and every result is finite.
+TEST(VariableDamping, TheColumnsThatGiveWayCanBeFixed) {
+  Data d(Model{});
+  Options o;
+  o.policy = SingularityPolicy::VariableDamping;
+  o.exact_within_efforts = false;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1), spread(0.05, 1);
+  int decided = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const int n = 6;
+    const Eigen::MatrixXd V = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return U(rng); }).householderQr().householderQ();
+    Eigen::VectorXd sigma = Eigen::VectorXd::NullaryExpr(n, [&] { return spread(rng); });
+    sigma[0] = 1;
+    sigma[n - 1] = 0.3 * o.singular_region;
+    const Eigen::MatrixXd K = V * sigma.asDiagonal() * V.transpose();
+    d.K = (K + K.transpose()) / 2;
+    const CouplingMatrix K0 = d.K;
+    const ConstraintVector rhs = ConstraintVector::NullaryExpr(n, [&] { return U(rng); });
+    for (int i = 0; i < n; ++i) d.workspace.has_force[i] = true;
+    d.workspace.rhs = rhs;
+    o.gives_way = 0;
+    solve_coupling(d, o);
+    ASSERT_EQ(d.damped.cols(), 1);
+    const std::uint64_t gave = d.workspace.gave_way;
+    ASSERT_NE(gave, 0u) << "trial " << trial;
+    EXPECT_EQ(gave & (gave - 1), 0u) << "one column gives way";
+    Eigen::Index column = 0;
+    d.damped.col(0).cwiseAbs().maxCoeff(&column);
+    EXPECT_EQ(gave, std::uint64_t{1} << column);
+    const ConstraintVector nu = d.nu;
+    ++decided;
+    d.K = K0;
+    d.workspace.rhs = rhs;
+    o.gives_way = gave;
+    solve_coupling(d, o);
+    EXPECT_EQ(d.nu, nu) << "trial " << trial;
+    EXPECT_EQ(d.workspace.gave_way, gave);
+    const std::uint64_t other = std::uint64_t{1} << ((column + 1) % n);
+    d.K = K0;
+    d.workspace.rhs = rhs;
+    o.gives_way = other;
+    solve_coupling(d, o);
+    EXPECT_EQ(d.workspace.gave_way, other);
+    EXPECT_TRUE(d.nu.allFinite());
+  }
+  EXPECT_EQ(decided, 20);
+}
+
 }  // namespace
 }  // namespace achd::test
