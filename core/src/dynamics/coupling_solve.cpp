@@ -229,6 +229,38 @@ double variable_damping_gain(double sigma, double eps, double lambda_max) {
   return den > 0 ? sigma / den : 0.0;
 }
 
+// x = sum_k v_k w_k (v_k^T b) over the eigen-directions of the symmetric M (round-off
+// negatives count as zero), w_k the variable-damping gain with the region and damping
+// relative to sigma_max (M's largest eigenvalue when sigma_max < 0).
+ConstraintVector variably_damped_solve(const CouplingMatrix& M, const ConstraintVector& b, const Options& options,
+                                       double sigma_max) {
+  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(M);
+  if (sigma_max < 0) sigma_max = std::max(eig.eigenvalues().maxCoeff(), 0.0);
+  const double eps = options.singular_region * sigma_max, lambda_max = options.max_damping * sigma_max;
+  ConstraintVector x = ConstraintVector::Zero(M.rows());
+  for (int k = 0; k < M.rows(); ++k) {
+    const double w = variable_damping_gain(std::max(eig.eigenvalues()[k], 0.0), eps, lambda_max);
+    if (w != 0.0) x.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(b));
+  }
+  return x;
+}
+
+// Column scales by kind (solve_variable_damping) of the n columns listed: column i's is
+// (max K_jj over the listed columns j of its kind)^-1/2, 1 where that is 0.
+ConstraintVector kind_scales(const Data& data, const int* columns, int n) {
+  double largest[2] = {0, 0};  // per kind: 0 force, 1 pure moment
+  for (int i = 0; i < n; ++i) {
+    const int c = columns[i], kind = !data.workspace.has_force[c];
+    largest[kind] = std::max(largest[kind], data.K(c, c));
+  }
+  ConstraintVector scale(n);
+  for (int i = 0; i < n; ++i) {
+    const double l = largest[!data.workspace.has_force[columns[i]]];
+    scale[i] = l > 0 ? 1 / std::sqrt(l) : 1.0;
+  }
+  return scale;
+}
+
 // After solve_by_eigen_decomposition has damped some eigen-directions of K (data.K,
 // data.workspace.rhs: the scaled K' and rhs): the columns L those directions belong to
 // (each one's largest component; or Options::gives_way) give way, and the others H are
@@ -271,7 +303,7 @@ bool solve_held_first(Data& data, const Options& options) {
     for (int j = 0; j < nl; ++j) Khl(i, j) = K(h[i], l[j]);
   }
   const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-  const double eps = options.singular_region * sigma_max, lambda_max = options.max_damping * sigma_max;
+  const double eps = options.singular_region * sigma_max;
   // H must itself be clear of the singular region, or its exact solve is unbounded.
   const double khh_min = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(Khh, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
   if (!(khh_min > eps)) return false;
@@ -285,12 +317,7 @@ bool solve_held_first(Data& data, const Options& options) {
     for (int j = 0; j < nl; ++j) S(i, j) = K(l[i], l[j]) - Khl.col(i).dot(X.col(j));
   }
   S = (S + S.transpose()) / 2;  // symmetric to round-off
-  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(S);
-  ConstraintVector nu_l = ConstraintVector::Zero(nl);
-  for (int k = 0; k < nl; ++k) {
-    const double w = variable_damping_gain(std::max(eig.eigenvalues()[k], 0.0), eps, lambda_max);
-    if (w != 0.0) nu_l.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(b));
-  }
+  const ConstraintVector nu_l = variably_damped_solve(S, b, options, sigma_max);
   const ConstraintVector nu_h = y - X * nu_l;
   const auto mix = [blend](double vd, double hf) { return blend == 1 ? hf : vd + blend * (hf - vd); };
   for (int i = 0; i < nh; ++i) data.nu[h[i]] = mix(data.nu[h[i]], nu_h[i]);
@@ -302,14 +329,9 @@ void solve_variable_damping(Data& data, const Options& options) {
   const int nc = static_cast<int>(data.K.rows());
   const CouplingMatrix K = data.K;
   const ConstraintVector rhs = data.workspace.rhs;
-  double largest[2] = {0, 0};  // per kind: 0 force, 1 pure moment
-  int kind[kMaxConstraintColumns];
-  for (int i = 0; i < nc; ++i) {
-    kind[i] = !data.workspace.has_force[i];
-    largest[kind[i]] = std::max(largest[kind[i]], K(i, i));
-  }
-  ConstraintVector scale(nc);
-  for (int i = 0; i < nc; ++i) scale[i] = largest[kind[i]] > 0 ? 1 / std::sqrt(largest[kind[i]]) : 1.0;
+  int all[kMaxConstraintColumns];
+  for (int i = 0; i < nc; ++i) all[i] = i;
+  const ConstraintVector scale = kind_scales(data, all, nc);
   for (int i = 0; i < nc; ++i) {
     for (int j = 0; j < nc; ++j) data.K(i, j) = K(i, j) * scale[i] * scale[j];
     data.workspace.rhs[i] = rhs[i] * scale[i];
@@ -342,29 +364,14 @@ void solve_coupling_without(const Data& data, const Options& options, const bool
   nu.setZero(nc);
   if (nh == 0) return;
   // K_HH and rhs_H scaled by kind, as solve_variable_damping scales K
-  double largest[2] = {0, 0};
-  for (int i = 0; i < nh; ++i) {
-    const int kind = !data.workspace.has_force[h[i]];
-    largest[kind] = std::max(largest[kind], data.K(h[i], h[i]));
-  }
-  ConstraintVector scale(nh), rhs(nh);
-  for (int i = 0; i < nh; ++i) {
-    const double l = largest[!data.workspace.has_force[h[i]]];
-    scale[i] = l > 0 ? 1 / std::sqrt(l) : 1.0;
-    rhs[i] = data.workspace.rhs[h[i]] * scale[i];
-  }
+  const ConstraintVector scale = kind_scales(data, h, nh);
+  ConstraintVector rhs(nh);
   CouplingMatrix K(nh, nh);
-  for (int i = 0; i < nh; ++i)
+  for (int i = 0; i < nh; ++i) {
+    rhs[i] = data.workspace.rhs[h[i]] * scale[i];
     for (int j = 0; j < nh; ++j) K(i, j) = data.K(h[i], h[j]) * scale[i] * scale[j];
-  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(K);
-  const ConstraintVector sigma = eig.eigenvalues().cwiseMax(0.0);
-  const double sigma_max = sigma.maxCoeff();
-  ConstraintVector nu_h = ConstraintVector::Zero(nh);
-  for (int k = 0; k < nh; ++k) {
-    const double w =
-        variable_damping_gain(sigma[k], options.singular_region * sigma_max, options.max_damping * sigma_max);
-    if (w != 0.0) nu_h.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(rhs));
   }
+  const ConstraintVector nu_h = variably_damped_solve(K, rhs, options, -1);
   for (int i = 0; i < nh; ++i) nu[h[i]] = nu_h[i] * scale[i];
 }
 

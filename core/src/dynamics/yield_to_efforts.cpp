@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "constraint_sweep.hpp"
 #include "coupling_solve.hpp"
@@ -33,7 +34,8 @@ void yield_to_efforts(const Model& model, Data& d, const Case& c, const Options&
     if (!(effort > 0) || (prescribed && c.prescribed[i])) continue;
     r = std::max(r, std::abs(d.joint_torques[i]) / effort);
   }
-  d.effort_ratio = r;
+  // (a denormal effort limit makes the ratio overflow: reported as the largest double)
+  d.effort_ratio = std::min(r, std::numeric_limits<double>::max());
   if (!(r > 1)) return;
   const double x = std::min(r - 1, 1.0), s = x * x * (3 - 2 * x);
   ConstraintVector given_up;

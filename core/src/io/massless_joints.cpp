@@ -52,8 +52,8 @@ MasslessLocks massless_joint_locks(const Model& model) {
   std::vector<bool> known(n, false);
   // An uncoupled joint locked below another: the topmost such joint above it, whose one
   // warning counts and names the joints after it (top[k] = k at the top; -1: not locked).
-  std::vector<int> top(n, -1);
-  std::vector<std::vector<std::string>> after(n);
+  std::vector<int> top(n, -1), after(n, 0);
+  std::vector<std::vector<std::string>> named_after(n);  // the first three
   std::vector<std::size_t> warning_of(n, 0);
 
   for (int g = first; g < n; ++g) {
@@ -105,7 +105,7 @@ MasslessLocks massless_joint_locks(const Model& model) {
       const int parent = model.bodies[leader].parent;
       if (parent >= first && top[parent] >= 0) {  // told in the warning of the joint above it
         top[leader] = top[parent];
-        after[top[leader]].push_back(name);
+        if (++after[top[leader]] <= 3) named_after[top[leader]].push_back(name);
         continue;
       }
       top[leader] = leader;
@@ -123,14 +123,13 @@ MasslessLocks massless_joint_locks(const Model& model) {
   }
   // A massless subtree is one warning: its top joint's, naming the first joints after it.
   for (int k = first; k < n; ++k) {
-    if (top[k] != k || after[k].empty()) continue;
-    const std::vector<std::string>& names = after[k];
+    if (top[k] != k || !after[k]) continue;
     std::string listed;
-    for (std::size_t i = 0; i < names.size() && i < 3; ++i) listed += (i ? ", '" : "'") + names[i] + "'";
-    if (names.size() > 3) listed += " and " + std::to_string(names.size() - 3) + " more";
+    for (std::size_t i = 0; i < named_after[k].size(); ++i) listed += (i ? ", '" : "'") + named_after[k][i] + "'";
+    if (after[k] > 3) listed += " and " + std::to_string(after[k] - 3) + " more";
     std::string& w = out.warnings[warning_of[k]];
-    w += "; the " + std::to_string(names.size()) + " joint" + (names.size() > 1 ? "s" : "") + " after it (" + listed +
-         ") " + (names.size() > 1 ? "move nothing either and are" : "moves nothing either and is") +
+    w += "; the " + std::to_string(after[k]) + " joint" + (after[k] > 1 ? "s" : "") + " after it (" + listed +
+         ") " + (after[k] > 1 ? "move nothing either and are" : "moves nothing either and is") +
          " locked the same way, each at 0 or the middle of its limits when 0 is outside them";
   }
   return out;

@@ -125,6 +125,25 @@ TEST(YieldToEfforts, NothingYieldsOnARobotWithCoupledJoints) {
   EXPECT_EQ(marked.nu, followed.nu);
 }
 
+// Hostile effort limits: denormal ones (any torque exceeds them, the ratio overflows)
+// give the push up wholly with a finite ratio; 1e308 ones never give it up.
+TEST(YieldToEfforts, DenormalAndHugeEffortLimits) {
+  Options vd;
+  vd.policy = SingularityPolicy::VariableDamping;
+  vd.exact_within_efforts = false;
+  Eigen::VectorXd q(6);
+  q << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
+  for (const double effort : {5e-324, 1e-310, 1e308}) {
+    Ur5 u;
+    for (Body& b : u.model.bodies) b.limits.effort = effort;
+    Data d(u.model);
+    hybrid_dynamics(u.model, d, tip_case(u.model, u.tip, q, 0.45, true, 1), vd);
+    EXPECT_TRUE(std::isfinite(d.effort_ratio)) << effort;
+    EXPECT_TRUE(d.nu.allFinite() && d.qdd.allFinite()) << effort;
+    EXPECT_EQ(d.yielded, effort < 1 ? 1.0 : 0.0) << effort;
+  }
+}
+
 // A bit naming a column the block does not have is refused with the field's name.
 TEST(YieldToEfforts, RefusesABitBeyondTheBlocksColumns) {
   const Ur5 u;
