@@ -631,8 +631,10 @@ TEST(Scenes, RepositoryScenesDoWhatTheirDescriptionsSay) {
     const std::string name = entry.path().stem().string();
     // The real robots standing (example-robot-data): real_robots_stand.cpp runs and checks them;
     // the stiff humanoid, the UR5 pushed into its boundary, the LWR holding 6D on a driven
-    // base: hard_scenes.cpp.
-    if (name == "anymal_c_stand" || name == "solo12_stand" || name == "go2_stand" || name == "talos_stand" ||
+    // base: hard_scenes.cpp; the undamped 50-joint chain holding its tip for a minute:
+    // hard_undamped_long_runs.cpp (Release only).
+    if (name == "chain50_undamped_hold_xyz" || name == "anymal_c_stand" || name == "solo12_stand" ||
+        name == "go2_stand" || name == "talos_stand" ||
         name == "humanoid_stiff_hold" || name == "ur5_push_z_into_boundary" ||
         name == "kuka_lwr4_hold_6d_driven_base") {
       ++count;
@@ -673,7 +675,7 @@ TEST(Scenes, RepositoryScenesDoWhatTheirDescriptionsSay) {
     } else if (name == "kuka_lwr4_undamped_hold_z_rx") {
       // Undamped, holding z and rx with the simulator's defaults: energy and held
       // directions within 1e-6 while the arm swings (0.5 s here; an hour in
-      // hard_undamped_hour.cpp).
+      // hard_undamped_long_runs.cpp).
       EXPECT_TRUE(scene.conserves_energy());
       EXPECT_EQ(scene.options.integrator, SimulatorOptions().integrator);
       EXPECT_GT(run.max_T, 1.0);
@@ -764,7 +766,7 @@ TEST(Scenes, RepositoryScenesDoWhatTheirDescriptionsSay) {
     }
     ++count;
   }
-  EXPECT_EQ(count, 20);
+  EXPECT_EQ(count, 21);
 }
 
 std::string scene_error(const std::string& text) {
