@@ -166,6 +166,10 @@ struct Data {
     // variable_damping: the columns that gave way in the last solve, or were chosen to
     // (solve_held_first; Options::gives_way; bit j: column j), 0 when none was.
     std::uint64_t gave_way = 0;
+    // Set by a caller that has already put body_poses at the next solve's q into X0 and r
+    // (the simulator, whose held directions need the poses before the solve): that solve
+    // takes them as they are and clears the flag; any other solve computes them.
+    bool poses_given = false;
     // The last constraint sweep took a floating base's free joint in one 6-DoF step
     // (free_joint_constraints.hpp): d.E then holds the columns at the root, E_0 being 0.
     bool free_joint_step = false;

@@ -39,6 +39,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "achd/error.hpp"
 #include "achd/kinematics.hpp"
@@ -87,13 +88,11 @@ void joint_forces(const Model& model, Data& d, const Case& c, const Options& o, 
 
 const SpatialVector kZero{};
 
-// Step 1. Poses (body_poses); IA_i = I_i in base axes;
+// Step 1. Poses (body_poses: hybrid_dynamics computed them); IA_i = I_i in base axes;
 // v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  kappa_i = kappa_p (shifted) + c_i;
 // pA_i = v_i x* I_i v_i + I_i kappa_i,
 // with I_i x = [m x_lin - h x x_ang; h x x_lin + C x_ang] for I_i = [m 1, -[h]x; [h]x, C].
 void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving) {
-  // With loop joints, set_loop_blocks computed the poses at this q already.
-  if (model.loops.empty()) body_poses(model, c.q, d.X0, d.r);
   for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
@@ -449,9 +448,13 @@ void solve_uncoupled(const Model& model, Data& d, const Case& c, const Options& 
 }  // namespace
 
 void hybrid_dynamics(const Model& model, Data& d, const Case& given, const Options& o) {
+  const bool poses_given = std::exchange(d.workspace.poses_given, false);  // (cleared even if a check throws)
   validate(model, given, d.constraint_capacity());
   validate(o);
-  if (!model.loops.empty()) set_loop_blocks(model, given.q, d);  // held after the case's blocks
+  // Step 1's poses, once for every solve below (the coupled joints' solves are all at this
+  // q; a floating base's solver case has the same q).
+  if (!poses_given) body_poses(model, given.q, d.X0, d.r);
+  if (!model.loops.empty()) set_loop_blocks(model, d);  // held after the case's blocks
   const Case& c = given;
   if (model.couplings.empty()) return solve_uncoupled(model, d, c, o);
   if (d.coupling_forces.size() != static_cast<Eigen::Index>(model.couplings.size()))

@@ -23,13 +23,14 @@ namespace achd {
 void Simulator::evaluate(const SimulationState& x, double w_n, double zeta, Data& out, HeldAngles& angle_rates) {
   if (!x.q.allFinite() || !x.qd.allFinite())
     throw Error("the stage's state is not finite (" + non_finite_joint(model_, x.q, x.qd) + ")");
-  body_motion(model_, x.q, x.qd, X0_, r_, v_);
+  // The poses straight into the solve's Data, which takes them (Data::Workspace::poses_given).
+  body_motion(model_, x.q, x.qd, out.X0, out.r, v_);
   const std::vector<LinkDirections>& sets = directions_->sets();
   angle_rates.head(held_angles.size()).setZero();  // sets with no active direction have none
   for (size_t b = 0; b < case_.constraints.size(); ++b) {
     const int s = directions_->block_set()[b];
     const LinkDirections& set = sets[s];
-    const TipState at = link_state(model_, X0_, v_, set.link, set.point);
+    const TipState at = link_state(model_, out.X0, v_, set.link, set.point);
     const double* angle = x.held_angles.data() + s * kNumDirections;
     ConstraintVector& beta = case_.constraints[b].beta;
     direction_targets(set.held, at, angle, w_n, zeta,
@@ -50,7 +51,7 @@ void Simulator::evaluate(const SimulationState& x, double w_n, double zeta, Data
   }
   // Loop joints: each closure error decays as a held direction's does (loop_closure.hpp).
   if (!model_.loops.empty()) {
-    loop_targets(model_, X0_, v_, w_n, zeta, options_.effects & kVelocityProducts,
+    loop_targets(model_, out.X0, v_, w_n, zeta, options_.effects & kVelocityProducts,
                  case_.loop_beta);
     for (int j = 0; j < case_.loop_beta.size(); ++j)
       if (!std::isfinite(case_.loop_beta[j])) throw Error(loop_beta_not_finite(model_, j, case_.loop_beta[j]));
@@ -71,6 +72,7 @@ void Simulator::evaluate(const SimulationState& x, double w_n, double zeta, Data
   // exact solve keeps it next to a singularity. A pushed direction asks the arm to move,
   // and into the edge of its workspace: there variable_damping's region decides.
   solver_.exact_within_efforts = options_.solver.exact_within_efforts && !directions_->any_accelerated();
+  out.workspace.poses_given = true;  // (set last: a throw above leaves it clear)
   hybrid_dynamics(model_, out, case_, solver_);
   // The columns that give way to the held ones (Options::gives_way): the first solve of a
   // step that chooses them fixes them until the step ends (check_step resets them), so

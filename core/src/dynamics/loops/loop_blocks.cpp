@@ -1,12 +1,9 @@
 // The loop joints' blocks at a q (loop_blocks.hpp).
 #include "loop_blocks.hpp"
 
-#include "achd/kinematics.hpp"
-
 namespace achd {
 
-void set_loop_blocks(const Model& model, const Eigen::VectorXd& q, Data& d) {
-  body_poses(model, q, d.X0, d.r);  // the solve's: it does not compute them again
+void set_loop_blocks(const Model& model, Data& d) {
   const auto link_pose = [&](int link) {
     if (link < 0) return Transform{};
     const Link& l = model.links[link];

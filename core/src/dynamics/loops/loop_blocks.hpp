@@ -12,9 +12,9 @@ namespace achd {
 // the point where frame b's origin is and on link b at frame b's origin:
 //   e^T (a_A(Q) - a_B(Q)) = beta.
 // A loop with the root of a fixed base as one of its links becomes a block on the other
-// link alone (the root does not move). Leaves the body poses at q in d.X0 and d.r, where
-// the solve that follows takes them. beta is the case's (set_loop_betas).
-void set_loop_blocks(const Model& model, const Eigen::VectorXd& q, Data& d);
+// link alone (the root does not move). Reads the body poses at q from d.X0 (the solve's,
+// which hybrid_dynamics computed first). beta is the case's (set_loop_betas).
+void set_loop_blocks(const Model& model, Data& d);
 
 // The loop blocks' beta from c.loop_beta (one per loop column, the loops in order; 0 when
 // empty).
