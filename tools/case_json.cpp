@@ -1,6 +1,8 @@
 #include "case_json.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <utility>
@@ -156,6 +158,24 @@ void driver_weights(const json& j, const std::string& prefix, int nc, Constraint
   }
 }
 
+// A block's "yields": one boolean per alpha column, true where the column gives way to the
+// joints' efforts (ConstraintBlock::yields, bit k for column k).
+std::uint8_t yielding_columns(const json& j, const std::string& prefix, int nc) {
+  if (!given(j, "yields")) return 0;
+  const json& v = j["yields"];
+  const std::string field = prefix + "yields";
+  if (!v.is_array()) throw Error(field + " must be an array of booleans, one per alpha column" + got(v));
+  if (static_cast<int>(v.size()) != nc)
+    throw Error(field + ": expected " + std::to_string(nc) + " booleans (one per alpha column), got " +
+                std::to_string(v.size()));
+  std::uint8_t bits = 0;
+  for (int k = 0; k < nc; ++k) {
+    if (!v[k].is_boolean()) throw Error(at(field, k) + " must be true or false" + got(v[k]));
+    if (v[k].get<bool>()) bits |= static_cast<std::uint8_t>(1u << k);
+  }
+  return bits;
+}
+
 // Constraint columns: `alpha` (up to kMaxConstraints 6-element columns) and `beta` (one
 // per column; absent = zeros) of the tip (prefix "") or of a block ("constraints[b].").
 void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, ConstraintVector& beta,
@@ -187,14 +207,15 @@ void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, 
 
 void constraint_blocks(const json& cs, const Model& model, Case& c) {
   if (!cs.is_array())
-    throw Error("constraints must be an array of blocks {link, alpha, beta, point, link_b, point_b}" + got(cs));
+    throw Error("constraints must be an array of blocks {link, alpha, beta, point, link_b, point_b, yields}" + got(cs));
   for (size_t b = 0; b < cs.size(); ++b) {
     const json& j = cs[b];
     const std::string where = at("constraints", b);
-    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point, link_b, point_b}" + got(j));
+    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point, link_b, point_b, yields}" + got(j));
     for (const auto& item : j.items())
       if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point" &&
-          item.key() != "w_fext" && item.key() != "w_ff" && item.key() != "link_b" && item.key() != "point_b")
+          item.key() != "w_fext" && item.key() != "w_ff" && item.key() != "link_b" && item.key() != "point_b" &&
+          item.key() != "yields")
         throw Error(where + ": unknown field '" + printable(item.key()) + "'");
     if (!j.contains("link")) throw Error(where + ": missing required field 'link'");
     if (!j.contains("alpha")) throw Error(where + ": missing required field 'alpha'");
@@ -205,6 +226,7 @@ void constraint_blocks(const json& cs, const Model& model, Case& c) {
     if (block.link < 0) throw Error(where + ".link: " + no_link(model, name));
     columns(j, where + ".", block.alpha, block.beta, true);
     driver_weights(j, where + ".", static_cast<int>(block.alpha.cols()), block.w_fext, block.w_ff);
+    block.yields = yielding_columns(j, where + ".", static_cast<int>(block.alpha.cols()));
     if (given(j, "point")) block.point = vector(j["point"], where + ".point", 3);
     // a relative block: alpha^T (a_A - a_B) = beta, B the link named by link_b
     if (given(j, "link_b")) {
@@ -372,6 +394,10 @@ std::string result_json(const Model& model, const Data& d, const Case& c, Digits
   for (Eigen::Index k = 0; k < d.dropped.cols(); ++k)
     s += (k ? ", " : "") + array(d.dropped.col(k), digits);
   s += "]";
+  // Blocks with columns that give way to the efforts: the largest |tau_i| / effort_i of the
+  // solve that follows them and how far this solve gave them up (Data::effort_ratio, yielded).
+  if (std::any_of(c.constraints.begin(), c.constraints.end(), [](const ConstraintBlock& b) { return b.yields != 0; }))
+    s += ",\n  \"effort_ratio\": " + fmt(d.effort_ratio, digits) + ",\n  \"yielded\": " + fmt(d.yielded, digits);
   if (!model.locked_joints.empty()) s += ",\n  \"locked_joints\": " + locked_joints_json(model, digits);
   return s + "\n}\n";
 }

@@ -84,6 +84,11 @@ export interface ConstraintBlock {
   /** driver priorities per alpha column, each in [0, 1] (default 1): see Case.w_fext, Case.w_ff. */
   w_fext?: Vec;
   w_ff?: Vec;
+  /** one boolean per alpha column (default all false): true where the column gives way to
+   *  the joints' efforts. Under variable_damping, with r the largest |tau_i| / effort_i of
+   *  the solve that follows these columns, the solve follows them for r <= 1, drops them
+   *  for r >= 2 and blends the two between (Result.effort_ratio, Result.yielded). */
+  yields?: boolean[];
 }
 
 /** The case (docs/design.md section 5): q and gravity required, the rest default to zero/none. */
@@ -152,6 +157,10 @@ export interface Result {
   sigma_min: number;
   /** constraint-space directions truncated or damped (columns of nc numbers). */
   dropped: number[][];
+  /** only when a block has yields: the largest |tau_i| / effort_i of the solve that follows
+   *  the yielding columns, and how far this solve gave them up (0: followed, 1: wholly). */
+  effort_ratio?: number;
+  yielded?: number;
   /** only with f_virtual: J^T f_virtual per joint (part of the ff torques). */
   virtual_torques?: number[];
   /** only with qdd_given: per joint, the actuator torque a prescribed joint needs while the
@@ -248,6 +257,9 @@ export interface Solver {
   /** smallest singular value of K of the last solve, computed when read (not by solve());
    * throws if that K is beyond the range of a double (columns of length ~1e154). */
   readonly sigma_min: number;
+  /** blocks' yielding columns (ConstraintBlock.yields): Result.effort_ratio and Result.yielded of the last solve. */
+  readonly effort_ratio: number;
+  readonly yielded: number;
   setOptions(options?: SolveOptions): void;
   /** hybrid dynamics in place on the views: no allocation, no copy. Throws on NaN input
    * and when the solve overflows (the message names the joint or constraint column). */

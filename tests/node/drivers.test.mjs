@@ -3,7 +3,8 @@
 // virtual_torques): robot.solve equals the native `achd solve` (ACHD_CLI, the Release
 // build) to the bit on chains and trees, by name and in model order; bad inputs get the
 // CLI's message word for word; the zero-copy solver gives robot.solve's result and does
-// not grow the wasm memory.
+// not grow the wasm memory. A block's yields (columns that give way to the joints'
+// efforts) too: followed, blended and given up as the native solve, bad ones named alike.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync } from 'node:fs';
@@ -233,6 +234,49 @@ test('the zero-copy solver with drivers: robot.solve\'s result, and no memory gr
   assert.throws(() => solver.setPrescribed(['nope']), (e) => e.message === "setPrescribed: no movable joint 'nope' between the root and the tip");
   assert.throws(() => solver.setPrescribed([true]), (e) => e.message === 'setPrescribed: expected 7 booleans (one per joint), got 1');
   solver.delete();
+});
+
+test('yields: the UR5 pushed up at its last link gives way as natively; the zero-copy solver reads effort_ratio and yielded', async () => {
+  const entry = robots().find((r) => r.name === 'ur5');
+  const load = { root: entry.root, tip: entry.tip };
+  const ur5 = achd.loadURDF(entry.text, load);
+  const options = { policy: 'variable_damping' };
+  const pushed = (beta_z, yields) => ({ q: [0, -1.2, 1.5, -0.3, 1.2, 0], gravity: GRAVITY,
+    constraints: [{ link: 'wrist_3_link', alpha: [[1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]], beta: [0, beta_z], yields }] });
+  try {
+    // followed (r <= 1), blended (1 < r < 2), given up (r >= 2)
+    const cases = [40, 100, 200].map((b) => pushed(b, [false, true]));
+    const natives = await pool(cases.map((c) => () => solveNative(entry.path, load, c, options)));
+    const ratios = [], shares = [];
+    cases.forEach((c, i) => {
+      const out = ur5.solve(c, options);
+      assertSameResult(out, natives[i], `beta_z ${c.constraints[0].beta[1]}`);
+      ratios.push(out.effort_ratio);
+      shares.push(out.yielded);
+    });
+    assert.ok(ratios[0] < 1 && ratios[2] > 2, `effort ratios ${ratios}`);
+    assert.equal(shares[0], 0);
+    assert.equal(shares[2], 1);
+    // the zero-copy solver
+    const solver = ur5.createSolver();
+    solver.setOptions(options);
+    solver.q.set(cases[2].q);
+    solver.setConstraints(cases[2].constraints);
+    solver.solve();
+    assert.deepEqual(solver.result(), ur5.solve(cases[2], options));
+    assert.equal(solver.effort_ratio, ratios[2]);
+    assert.equal(solver.yielded, 1);
+    solver.delete();
+    // bad yields: the CLI's message
+    const bad = [pushed(200, [true]), pushed(200, [true, 1]), pushed(200, 'z')];
+    const messages = await pool(bad.map((c) => () => errorNative(entry.path, load, c)));
+    bad.forEach((c, i) => {
+      assert.ok(messages[i], `bad yields ${i}: the CLI refused it`);
+      assert.throws(() => ur5.solve(c, options), (e) => e.message === messages[i]);
+    });
+  } finally {
+    ur5.delete();
+  }
 });
 
 // The simulator's prescribed joint motion in JS: on the trajectory after every step (the

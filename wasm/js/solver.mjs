@@ -68,6 +68,11 @@ export class Solver extends AchdHandle {
   get coupling_forces() { return this._view('coupling_forces'); }
   get rank() { return achdWasm.module._achd_solver_rank(this._live()); }
   get sigma_min() { return achdSigmaMin(this._live()); }
+  // Blocks whose columns give way to the joints' efforts (a block's yields): the largest
+  // |tau_i| / effort_i of the solve that follows them, and how far the last solve gave
+  // them up (0: followed, 1: wholly; both 0 without such columns or outside variable_damping).
+  get effort_ratio() { return achdWasm.module._achd_solver_effort_ratio(this._live()); }
+  get yielded() { return achdWasm.module._achd_solver_yielded(this._live()); }
   get numConstraints() { this._live(); return this._nc; }
   set numConstraints(nc) {
     // (the range is checked here too: C++ takes an int, which would wrap 2**31)

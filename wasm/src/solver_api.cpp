@@ -180,6 +180,9 @@ ACHD_EXPORT int achd_solver_solve(Solver* s) {
 }
 
 ACHD_EXPORT int achd_solver_rank(const Solver* s) { return s->data.rank; }
+// Blocks' yielding columns (ConstraintBlock::yields): Data::effort_ratio and Data::yielded.
+ACHD_EXPORT double achd_solver_effort_ratio(const Solver* s) { return s->data.effort_ratio; }
+ACHD_EXPORT double achd_solver_yielded(const Solver* s) { return s->data.yielded; }
 // sigma_min, or NaN with the message in last_error() (K beyond the range of a double).
 ACHD_EXPORT double achd_solver_sigma_min(const Solver* s) {
   double out = std::numeric_limits<double>::quiet_NaN();

@@ -2,7 +2,9 @@
 // columns and on a block's) and virtual wrenches (f_virtual by link name) read from the
 // case file give the library's solve of the same Case, with virtual_torques in the
 // result; weights outside [0, 1], of the wrong count, and wrenches on unknown links are
-// named errors.
+// named errors. A block's yields (its columns that give way to the joints' efforts) give
+// the library's solve with ConstraintBlock::yields, with effort_ratio and yielded in the
+// result; a wrong count or a non-boolean is a named error.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -89,6 +91,72 @@ TEST(CliDrivers, BadWeightsAndWrenchesAreNamed) {
        "constraints[0].w_ff[0] must be in [0, 1]"},
       {R"("f_virtual": {"no_such_link": [1, 0, 0, 0, 0, 0]}})", "f_virtual: "},
       {R"("f_virtual": [[1, 0, 0, 0, 0, 0]]})", "f_virtual: expected"}};
+  for (const auto& [tail, needle] : cases) {
+    const CliRun r = run_cli(dir, {"solve", kUrdf, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case",
+                                   write(dir, head + tail)});
+    EXPECT_EQ(r.exit_code, 2) << tail;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << needle << " not in: " << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+}
+
+// The UR5's last link held in x and pushed up along z at beta_z: the push followed, then
+// given up, as the joints' efforts allow.
+TEST(CliDrivers, YieldingColumnsGiveTheLibrarySolve) {
+  const std::string dir = make_temp_dir("achd_cli_drivers");
+  const std::string ur5 = std::string(ACHD_SOURCE_DIR) + "/robots/ur5.urdf";
+  const Model m = load_urdf_file(ur5, "", "");
+  for (double beta_z : {40.0, 200.0}) {
+    const std::string text = R"({"q": [0, -1.2, 1.5, -0.3, 1.2, 0], "gravity": [0, 0, -9.81],
+      "constraints": [{"link": "wrist_3_link", "alpha": [[1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]],
+                       "beta": [0, )" + std::to_string(beta_z) + R"(], "yields": [false, true]}]})";
+    const CliRun r = run_cli(dir, {"solve", ur5, "--policy", "variable_damping", "--case", write(dir, text)});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json out = nlohmann::json::parse(r.out);
+    Case c = Case::zeros(m);
+    c.q << 0, -1.2, 1.5, -0.3, 1.2, 0;
+    ConstraintBlock b;
+    b.link = m.link_index("wrist_3_link");
+    b.alpha = ConstraintMatrix::Zero(6, 2);
+    b.alpha(0, 0) = b.alpha(2, 1) = 1;
+    b.beta = ConstraintVector(2);
+    b.beta << 0, beta_z;
+    b.yields = 0b10;
+    c.constraints.push_back(b);
+    Options o;
+    o.policy = SingularityPolicy::VariableDamping;
+    Data d(m);
+    hybrid_dynamics(m, d, c, o);
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(out["qdd"][i].get<double>(), d.qdd[i]) << i;
+    for (int k = 0; k < 2; ++k) EXPECT_EQ(out["nu"][k].get<double>(), d.nu[k]) << k;
+    EXPECT_EQ(out["effort_ratio"].get<double>(), d.effort_ratio);
+    EXPECT_EQ(out["yielded"].get<double>(), d.yielded);
+    if (beta_z == 40.0) {  // within the efforts: followed
+      EXPECT_LT(d.effort_ratio, 1);
+      EXPECT_EQ(d.yielded, 0);
+      EXPECT_NE(d.nu[1], 0);
+    } else {  // beyond twice the efforts: given up, x still held
+      EXPECT_GT(d.effort_ratio, 2);
+      EXPECT_EQ(d.yielded, 1);
+      EXPECT_EQ(d.nu[1], 0);
+      EXPECT_NE(d.nu[0], 0);
+    }
+  }
+  // Without yields the result has no effort_ratio.
+  const CliRun plain = run_cli(dir, {"solve", ur5, "--policy", "variable_damping", "--case",
+                                     write(dir, R"({"q": [0, -1.2, 1.5, -0.3, 1.2, 0], "gravity": [0, 0, -9.81],
+      "constraints": [{"link": "wrist_3_link", "alpha": [[0, 0, 1, 0, 0, 0]], "beta": [200]}]})")});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_FALSE(nlohmann::json::parse(plain.out).contains("effort_ratio"));
+}
+
+TEST(CliDrivers, BadYieldsAreNamed) {
+  const std::string dir = make_temp_dir("achd_cli_drivers");
+  const std::string head = R"({"q": [0, 0.5, 0, -1, 0, 0.5, 0], "gravity": [0, 0, -9.81], "constraints": [{"link": "lwr_link_3", "alpha": [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0]], )";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"("yields": [true]}]})", "constraints[0].yields: expected 2 booleans (one per alpha column), got 1"},
+      {R"("yields": [true, 1]}]})", "constraints[0].yields[1] must be true or false"},
+      {R"("yields": true}]})", "constraints[0].yields must be an array of booleans"}};
   for (const auto& [tail, needle] : cases) {
     const CliRun r = run_cli(dir, {"solve", kUrdf, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case",
                                    write(dir, head + tail)});

@@ -59,6 +59,13 @@ export async function usage(): Promise<void> {
   solver.w_fext[0] = 0;
   solver.useVirtualWrenches = true;
   const prescribedTorques: Float64Array = solver.prescribed_torques;
+  // Columns that give way to the joints' efforts: one boolean per alpha column.
+  const pushed: Result = robot.solve({ q, gravity: [0, 0, -9.81],
+    constraints: [{ link: 'foot', alpha: [[0, 0, 1, 0, 0, 0]], beta: [50], yields: [true] }] }, { policy: 'variable_damping' });
+  const ratio: number | undefined = pushed.effort_ratio;
+  const share: number = solver.yielded + solver.effort_ratio;
+  // @ts-expect-error yields takes booleans, not column indices
+  robot.solve({ q, gravity: [0, 0, -9.81], constraints: [{ link: 'foot', alpha: [[0, 0, 1, 0, 0, 0]], yields: [0] }] });
   // @ts-expect-error qdd_given by name takes numbers (null only in the array form)
   robot.solve({ q, gravity: [0, 0, -9.81], qdd_given: { elbow: null } });
   // @ts-expect-error views are read-only properties (write into them instead)
