@@ -207,11 +207,11 @@ void columns(const json& j, const std::string& prefix, ConstraintMatrix& alpha, 
 
 void constraint_blocks(const json& cs, const Model& model, Case& c) {
   if (!cs.is_array())
-    throw Error("constraints must be an array of blocks {link, alpha, beta, point, link_b, point_b, yields}" + got(cs));
+    throw Error("constraints must be an array of blocks {link, alpha, beta, point, link_b, point_b}" + got(cs));
   for (size_t b = 0; b < cs.size(); ++b) {
     const json& j = cs[b];
     const std::string where = at("constraints", b);
-    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point, link_b, point_b, yields}" + got(j));
+    if (!j.is_object()) throw Error(where + " must be an object {link, alpha, beta, point, link_b, point_b}" + got(j));
     for (const auto& item : j.items())
       if (item.key() != "link" && item.key() != "alpha" && item.key() != "beta" && item.key() != "point" &&
           item.key() != "w_fext" && item.key() != "w_ff" && item.key() != "link_b" && item.key() != "point_b" &&

@@ -37,6 +37,7 @@ struct Pair {
 inline Pair operator+(Pair a, Pair b) { return {{a.lane[0] + b.lane[0], a.lane[1] + b.lane[1]}}; }
 inline Pair operator-(Pair a, Pair b) { return {{a.lane[0] - b.lane[0], a.lane[1] - b.lane[1]}}; }
 inline Pair operator*(Pair a, Pair b) { return {{a.lane[0] * b.lane[0], a.lane[1] * b.lane[1]}}; }
+inline Pair operator/(Pair a, Pair b) { return {{a.lane[0] / b.lane[0], a.lane[1] / b.lane[1]}}; }
 inline Pair& operator+=(Pair& a, Pair b) { return a = a + b; }
 inline Pair& operator-=(Pair& a, Pair b) { return a = a - b; }
 inline Pair& operator*=(Pair& a, Pair b) { return a = a * b; }

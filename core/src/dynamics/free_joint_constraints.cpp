@@ -19,6 +19,7 @@
 
 #include "driver_priorities.hpp"
 #include "free_joint.hpp"
+#include "free_joint_pairs.hpp"
 #include "joint_subspace.hpp"
 
 namespace achd {
@@ -48,14 +49,6 @@ struct Cholesky6 {
       }
     }
   }
-  // y = L^-1 b, so that b^T IA^-1 c = (L^-1 b) . (L^-1 c).
-  void forward(const double* b, double* y) const {
-    for (int i = 0; i < 6; ++i) {
-      double x = b[i];
-      for (int k = 0; k < i; ++k) x -= L[i][k] * y[k];
-      y[i] = x / L[i][i];
-    }
-  }
 };
 
 }  // namespace
@@ -65,28 +58,53 @@ double free_joint_coupling(Data& d) {
   constexpr int r = kFreeJointBodies - 1;  // the root link's body
   const Cholesky6 IA(d.IA[r]);
   const int m = static_cast<int>(d.E.cols());
-  // K_st += (L^-1 F_s) . (L^-1 F_t),  G_s += (L^-1 F_s) . (L^-1 (w - pA_r))
-  double Y[kMaxConstraintColumns][6];
-  for (int s = 0; s < m; ++s) IA.forward(d.E.col(s).data(), Y[s]);
-  Vector6 wrench;  // w: [f; n] with S^T w = tau
+  // The columns F_s, then b = w - pA_r, w the wrench [f; n] with S^T w = tau; turned into
+  // y = L^-1 x (free_joint_pairs.hpp), so that x^T IA^-1 x' = y . y'.
+  Vector6 wrench;
   free_joint_torques_to_public(d.X0[r].R, w.tau.data(), wrench.data());
   const Vector6 b = wrench - d.pA[r];
-  double yb[6];
-  IA.forward(b.data(), yb);
-  auto dot6 = [](const double* x, const double* y) {
-    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2] + x[3] * y[3] + x[4] * y[4] + x[5] * y[5];
-  };
-  double probe = 0;
-  for (int s = 0; s < m; ++s) {
-    for (int t = s; t < m; ++t) {
-      const double k = d.K(s, t) + dot6(Y[s], Y[t]);
-      d.K(s, t) = d.K(t, s) = k;
-      probe += k * 0.0;
-    }
-    d.G0[s] += dot6(Y[s], yb);
-    probe += d.G0[s] * 0.0;
+  RootColumns y;
+  y.count = (m + 2) & ~1;  // (the columns up to b's, rounded up to even)
+  for (int i = 0; i < 6; ++i) {
+    for (int s = 0; s < m; ++s) y.Y[i][s] = d.E(i, s);
+    y.Y[i][m] = b[i];
+    y.Y[i][m + 1] = 0;  // the second lane of b's last pair: L^-1 0 = 0
   }
-  return probe;
+  y.forward(IA.L);
+  // K_st += y_s . y_t (both triangles), two rows t of column s at a time (K is
+  // column-major), the diagonal alone first where the rows left are odd;
+  // G_s += y_s . y_b, two s at a time.
+  Pair probe = splat(0.0);
+  double diagonal_probe = 0;
+  for (int s = 0; s < m; ++s) {
+    int t = s;
+    if ((m - s) & 1) {
+      const double k = d.K(s, s) + y.dots(s, s)[0];
+      d.K(s, s) = k;
+      diagonal_probe += k * 0.0;
+      ++t;
+    }
+    for (; t < m; t += 2) {
+      double* column = &d.K(t, s);  // K(t, s), K(t + 1, s)
+      const Pair k = load_pair(column) + y.dots(s, t);
+      store_pair(column, k);
+      d.K(s, t) = k[0];
+      d.K(s, t + 1) = k[1];
+      probe += k * splat(0.0);
+    }
+  }
+  double* G0 = d.G0.data();
+  int s = 0;
+  for (; s + 1 < m; s += 2) {
+    const Pair g = load_pair(G0 + s) + y.dots_with(s, m);
+    store_pair(G0 + s, g);
+    probe += g * splat(0.0);
+  }
+  if (s < m) {
+    G0[s] += y.dots_with(s, m)[0];
+    diagonal_probe += G0[s] * 0.0;
+  }
+  return probe[0] + probe[1] + diagonal_probe;
 }
 
 void free_joint_constraint_torques(const Model& model, Data& d) {
