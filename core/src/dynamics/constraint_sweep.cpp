@@ -331,7 +331,7 @@ int constraint_sources(const Model& model, Data& d, const Case& c) {
 }
 
 double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescribed) {
-  use_free_joint_step(model, d, c);
+  use_free_joint_step(model, d, c, prescribed);
   Data::Workspace& w = d.workspace;
   const int m = static_cast<int>(d.E.cols());
   d.K.resize(m, m);

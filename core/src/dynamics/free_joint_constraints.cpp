@@ -24,9 +24,9 @@
 
 namespace achd {
 
-bool use_free_joint_step(const Model& model, Data& d, const Case& c) {
+bool use_free_joint_step(const Model& model, Data& d, const Case& c, bool prescribed) {
   bool use = model.floating && !has_driver_weights(c);
-  if (use && c.any_prescribed()) use = !c.prescribed[0];  // the six come together
+  if (use && prescribed) use = !c.prescribed[0];  // the six come together
   d.workspace.free_joint_step = use;
   return use;
 }

@@ -9,8 +9,8 @@ namespace achd {
 
 // Whether the step applies: a floating base whose free joint is not prescribed and no driver
 // weights (those cases roll through the free joint's six bodies one axis at a time, as any
-// joint). Sets d.workspace.free_joint_step.
-bool use_free_joint_step(const Model& model, Data& d, const Case& c);
+// joint). Sets d.workspace.free_joint_step. `prescribed`: c.any_prescribed().
+bool use_free_joint_step(const Model& model, Data& d, const Case& c, bool prescribed);
 
 // After every block's columns rolled to the root (d.E = F, at the root's origin) and their
 // couplings below it: K += F^T IA_r^-1 F and G_0 += F^T IA_r^-1 (w - pA_r). Returns the

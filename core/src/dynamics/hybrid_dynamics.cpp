@@ -358,14 +358,14 @@ void keep_the_exact_solve_within_efforts(const Model& model, Data& d, const Case
   d.damped_lambda.resize(0);
 }
 
-// Steps 1 to 4 on a validated case (a floating base's in the solver's coordinates).
-void solve(const Model& model, Data& d, const Case& c, const Options& o) {
+// Steps 1 to 4 on a validated case (a floating base's in the solver's coordinates);
+// `prescribed`: c.any_prescribed().
+void solve(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
   const int nc = (o.effects & kConstraints) ? num_solve_columns(c, d) : 0;
   const bool gravity = o.effects & kGravity;
   // Skipped by themselves when their inputs are zero: the result is identical.
   const bool moving = (o.effects & kVelocityProducts) && any_nonzero(c.qd);
   const bool wrenches = (o.effects & kExternalWrenches) && !c.f_ext.empty();
-  const bool prescribed = c.any_prescribed();
 
   joint_forces(model, d, c, o, prescribed);
   outward_kinematics(model, d, c, moving);
@@ -438,10 +438,11 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o) {
 
 // One solve of a validated case, without the couplings.
 void solve_uncoupled(const Model& model, Data& d, const Case& c, const Options& o) {
-  if (!model.floating) return solve(model, d, c, o);
+  const bool prescribed = c.any_prescribed();
+  if (!model.floating) return solve(model, d, c, o, prescribed);
   // A floating base: solved in the free joint's solver coordinates (free_joint.hpp).
-  const Case& s = free_joint_case(c, d.workspace.free_case);
-  solve(model, d, s, o);
+  const Case& s = free_joint_case(c, d.workspace.free_case, prescribed);
+  solve(model, d, s, o, prescribed);
   free_joint_results(s, d);
 }
 

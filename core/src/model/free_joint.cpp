@@ -96,7 +96,7 @@ void free_joint_torques_to_public(const Matrix3& R, const double* in, double* ou
   rotate(R, in + 3, out + 3);
 }
 
-const Case& free_joint_case(const Case& in, Case& out) {
+const Case& free_joint_case(const Case& in, Case& out, bool prescribed) {
   const Matrix3 R = free_joint_rotation(in.q.data() + 3);
   out.q = in.q;
   if (in.qd.size()) out.qd = in.qd;
@@ -105,10 +105,12 @@ const Case& free_joint_case(const Case& in, Case& out) {
   if (in.ff_torques.size()) out.ff_torques = in.ff_torques;
   else out.ff_torques.setZero();
   free_joint_torques_to_solver(R, out.ff_torques.data(), out.ff_torques.data());
-  out.prescribed = in.prescribed;
-  if (in.any_prescribed()) {
+  if (prescribed) {
+    out.prescribed = in.prescribed;
     out.qdd_given = in.qdd_given;
     if (in.prescribed[0]) free_joint_accelerations_to_solver(R, out.qd.data(), in.qdd_given.data(), out.qdd_given.data());
+  } else {
+    out.prescribed.assign(in.prescribed.size(), false);  // (a fill by words: cheaper than the bitwise copy)
   }
   out.gravity = in.gravity;
   out.alpha = in.alpha;

@@ -49,8 +49,9 @@ void free_joint_torques_to_public(const Matrix3& R, const double* in, double* ou
 
 // The case in the solver's coordinates: `out` (Data::Workspace::free_case, whose storage
 // the Data reserved, so nothing is allocated) gets `in` with qd, ff_torques and qdd_given
-// full length and the free joint's entries converted. Returns out.
-const Case& free_joint_case(const Case& in, Case& out);
+// full length and the free joint's entries converted; `prescribed` is in.any_prescribed().
+// Returns out.
+const Case& free_joint_case(const Case& in, Case& out, bool prescribed);
 // The results of a solve of that case back in the public coordinates: qdd and every
 // torque vector of `d` (rates: the solver's qd, free_case.qd).
 void free_joint_results(const Case& solver_case, Data& d);

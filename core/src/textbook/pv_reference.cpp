@@ -415,7 +415,7 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   Case s;
   s.q = c.q;
   s.qd = s.ff_torques = s.qdd_given = Eigen::VectorXd::Zero(model.num_rates());
-  free_joint_case(c, s);
+  free_joint_case(c, s, c.any_prescribed());
   ReferenceSolution out = solve(model, s, o);
   const Matrix3 R = free_joint_rotation(c.q.data() + 3);
   free_joint_accelerations_to_public(R, s.qd.data(), out.qdd.data());
