@@ -32,7 +32,8 @@ void yield_to_efforts(const Model& model, Data& d, const Case& c, const Options&
   for (int i = model.free_joint_rates(); i < model.num_rates(); ++i) {
     const double effort = model.bodies[i].limits.effort;
     if (!(effort > 0) || (prescribed && c.prescribed[i])) continue;
-    r = std::max(r, std::abs(d.joint_torques[i]) / effort);
+    const double ratio = std::abs(d.joint_torques[i]) / effort;
+    r = std::max(r, std::isnan(ratio) ? INFINITY : ratio);  // (a push beyond a double's range: NaN torques)
   }
   // (a denormal effort limit makes the ratio overflow: reported as the largest double)
   d.effort_ratio = std::min(r, std::numeric_limits<double>::max());
@@ -40,7 +41,9 @@ void yield_to_efforts(const Model& model, Data& d, const Case& c, const Options&
   const double x = std::min(r - 1, 1.0), s = x * x * (3 - 2 * x);
   ConstraintVector given_up;
   solve_coupling_without(d, options, yielding, given_up);
-  d.nu += s * (given_up - d.nu);
+  // nu + s (nu_w - nu), nu_w itself where wholly given up (the followed nu may not be finite)
+  if (s == 1) d.nu = given_up;
+  else d.nu += s * (given_up - d.nu);
   d.yielded = s;
 }
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "achd/achd.hpp"
@@ -141,6 +142,30 @@ TEST(YieldToEfforts, DenormalAndHugeEffortLimits) {
     EXPECT_TRUE(std::isfinite(d.effort_ratio)) << effort;
     EXPECT_TRUE(d.nu.allFinite() && d.qdd.allFinite()) << effort;
     EXPECT_EQ(d.yielded, effort < 1 ? 1.0 : 0.0) << effort;
+  }
+}
+
+// A push whose followed solve leaves a double's range (beta_z = +-1e308: nu and the
+// torques overflow to inf and NaN) is given up wholly: the result is the solve without z,
+// finite, with the largest double as its ratio.
+TEST(YieldToEfforts, APushBeyondTheRangeOfADoubleIsGivenUp) {
+  Options vd;
+  vd.policy = SingularityPolicy::VariableDamping;
+  vd.exact_within_efforts = false;
+  Eigen::VectorXd q(6);
+  q << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
+  const Ur5 u;
+  Data without(u.model);
+  hybrid_dynamics(u.model, without, tip_case(u.model, u.tip, q, 0, false, 0), vd);
+  for (const double beta_z : {1e308, -1e308}) {
+    Data d(u.model);
+    hybrid_dynamics(u.model, d, tip_case(u.model, u.tip, q, beta_z, true, 1), vd);  // throws if not finite
+    EXPECT_EQ(d.yielded, 1.0) << beta_z;
+    EXPECT_EQ(d.effort_ratio, std::numeric_limits<double>::max()) << beta_z;
+    EXPECT_EQ(d.nu[0], 0.0) << beta_z;
+    EXPECT_TRUE(d.qdd.allFinite() && d.joint_torques.allFinite()) << beta_z;
+    for (int i = 0; i < 6; ++i)
+      EXPECT_NEAR(d.qdd[i], without.qdd[i], 1e-9 * (1 + without.qdd.cwiseAbs().maxCoeff())) << i;
   }
 }
 
