@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "achd/achd.hpp"
@@ -22,6 +25,19 @@ std::string write(const std::string& dir, const std::string& text) {
   const std::string path = dir + "/case.json";
   std::ofstream(path) << text;
   return path;
+}
+
+// `achd solve` on the LWR with each case head + tail exits 2, its message holding the
+// needle, and writes nothing on stdout.
+void expect_named_errors(const std::string& dir, const std::string& head,
+                         const std::vector<std::pair<std::string, std::string>>& cases) {
+  for (const auto& [tail, needle] : cases) {
+    const CliRun r = run_cli(dir, {"solve", kUrdf, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case",
+                                   write(dir, head + tail)});
+    EXPECT_EQ(r.exit_code, 2) << tail;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << needle << " not in: " << r.err;
+    EXPECT_EQ(r.out, "");
+  }
 }
 
 const char* kCase = R"({
@@ -91,13 +107,7 @@ TEST(CliDrivers, BadWeightsAndWrenchesAreNamed) {
        "constraints[0].w_ff[0] must be in [0, 1]"},
       {R"("f_virtual": {"no_such_link": [1, 0, 0, 0, 0, 0]}})", "f_virtual: "},
       {R"("f_virtual": [[1, 0, 0, 0, 0, 0]]})", "f_virtual: expected"}};
-  for (const auto& [tail, needle] : cases) {
-    const CliRun r = run_cli(dir, {"solve", kUrdf, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case",
-                                   write(dir, head + tail)});
-    EXPECT_EQ(r.exit_code, 2) << tail;
-    EXPECT_NE(r.err.find(needle), std::string::npos) << needle << " not in: " << r.err;
-    EXPECT_EQ(r.out, "");
-  }
+  expect_named_errors(dir, head, cases);
 }
 
 // The UR5's last link held in x and pushed up along z at beta_z: the push followed, then
@@ -157,13 +167,7 @@ TEST(CliDrivers, BadYieldsAreNamed) {
       {R"("yields": [true]}]})", "constraints[0].yields: expected 2 booleans (one per alpha column), got 1"},
       {R"("yields": [true, 1]}]})", "constraints[0].yields[1] must be true or false"},
       {R"("yields": true}]})", "constraints[0].yields must be an array of booleans"}};
-  for (const auto& [tail, needle] : cases) {
-    const CliRun r = run_cli(dir, {"solve", kUrdf, "--root", "lwr_base_link", "--tip", "lwr_link_7", "--case",
-                                   write(dir, head + tail)});
-    EXPECT_EQ(r.exit_code, 2) << tail;
-    EXPECT_NE(r.err.find(needle), std::string::npos) << needle << " not in: " << r.err;
-    EXPECT_EQ(r.out, "");
-  }
+  expect_named_errors(dir, head, cases);
 }
 
 }  // namespace
