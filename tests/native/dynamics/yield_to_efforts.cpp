@@ -43,6 +43,21 @@ Case tip_case(const Model& m, int tip, const Eigen::VectorXd& q, double beta_z, 
   return c;
 }
 
+// variable_damping as the simulator runs it with a push (exact_within_efforts off).
+Options pushing() {
+  Options o;
+  o.policy = SingularityPolicy::VariableDamping;
+  o.exact_within_efforts = false;
+  return o;
+}
+
+// The UR5 with its elbow bent, away from the stretched pose.
+Eigen::VectorXd bent_pose() {
+  Eigen::VectorXd q(6);
+  q << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
+  return q;
+}
+
 // r of a solve (ff_torques 0: its joint_torques are the constraint forces' alone)
 double effort_ratio(const Model& m, const Data& d) {
   double r = 0;
@@ -54,9 +69,7 @@ TEST(YieldToEfforts, FollowsWithinTheEffortsAndGivesWayBeyondThem) {
   const Ur5 u;
   const Model& m = u.model;
   Eigen::VectorXd q(6);
-  Options vd;
-  vd.policy = SingularityPolicy::VariableDamping;
-  vd.exact_within_efforts = false;
+  const Options vd = pushing();
   int below = 0, between = 0, beyond = 0;
   for (const double elbow : {1.2, 0.3, 0.05}) {
     q << 0.2, -1.0, elbow, -1.5, -1.4, 0.3;
@@ -113,9 +126,7 @@ TEST(YieldToEfforts, NothingYieldsOnARobotWithCoupledJoints) {
   b.alpha = ConstraintMatrix::Zero(6, 1);
   b.alpha(2, 0) = 1;
   b.beta = ConstraintVector::Constant(1, 1e4);  // 10^4 m/s^2: far past any effort
-  Options vd;
-  vd.policy = SingularityPolicy::VariableDamping;
-  vd.exact_within_efforts = false;
+  const Options vd = pushing();
   Data followed(m), marked(m);
   hybrid_dynamics(m, followed, c, vd);
   b.yields = 1;
@@ -129,11 +140,8 @@ TEST(YieldToEfforts, NothingYieldsOnARobotWithCoupledJoints) {
 // Hostile effort limits: denormal ones (any torque exceeds them, the ratio overflows)
 // give the push up wholly with a finite ratio; 1e308 ones never give it up.
 TEST(YieldToEfforts, DenormalAndHugeEffortLimits) {
-  Options vd;
-  vd.policy = SingularityPolicy::VariableDamping;
-  vd.exact_within_efforts = false;
-  Eigen::VectorXd q(6);
-  q << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
+  const Options vd = pushing();
+  const Eigen::VectorXd q = bent_pose();
   for (const double effort : {5e-324, 1e-310, 1e308}) {
     Ur5 u;
     for (Body& b : u.model.bodies) b.limits.effort = effort;
@@ -149,11 +157,8 @@ TEST(YieldToEfforts, DenormalAndHugeEffortLimits) {
 // torques overflow to inf and NaN) is given up wholly: the result is the solve without z,
 // finite, with the largest double as its ratio.
 TEST(YieldToEfforts, APushBeyondTheRangeOfADoubleIsGivenUp) {
-  Options vd;
-  vd.policy = SingularityPolicy::VariableDamping;
-  vd.exact_within_efforts = false;
-  Eigen::VectorXd q(6);
-  q << 0.2, -1.0, 1.2, -1.5, -1.4, 0.3;
+  const Options vd = pushing();
+  const Eigen::VectorXd q = bent_pose();
   const Ur5 u;
   Data without(u.model);
   hybrid_dynamics(u.model, without, tip_case(u.model, u.tip, q, 0, false, 0), vd);
