@@ -173,9 +173,9 @@ struct Data {
     // The last constraint sweep took a floating base's free joint in one 6-DoF step
     // (free_joint_constraints.hpp): d.E then holds the columns at the root, E_0 being 0.
     bool free_joint_step = false;
-    // A floating base's case with the free joint's qd, ff_torques and qdd_given in the
-    // solver's coordinates (free_joint.hpp), storage reserved by the constructor.
-    Case free_case;
+    // A floating base's qd, ff_torques and qdd_given in the solver's coordinates
+    // (free_joint.hpp), sized by the constructor.
+    Eigen::VectorXd free_qd, free_ff_torques, free_qdd_given;
     // Coupled joints (joint_couplings.cpp): the case of the extra solves and the
     // accelerations under each coupling's unit torques (n x p), reserved by the constructor.
     Case coupling_case;

@@ -179,7 +179,8 @@ void roll_to_base(const Model& model, Data& d, const ConstraintSource& s) {
 // The diagonal block K_ss and G_s of source s, summed from the base outward (so that a
 // chain's K is summed in body order). Returns its finite probe.
 template <int NC, bool P>
-double own_coupling(const Model& model, Data& d, const Case& c, const ConstraintSource& s) {
+double own_coupling(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given,
+                    const ConstraintSource& s) {
   Data::Workspace& w = d.workspace;
   CouplingSums<NC> sums;
   const double* ez = w.ez.data() + s.ez;
@@ -189,7 +190,7 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Constraint
     const int i = w.path[--depth];
     double known = w.u[i] * w.Dinv[i];
     if constexpr (P) {
-      if (c.prescribed[i]) known = c.qdd_given[i];
+      if (c.prescribed[i]) known = qdd_given[i];
     }
     sums.add(ez + i * ez_stride<NC>(), w.Dinv[i], known);
   }
@@ -330,7 +331,8 @@ int constraint_sources(const Model& model, Data& d, const Case& c) {
   return m;
 }
 
-double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescribed) {
+double constraint_sweep(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given,
+                        bool prescribed) {
   use_free_joint_step(model, d, c, prescribed);
   Data::Workspace& w = d.workspace;
   const int m = static_cast<int>(d.E.cols());
@@ -339,7 +341,7 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
   // (a driver weight reads every block's EZ_i along its whole path: the legs then roll apart)
   w.shared_body = shared_second_body(d, last_body(d));
   if (w.shared_body >= 0 && has_driver_weights(c)) w.shared_body = -1;
-  if (w.shared_body >= 0) return shared_second_body_sweep(model, d, c, prescribed, w.shared_body);
+  if (w.shared_body >= 0) return shared_second_body_sweep(model, d, c, qdd_given, prescribed, w.shared_body);
   double probe = 0;
   bool relative = false;
   for (const ConstraintSource& s : w.sources) {
@@ -347,7 +349,8 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescri
     probe += with_constraint_count(s.columns, [&](auto n) {
       constexpr int NC = decltype(n)::value;
       roll_to_base<NC>(model, d, s);
-      return prescribed ? own_coupling<NC, true>(model, d, c, s) : own_coupling<NC, false>(model, d, c, s);
+      return prescribed ? own_coupling<NC, true>(model, d, c, qdd_given, s)
+                        : own_coupling<NC, false>(model, d, c, qdd_given, s);
     });
   }
   if (relative) {
@@ -410,8 +413,9 @@ void unscale_constraint_forces(Data& d) {
   }
 }
 
-double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c, bool prescribed) {
-  if (c.ff_torques.size()) d.joint_torques = c.ff_torques;
+double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c,
+                                             const Eigen::VectorXd& ff_torques, bool prescribed) {
+  if (ff_torques.size()) d.joint_torques = ff_torques;
   else d.joint_torques.setZero();
   if (!c.f_virtual.empty()) d.joint_torques += d.virtual_torques;
   if (prescribed)

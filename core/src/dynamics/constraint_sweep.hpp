@@ -29,8 +29,10 @@ inline void for_each_on_path(const Model& model, const ConstraintSource& s, int 
 int constraint_sources(const Model& model, Data& d, const Case& c);
 
 // After the articulated-body sweep: every block's E rolled to the base (d.E = E_0, the
-// EZ_i kept), K (m x m) and G_0. Returns K's finite probe.
-double constraint_sweep(const Model& model, Data& d, const Case& c, bool prescribed);
+// EZ_i kept), K (m x m) and G_0 (qdd_given: the case's, in the solver's coordinates,
+// JointInputs). Returns K's finite probe.
+double constraint_sweep(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given,
+                        bool prescribed);
 
 // The right-hand side of K nu' = rhs (scaled columns): G_0 - beta' + E_0^T a_0, with
 // beta' = beta - alpha^T kappa at each block's point, and the physical convention's
@@ -49,8 +51,10 @@ void unscale_constraint_forces(Data& d);
 // The wrenches alpha nu (the tip's into constraint_wrench, one per Case::constraints block
 // and per loop joint into constraint_wrenches, at their points) and joint_torques = ff + virtual_torques -
 // sum_k J_k^T alpha_k nu_k (a prescribed joint's prescribed_torques in place of the first
-// two). Returns their finite probe.
-double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c, bool prescribed);
+// two; ff: the case's ff_torques in the solver's coordinates, JointInputs). Returns their
+// finite probe.
+double constraint_wrenches_and_joint_torques(const Model& model, Data& d, const Case& c,
+                                             const Eigen::VectorXd& ff_torques, bool prescribed);
 
 // d.joint_torques = -sum_k J_k^T alpha_k s_k nu_k for forces nu given in the scaled columns
 // (before unscale_constraint_forces): the torques the joints give the constraint forces nu

@@ -43,7 +43,8 @@ double weight(const ConstraintVector& w, int k) { return w.size() ? w[k] : 1.0; 
 
 // The two bias sweeps, f_ext alone and ff_torques alone: u_f,i / D_i and u_ff,i / D_i
 // into w.driver_qdd (two per body), 0 for prescribed joints.
-void driver_sweeps(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
+void driver_sweeps(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& ff_torques, const Options& o,
+                   bool prescribed) {
   Data::Workspace& w = d.workspace;
   const int n = model.num_rates();
   for (int i = 0; i < n; ++i) w.driver_bias[i].setZero();
@@ -59,7 +60,7 @@ void driver_sweeps(const Model& model, Data& d, const Case& c, const Options& o,
     const Vector6 pf = w.driver_bias[i].head<6>(), pff = w.driver_bias[i].tail<6>();
     const bool given = prescribed && c.prescribed[i];
     // the feed-forward torques: ff_torques and the virtual wrenches' torques
-    const double ff = given ? 0.0 : (c.ff_torques.size() ? c.ff_torques[i] : 0.0) + d.virtual_torques[i];
+    const double ff = given ? 0.0 : (ff_torques.size() ? ff_torques[i] : 0.0) + d.virtual_torques[i];
     const double uf = -S.z.dot(S.rotational ? pf.tail<3>() : pf.head<3>());
     const double uff = ff - S.z.dot(S.rotational ? pff.tail<3>() : pff.head<3>());
     w.driver_qdd[2 * i] = uf * w.Dinv[i];  // Dinv = 0 for a prescribed joint
@@ -82,8 +83,9 @@ bool has_driver_weights(const Case& c) {
   return false;
 }
 
-void weigh_drivers(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
-  driver_sweeps(model, d, c, o, prescribed);
+void weigh_drivers(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& ff_torques, const Options& o,
+                   bool prescribed) {
+  driver_sweeps(model, d, c, ff_torques, o, prescribed);
   Data::Workspace& w = d.workspace;
   for (const ConstraintSource& s : w.sources) {
     const ConstraintVector& wf = s.block < 0 ? c.w_fext : solve_block(c, d, s.block).w_fext;

@@ -13,6 +13,8 @@ bool has_driver_weights(const Case& c);
 // After constraint_rhs (the EZ_i, U_i, D_i of the sweeps in place): moves each column's
 // target by the shares of the drivers that pass through,
 // rhs_k -= (1 - w_fext,k) y_f,k + (1 - w_ff,k) y_ff,k.
-void weigh_drivers(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed);
+// ff_torques: the case's, in the solver's coordinates (JointInputs).
+void weigh_drivers(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& ff_torques, const Options& o,
+                   bool prescribed);
 
 }  // namespace achd

@@ -70,20 +70,21 @@ bool any_nonzero(const Eigen::VectorXd& v) {
 
 // Joint torques fed to the sweeps: tau = ff - damping qd - friction tanh(qd / v_f); a
 // prescribed joint's ff is ignored (its torque is an output), so its tau is the passive part.
-void joint_forces(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
+void joint_forces(const Model& model, Data& d, const Case& c, const JointInputs& j, const Options& o,
+                  bool prescribed) {
   Data::Workspace& w = d.workspace;
   const int n = model.num_rates();
-  if (c.ff_torques.size()) w.tau = c.ff_torques;
+  if (j.ff_torques.size()) w.tau = j.ff_torques;
   else w.tau.setZero(n);
   if (prescribed)
     for (int i = 0; i < n; ++i)
       if (c.prescribed[i]) w.tau[i] = 0;
-  if (!c.qd.size()) return;
+  if (!j.qd.size()) return;
   if (o.effects & kDamping)
-    for (int i = 0; i < n; ++i) w.tau[i] -= model.bodies[i].damping * c.qd[i];
+    for (int i = 0; i < n; ++i) w.tau[i] -= model.bodies[i].damping * j.qd[i];
   if (o.effects & kFriction)
     for (int i = 0; i < n; ++i)  // (tanh is the costliest term here: skipped where it has no effect)
-      if (model.bodies[i].friction != 0) w.tau[i] -= model.bodies[i].friction * std::tanh(c.qd[i] / o.friction_velocity);
+      if (model.bodies[i].friction != 0) w.tau[i] -= model.bodies[i].friction * std::tanh(j.qd[i] / o.friction_velocity);
 }
 
 const SpatialVector kZero{};
@@ -92,7 +93,7 @@ const SpatialVector kZero{};
 // v_i = v_p (shifted) + S qd_i;  c_i = v_p (shifted) x S qd_i;  kappa_i = kappa_p (shifted) + c_i;
 // pA_i = v_i x* I_i v_i + I_i kappa_i,
 // with I_i x = [m x_lin - h x x_ang; h x x_lin + C x_ang] for I_i = [m 1, -[h]x; [h]x, C].
-void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving) {
+void outward_kinematics(const Model& model, Data& d, const double* rates, bool moving) {
   for (int i = 0; i < model.num_rates(); ++i) {
     const Body& b = model.bodies[i];
     const int p = b.parent;
@@ -104,7 +105,7 @@ void outward_kinematics(const Model& model, Data& d, const Case& c, bool moving)
       continue;
     }
     const JointSubspace S = body_subspace(model, d, i);
-    const double qd = c.qd[i];
+    const double qd = rates[i];
     SpatialVector vp = kZero, kappa = kZero;  // v_p and kappa_p about body i's origin
     if (p >= 0) {
       const Shift s(d.r[i]);
@@ -179,7 +180,7 @@ void prescribed_to_parent(const Model& model, Data& d, int i, const Matrix6& IA,
 // keeps Dinv = 0, W = 0. X: the case has extra inertia (Case::extra_inertia), added to D
 // with the rotor inertia; without it the sweep is the one it was before that input.
 template <bool P, bool X>
-void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
+void inward_sweep(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given, bool rotor) {
   Data::Workspace& w = d.workspace;
   for (int i = model.num_rates() - 1; i >= 0; --i) {
     d.constraint_torques[i] = 0;  // constraint_torques() adds each block's share after the solve
@@ -195,7 +196,7 @@ void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
     const double u = w.tau[i] - S.project(pA);
     if constexpr (P) {
       if (c.prescribed[i]) {
-        prescribed_to_parent(model, d, i, IA, U, pA, D, u, c.qdd_given[i]);
+        prescribed_to_parent(model, d, i, IA, U, pA, D, u, qdd_given[i]);
         continue;
       }
     }
@@ -232,7 +233,8 @@ void inward_sweep(const Model& model, Data& d, const Case& c, bool rotor) {
 // D qdd_given + U^T a~_p (shifted) - u - ct: what tau (with the passive part, which u
 // holds) must be for the free joint's equation to give qdd_given.
 template <bool P>
-double outward_accelerations(const Model& model, Data& d, const Case& c, const Vector6& a0) {
+double outward_accelerations(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given,
+                             const Vector6& a0) {
   Data::Workspace& w = d.workspace;
   const int n = model.num_rates();
   double probe = 0;
@@ -246,7 +248,7 @@ double outward_accelerations(const Model& model, Data& d, const Case& c, const V
     // needs only the parent's acceleration, and the shift of a~ runs beside it
     double qdd;
     if constexpr (P) {
-      qdd = c.prescribed[i] ? c.qdd_given[i] : (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
+      qdd = c.prescribed[i] ? qdd_given[i] : (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
     } else {
       qdd = (w.u[i] + ct) * w.Dinv[i] - dot(load_pairs(w.W[i]), a);
     }
@@ -358,17 +360,17 @@ void keep_the_exact_solve_within_efforts(const Model& model, Data& d, const Case
   d.damped_lambda.resize(0);
 }
 
-// Steps 1 to 4 on a validated case (a floating base's in the solver's coordinates);
-// `prescribed`: c.any_prescribed().
-void solve(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
+// Steps 1 to 4 on a validated case whose joint inputs j are in the solver's coordinates
+// (a floating base's converted); `prescribed`: c.any_prescribed().
+void solve(const Model& model, Data& d, const Case& c, const JointInputs& j, const Options& o, bool prescribed) {
   const int nc = (o.effects & kConstraints) ? num_solve_columns(c, d) : 0;
   const bool gravity = o.effects & kGravity;
   // Skipped by themselves when their inputs are zero: the result is identical.
-  const bool moving = (o.effects & kVelocityProducts) && any_nonzero(c.qd);
+  const bool moving = (o.effects & kVelocityProducts) && any_nonzero(j.qd);
   const bool wrenches = (o.effects & kExternalWrenches) && !c.f_ext.empty();
 
-  joint_forces(model, d, c, o, prescribed);
-  outward_kinematics(model, d, c, moving);
+  joint_forces(model, d, c, j, o, prescribed);
+  outward_kinematics(model, d, j.qd.data(), moving);
   if (!c.f_virtual.empty()) {
     virtual_torques(model, d, c);  // added to the ff torques (a prescribed joint ignores both)
     for (int i = 0; i < model.num_rates(); ++i)
@@ -380,16 +382,16 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o, bool pr
 
   const bool rotor = o.effects & kRotorInertia;
   if (!c.extra_inertia.size()) {
-    if (prescribed) inward_sweep<true, false>(model, d, c, rotor);
-    else inward_sweep<false, false>(model, d, c, rotor);
+    if (prescribed) inward_sweep<true, false>(model, d, c, j.qdd_given, rotor);
+    else inward_sweep<false, false>(model, d, c, j.qdd_given, rotor);
   } else {
-    if (prescribed) inward_sweep<true, true>(model, d, c, rotor);
-    else inward_sweep<false, true>(model, d, c, rotor);
+    if (prescribed) inward_sweep<true, true>(model, d, c, j.qdd_given, rotor);
+    else inward_sweep<false, true>(model, d, c, j.qdd_given, rotor);
   }
   if (nc) {
     constraint_sources(model, d, c);
     // K must be finite before it is factored (an infinite pivot would pass for a zero).
-    const double K_probe = constraint_sweep(model, d, c, prescribed);
+    const double K_probe = constraint_sweep(model, d, c, j.qdd_given, prescribed);
     if (K_probe != 0) name_the_first_overflow(model, d, c, nc);
   }
 
@@ -399,7 +401,7 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o, bool pr
   if (nc) {
     // K nu = E_0^T a_0 + G_0 - beta' (constraint_sweep.hpp), in the scaled columns.
     constraint_rhs(d, c, o, moving);
-    if (has_driver_weights(c)) weigh_drivers(model, d, c, o, prescribed);
+    if (has_driver_weights(c)) weigh_drivers(model, d, c, j.ff_torques, o, prescribed);
     solve_coupling(d, o);
     if (d.workspace.exact_nu.size()) keep_the_exact_solve_within_efforts(model, d, c);
     if (o.policy == SingularityPolicy::VariableDamping) yield_to_efforts(model, d, c, o);  // yielding columns
@@ -423,8 +425,8 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o, bool pr
   // finite): checked once, at the end, and named only if it fails.
   d.prescribed_torques.setZero();
   constraint_torques(model, d);  // with the scaled columns' nu'
-  double probe = prescribed ? outward_accelerations<true>(model, d, c, a0)
-                            : outward_accelerations<false>(model, d, c, a0);
+  double probe = prescribed ? outward_accelerations<true>(model, d, c, j.qdd_given, a0)
+                            : outward_accelerations<false>(model, d, c, j.qdd_given, a0);
   unscale_constraint_forces(d);
 
   Vector6 shift = Vector6::Zero();
@@ -432,18 +434,24 @@ void solve(const Model& model, Data& d, const Case& c, const Options& o, bool pr
   // every link's acceleration, or those the Data asks for (Data::set_link_outputs)
   probe += d.all_link_outputs() ? link_accelerations(model, d, a0, shift)
                                 : asked_link_accelerations(model, d, a0, shift);
-  probe += constraint_wrenches_and_joint_torques(model, d, c, prescribed);
+  probe += constraint_wrenches_and_joint_torques(model, d, c, j.ff_torques, prescribed);
   if (probe != 0) name_the_first_overflow(model, d, c, nc);
 }
 
-// One solve of a validated case, without the couplings.
-void solve_uncoupled(const Model& model, Data& d, const Case& c, const Options& o) {
+// A floating base's solve: in the free joint's solver coordinates (free_joint.hpp).
+void solve_floating(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
+  Data::Workspace& w = d.workspace;
+  const JointInputs j = free_joint_inputs(c, prescribed, w.free_qd, w.free_ff_torques, w.free_qdd_given);
+  solve(model, d, c, j, o, prescribed);
+  free_joint_results(j.qd, d);
+}
+
+// One solve of a validated case, without the couplings. (Inlined into hybrid_dynamics:
+// called there, it cost a chain's solve 30 instructions of calls and register saves.)
+[[gnu::always_inline]] inline void solve_uncoupled(const Model& model, Data& d, const Case& c, const Options& o) {
   const bool prescribed = c.any_prescribed();
-  if (!model.floating) return solve(model, d, c, o, prescribed);
-  // A floating base: solved in the free joint's solver coordinates (free_joint.hpp).
-  const Case& s = free_joint_case(c, d.workspace.free_case, prescribed);
-  solve(model, d, s, o, prescribed);
-  free_joint_results(s, d);
+  if (model.floating) return solve_floating(model, d, c, o, prescribed);
+  solve(model, d, c, {c.qd, c.ff_torques, c.qdd_given}, o, prescribed);
 }
 
 }  // namespace

@@ -65,15 +65,7 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
     w.loop_blocks[l].alpha = ConstraintMatrix::Zero(6, columns);
     w.loop_blocks[l].beta = ConstraintVector::Zero(columns);
   }
-  if (model.floating) {
-    Case& f = w.free_case;
-    f.q = Eigen::VectorXd::Zero(model.num_positions());
-    f.qd = f.ff_torques = f.qdd_given = Eigen::VectorXd::Zero(n);
-    f.prescribed.reserve(n);
-    f.constraints.reserve(constraint_capacity);
-    f.f_ext.reserve(model.num_links());
-    f.f_virtual.reserve(model.num_links());
-  }
+  if (model.floating) w.free_qd = w.free_ff_torques = w.free_qdd_given = Eigen::VectorXd::Zero(n);
 }
 
 void Data::set_link_outputs(const std::vector<int>& links) {

@@ -96,37 +96,24 @@ void free_joint_torques_to_public(const Matrix3& R, const double* in, double* ou
   rotate(R, in + 3, out + 3);
 }
 
-const Case& free_joint_case(const Case& in, Case& out, bool prescribed) {
+JointInputs free_joint_inputs(const Case& in, bool prescribed, Eigen::VectorXd& qd, Eigen::VectorXd& ff_torques,
+                              Eigen::VectorXd& qdd_given) {
   const Matrix3 R = free_joint_rotation(in.q.data() + 3);
-  out.q = in.q;
-  if (in.qd.size()) out.qd = in.qd;
-  else out.qd.setZero();
-  free_joint_rates(R, out.qd.data(), out.qd.data());
-  if (in.ff_torques.size()) out.ff_torques = in.ff_torques;
-  else out.ff_torques.setZero();
-  free_joint_torques_to_solver(R, out.ff_torques.data(), out.ff_torques.data());
-  if (prescribed) {
-    out.prescribed = in.prescribed;
-    out.qdd_given = in.qdd_given;
-    if (in.prescribed[0]) free_joint_accelerations_to_solver(R, out.qd.data(), in.qdd_given.data(), out.qdd_given.data());
-  } else {
-    out.prescribed.assign(in.prescribed.size(), false);  // (a fill by words: cheaper than the bitwise copy)
-  }
-  out.gravity = in.gravity;
-  out.alpha = in.alpha;
-  out.beta = in.beta;
-  out.w_fext = in.w_fext;
-  out.w_ff = in.w_ff;
-  out.constraints = in.constraints;
-  out.f_ext = in.f_ext;
-  out.f_virtual = in.f_virtual;
-  out.extra_inertia = in.extra_inertia;  // added where the rotor inertia is, as it is
-  return out;
+  if (in.qd.size()) qd = in.qd;
+  else qd.setZero();
+  free_joint_rates(R, qd.data(), qd.data());
+  if (in.ff_torques.size()) ff_torques = in.ff_torques;
+  else ff_torques.setZero();
+  free_joint_torques_to_solver(R, ff_torques.data(), ff_torques.data());
+  if (!prescribed) return {qd, ff_torques, in.qdd_given};
+  qdd_given = in.qdd_given;
+  if (in.prescribed[0]) free_joint_accelerations_to_solver(R, qd.data(), in.qdd_given.data(), qdd_given.data());
+  return {qd, ff_torques, qdd_given};
 }
 
-void free_joint_results(const Case& solver_case, Data& d) {
+void free_joint_results(const Eigen::VectorXd& solver_qd, Data& d) {
   const Matrix3& R = d.X0[kFreeJointBodies - 1].R;
-  free_joint_accelerations_to_public(R, solver_case.qd.data(), d.qdd.data());
+  free_joint_accelerations_to_public(R, solver_qd.data(), d.qdd.data());
   for (Eigen::VectorXd* tau : {&d.constraint_torques, &d.total_torques, &d.joint_torques, &d.virtual_torques,
                                &d.prescribed_torques})
     free_joint_torques_to_public(R, tau->data(), tau->data());

@@ -23,6 +23,7 @@
 #include "achd/case.hpp"
 #include "achd/data.hpp"
 #include "achd/model.hpp"
+#include "joint_inputs.hpp"
 
 namespace achd {
 
@@ -47,13 +48,14 @@ void free_joint_accelerations_to_solver(const Matrix3& R, const double* rates, c
 void free_joint_torques_to_solver(const Matrix3& R, const double* in, double* out);
 void free_joint_torques_to_public(const Matrix3& R, const double* in, double* out);
 
-// The case in the solver's coordinates: `out` (Data::Workspace::free_case, whose storage
-// the Data reserved, so nothing is allocated) gets `in` with qd, ff_torques and qdd_given
-// full length and the free joint's entries converted; `prescribed` is in.any_prescribed().
-// Returns out.
-const Case& free_joint_case(const Case& in, Case& out, bool prescribed);
-// The results of a solve of that case back in the public coordinates: qdd and every
-// torque vector of `d` (rates: the solver's qd, free_case.qd).
-void free_joint_results(const Case& solver_case, Data& d);
+// The case's joint inputs in the solver's coordinates: qd and ff_torques, and when
+// `prescribed` (in.any_prescribed()) qdd_given, copied full length into the given vectors
+// (of the model's num_rates(), so that nothing is allocated) with the free joint's entries
+// converted. Without prescribed joints qdd_given is the case's own (not read).
+JointInputs free_joint_inputs(const Case& in, bool prescribed, Eigen::VectorXd& qd, Eigen::VectorXd& ff_torques,
+                              Eigen::VectorXd& qdd_given);
+// The results of a solve in the solver's coordinates back in the public ones: qdd and
+// every torque vector of `d` (solver_qd: the rates the solve took).
+void free_joint_results(const Eigen::VectorXd& solver_qd, Data& d);
 
 }  // namespace achd

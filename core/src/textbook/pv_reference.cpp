@@ -412,10 +412,12 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
     if (!f.isZero(0)) throw Error("pv_reference: virtual wrenches (f_virtual) are not implemented");
   if (!model.floating) return solve(model, c, o);
   // A floating base: solved in the free joint's solver coordinates, results converted back.
-  Case s;
-  s.q = c.q;
-  s.qd = s.ff_torques = s.qdd_given = Eigen::VectorXd::Zero(model.num_rates());
-  free_joint_case(c, s, c.any_prescribed());
+  Case s = c;  // its joint inputs in the solver's coordinates, all else as given
+  const bool prescribed = c.any_prescribed();
+  s.qd.resize(model.num_rates());
+  s.ff_torques.resize(model.num_rates());
+  if (prescribed) s.qdd_given.resize(model.num_rates());
+  free_joint_inputs(c, prescribed, s.qd, s.ff_torques, s.qdd_given);
   ReferenceSolution out = solve(model, s, o);
   const Matrix3 R = free_joint_rotation(c.q.data() + 3);
   free_joint_accelerations_to_public(R, s.qd.data(), out.qdd.data());

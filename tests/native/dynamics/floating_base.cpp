@@ -374,5 +374,44 @@ TEST(FloatingBase, PrescribedAtRestIsTheFixedBase) {
   EXPECT_LE(worst, 1e-12);
 }
 
+// A loop joint on a floating robot is the relative block it becomes: the four-bar closed
+// by its revolute loop, on a free joint, solved with loop_beta equals the same robot loaded
+// without the loop and holding that block (the loop's frames and columns, beta =
+// loop_beta) as a case block. (The floating solve once dropped loop_beta on its way into
+// the free joint's coordinates and solved with beta = 0.)
+TEST(FloatingBase, LoopJointsTakeTheirLoopBeta) {
+  UrdfOptions o;
+  o.floating = true;
+  const Model open = load_urdf_file(robot_path("four_bar.urdf"), "", "", o);
+  LoopJointSpec loop;
+  loop.name = "coupler_rocker";
+  loop.link_a = "coupler";
+  loop.origin_a.p = Vector3(0.12, 0, 0);
+  loop.link_b = "rocker";
+  loop.origin_b.p = Vector3(0.08, 0, 0);
+  loop.type = LoopType::Revolute;
+  loop.axis = Vector3(0, 1, 0);
+  o.loops = {loop};
+  const Model closed = load_urdf_file(robot_path("four_bar.urdf"), "", "", o);
+  ASSERT_EQ(closed.num_loop_columns(), 2);
+  Case c = Case::zeros(closed);
+  c.q << 0.1, -0.2, 0.3, 0.1, 0.2, -0.3, 0.9, 0.3, 2.1, -0.4;
+  c.qd = Eigen::VectorXd::LinSpaced(closed.num_rates(), -1, 1.5);
+  c.loop_beta = Eigen::Vector2d(0.25, -1.5);
+  Data dc(closed), dz(closed), db(open);
+  hybrid_dynamics(closed, dc, c);
+  Case zero_beta = c;
+  zero_beta.loop_beta.setZero();
+  hybrid_dynamics(closed, dz, zero_beta);
+  Case block = c;
+  block.loop_beta.resize(0);
+  block.constraints = {dc.workspace.loop_blocks[0]};
+  block.constraints[0].beta = c.loop_beta;
+  hybrid_dynamics(open, db, block);
+  EXPECT_LE(rel_error(dc.qdd, db.qdd), 1e-12);
+  EXPECT_LE(rel_error(dc.nu, db.nu), 1e-12);
+  EXPECT_GT(rel_error(dc.qdd, dz.qdd), 1e-3);  // (loop_beta moves the answer)
+}
+
 }  // namespace
 }  // namespace achd::test

@@ -38,7 +38,8 @@ int common_ancestor(const Model& model, int a, int b) {
 // G_s, summed from the base outward. C (6 x NC, column-major) gets the second leg's
 // forces at b, taken before the roll. Returns the finite probe of K_ss.
 template <int NC, bool P>
-double first_leg(const Model& model, Data& d, const Case& c, const ConstraintSource& s, double* C) {
+double first_leg(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given,
+                 const ConstraintSource& s, double* C) {
   Data::Workspace& w = d.workspace;
   double* column = d.E.col(s.column).data();
   UnitConstraintForces<NC> E(column);
@@ -55,7 +56,7 @@ double first_leg(const Model& model, Data& d, const Case& c, const ConstraintSou
     const int i = w.path[--depth];
     double known = w.u[i] * w.Dinv[i];
     if constexpr (P) {
-      if (c.prescribed[i]) known = c.qdd_given[i];
+      if (c.prescribed[i]) known = qdd_given[i];
     }
     sums.add(ez + i * ez_stride<NC>(), w.Dinv[i], known);
   }
@@ -104,8 +105,8 @@ bool first_leg_and_unit_coupling(const Model& model, const Data& d, const Constr
 // column-major) into Phi, Lambda (6 x 6, both triangles) and g. Returns Lambda's
 // finite probe.
 template <bool P>
-double unit_wrenches(const Model& model, Data& d, const Case& c, int b, double* Phi, double* Lambda,
-                     double (&g)[6]) {
+double unit_wrenches(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given, int b,
+                     double* Phi, double* Lambda, double (&g)[6]) {
   Data::Workspace& w = d.workspace;
   double identity[36] = {};
   for (int r = 0; r < 6; ++r) identity[7 * r] = 1;
@@ -121,7 +122,7 @@ double unit_wrenches(const Model& model, Data& d, const Case& c, int b, double* 
     const int i = w.path[--depth];
     double known = w.u[i] * w.Dinv[i];
     if constexpr (P) {
-      if (c.prescribed[i]) known = c.qdd_given[i];
+      if (c.prescribed[i]) known = qdd_given[i];
     }
     sums.add(w.shared_ez.data() + 6 * i, w.Dinv[i], known);
   }
@@ -168,7 +169,8 @@ int shared_second_body(const Data& d, int last) {
   return b >= 0 && m > 6 ? b : -1;
 }
 
-double shared_second_body_sweep(const Model& model, Data& d, const Case& c, bool prescribed, int b) {
+double shared_second_body_sweep(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given,
+                                bool prescribed, int b) {
   Data::Workspace& w = d.workspace;
   const int m = static_cast<int>(d.E.cols());
   double* C = w.shared_C.data();  // column k's force at b: C + 6 k
@@ -177,7 +179,8 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, bool
     probe += with_constraint_count(s.columns, [&](auto n) {
       constexpr int NC = decltype(n)::value;
       double* Cs = C + 6 * s.column;
-      return prescribed ? first_leg<NC, true>(model, d, c, s, Cs) : first_leg<NC, false>(model, d, c, s, Cs);
+      return prescribed ? first_leg<NC, true>(model, d, c, qdd_given, s, Cs)
+                        : first_leg<NC, false>(model, d, c, qdd_given, s, Cs);
     });
   for (size_t s = 0; s < w.sources.size(); ++s)
     for (size_t t = s + 1; t < w.sources.size(); ++t)
@@ -187,8 +190,8 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, bool
         });
       });
   double Phi[36], Lambda[36], g[6];
-  probe += prescribed ? unit_wrenches<true>(model, d, c, b, Phi, Lambda, g)
-                      : unit_wrenches<false>(model, d, c, b, Phi, Lambda, g);
+  probe += prescribed ? unit_wrenches<true>(model, d, c, qdd_given, b, Phi, Lambda, g)
+                      : unit_wrenches<false>(model, d, c, qdd_given, b, Phi, Lambda, g);
   // Y (row k at Y + 6 k), 0 for the blocks whose first leg does not meet b's path
   double Y[6 * kMaxConstraintColumns];
   bool has_Y[kMaxConstraintColumns];

@@ -16,8 +16,9 @@ int shared_second_body(const Data& d, int last);
 // d.E = E_0, K, G_0 as constraint_sweep computes them, the sources all ending on body b
 // (shared_second_body). Keeps each block's EZ_i along its first leg's path, the unit
 // wrenches' along b's path and the blocks' forces at b for shared_constraint_torques.
-// Returns K's finite probe.
-double shared_second_body_sweep(const Model& model, Data& d, const Case& c, bool prescribed, int b);
+// Returns K's finite probe. (qdd_given: the case's, in the solver's coordinates.)
+double shared_second_body_sweep(const Model& model, Data& d, const Case& c, const Eigen::VectorXd& qdd_given,
+                                bool prescribed, int b);
 
 // The constraint torques (constraint_sweep.hpp's constraint_torques) after
 // shared_second_body_sweep.
