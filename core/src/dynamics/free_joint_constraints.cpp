@@ -109,7 +109,8 @@ double free_joint_coupling(Data& d) {
 
 void free_joint_constraint_torques(const Model& model, Data& d) {
   const Data::Workspace& w = d.workspace;
-  Vector6 force = d.E * d.nu;  // F nu', at the root's origin
+  Vector6 force;  // F nu', at the root's origin (m >= 1)
+  columns_times(d.E.data(), d.nu.data(), static_cast<int>(d.nu.size()), force.data());
   for (int k = kFreeJointBodies - 1; k >= 0; --k) {
     // ct_k = -S_k^T f;  f <- f - U_k S_k^T f / D_k   (the six share one origin: no shift)
     const JointSubspace S = body_subspace(model, d, k);
