@@ -203,7 +203,8 @@ double own_coupling(const Model& model, Data& d, const Case& c, const Eigen::Vec
 // mutual_couplings_marked) and P_s ∩ P_t is the bodies of t's path found marked. Returns its
 // finite probe.
 template <int NS, int NT>
-double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
+double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t,
+                       int ancestor) {
   const Data::Workspace& w = d.workspace;
   double K[NS][NT] = {};
   const int last = last_body(d);
@@ -216,7 +217,7 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
     }
   };
   if (!s.relative && !t.relative) {
-    for (int i = common_ancestor(model, s.body, t.body); i >= last; i = model.bodies[i].parent) add(i);
+    for (int i = ancestor; i >= last; i = model.bodies[i].parent) add(i);
   } else {
     const unsigned char* on_s = w.walked.data();
     for_each_on_path(model, t, last, [&](int i) {
@@ -232,11 +233,13 @@ double mutual_coupling(const Model& model, Data& d, const ConstraintSource& s, c
   return probe;
 }
 
-// mutual_coupling of sources a and b, dispatched on their column counts.
-inline double pair_coupling(const Model& model, Data& d, const ConstraintSource& a, const ConstraintSource& b) {
+// mutual_coupling of sources a and b, dispatched on their column counts (ancestor: the
+// lowest common ancestor of two blocks on one link each, unused otherwise).
+inline double pair_coupling(const Model& model, Data& d, const ConstraintSource& a, const ConstraintSource& b,
+                            int ancestor) {
   return with_constraint_count(a.columns, [&](auto ns) {
     return with_constraint_count(b.columns, [&](auto nt) {
-      return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b);
+      return mutual_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, a, b, ancestor);
     });
   });
 }
@@ -251,7 +254,7 @@ __attribute__((noinline)) double mutual_couplings_marked(const Model& model, Dat
   for (size_t s = 0; s + 1 < w.sources.size(); ++s) {  // (the last pairs with none after it)
     const ConstraintSource& a = w.sources[s];
     for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 1; });
-    for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, a, w.sources[t]);
+    for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, a, w.sources[t], -1);
     for_each_on_path(model, a, last_body(d), [&](int i) { walked[i] = 0; });
   }
   return probe;
@@ -372,6 +375,9 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, const Eigen:
   w.shared_body = shared_second_body(d, last_body(d));
   if (w.shared_body >= 0 && has_driver_weights(c)) w.shared_body = -1;
   if (w.shared_body >= 0) return shared_second_body_sweep(model, d, c, qdd_given, prescribed, w.shared_body);
+  // (the blocks of two sources whose paths share no body passed one at a time stay 0: a
+  // floating base's legs, which meet in the free joint its 6-DoF step couples)
+  if (w.sources.size() > 1) d.K.setZero();
   double probe = 0;
   bool relative = false;
   for (const ConstraintSource& s : w.sources) {
@@ -387,7 +393,11 @@ double constraint_sweep(const Model& model, Data& d, const Case& c, const Eigen:
     probe += mutual_couplings_marked(model, d);
   } else {
     for (size_t s = 0; s < w.sources.size(); ++s)
-      for (size_t t = s + 1; t < w.sources.size(); ++t) probe += pair_coupling(model, d, w.sources[s], w.sources[t]);
+      for (size_t t = s + 1; t < w.sources.size(); ++t) {
+        const ConstraintSource &a = w.sources[s], &b = w.sources[t];
+        const int ancestor = common_ancestor(model, a.body, b.body);
+        if (ancestor >= last_body(d)) probe += pair_coupling(model, d, a, b, ancestor);
+      }
   }
   if (w.free_joint_step) probe += free_joint_coupling(d);
   return probe;
