@@ -65,8 +65,8 @@ double free_joint_coupling(Data& d) {
   const Vector6 b = wrench - d.pA[r];
   RootColumns y;
   y.count = (m + 2) & ~1;  // (the columns up to b's, rounded up to even)
+  y.set_columns(d.E.data(), m);
   for (int i = 0; i < 6; ++i) {
-    for (int s = 0; s < m; ++s) y.Y[i][s] = d.E(i, s);
     y.Y[i][m] = b[i];
     y.Y[i][m + 1] = 0;  // the second lane of b's last pair: L^-1 0 = 0
   }

@@ -16,6 +16,20 @@ struct RootColumns {
   double Y[6][kCapacity];
   int count = 0;  // even
 
+  // Y[i][s] = F(i, s) for the 6 x m columns F (column-major, 6 numbers a column): two
+  // columns at a time, each pair of rows of the two taken apart into Y's rows.
+  void set_columns(const double* F, int m) {
+    int s = 0;
+    for (; s + 1 < m; s += 2)
+      for (int i = 0; i < 6; i += 2) {
+        const Pair a = load_pair(F + 6 * s + i), b = load_pair(F + 6 * s + 6 + i);
+        store_pair(&Y[i][s], low_lanes(a, b));
+        store_pair(&Y[i + 1][s], high_lanes(a, b));
+      }
+    if (s < m)
+      for (int i = 0; i < 6; ++i) Y[i][s] = F[6 * s + i];
+  }
+
   // y_c = L^-1 y_c for every column, in place, L lower triangular (6 x 6, row-major):
   //   y_i = (x_i - sum_{k<i} L_ik y_k) / L_ii.
   void forward(const double (&L)[6][6]) {
