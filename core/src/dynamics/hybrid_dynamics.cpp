@@ -441,7 +441,8 @@ void solve(const Model& model, Data& d, const Case& c, const JointInputs& j, con
 // A floating base's solve: in the free joint's solver coordinates (free_joint.hpp).
 void solve_floating(const Model& model, Data& d, const Case& c, const Options& o, bool prescribed) {
   Data::Workspace& w = d.workspace;
-  const JointInputs j = free_joint_inputs(c, prescribed, w.free_qd, w.free_ff_torques, w.free_qdd_given);
+  const Matrix3& R = d.X0[kFreeJointBodies - 1].R;  // (the poses are computed before any solve)
+  const JointInputs j = free_joint_inputs(R, c, prescribed, w.free_qd, w.free_ff_torques, w.free_qdd_given);
   solve(model, d, c, j, o, prescribed);
   free_joint_results(j.qd, d);
 }

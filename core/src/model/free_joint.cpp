@@ -96,9 +96,8 @@ void free_joint_torques_to_public(const Matrix3& R, const double* in, double* ou
   rotate(R, in + 3, out + 3);
 }
 
-JointInputs free_joint_inputs(const Case& in, bool prescribed, Eigen::VectorXd& qd, Eigen::VectorXd& ff_torques,
-                              Eigen::VectorXd& qdd_given) {
-  const Matrix3 R = free_joint_rotation(in.q.data() + 3);
+JointInputs free_joint_inputs(const Matrix3& R, const Case& in, bool prescribed, Eigen::VectorXd& qd,
+                              Eigen::VectorXd& ff_torques, Eigen::VectorXd& qdd_given) {
   if (in.qd.size()) qd = in.qd;
   else qd.setZero();
   free_joint_rates(R, qd.data(), qd.data());

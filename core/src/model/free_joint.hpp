@@ -51,9 +51,10 @@ void free_joint_torques_to_public(const Matrix3& R, const double* in, double* ou
 // The case's joint inputs in the solver's coordinates: qd and ff_torques, and when
 // `prescribed` (in.any_prescribed()) qdd_given, copied full length into the given vectors
 // (of the model's num_rates(), so that nothing is allocated) with the free joint's entries
-// converted. Without prescribed joints qdd_given is the case's own (not read).
-JointInputs free_joint_inputs(const Case& in, bool prescribed, Eigen::VectorXd& qd, Eigen::VectorXd& ff_torques,
-                              Eigen::VectorXd& qdd_given);
+// converted by R, free_joint_rotation of in.q (body 5's pose: a solve has it in its X0).
+// Without prescribed joints qdd_given is the case's own (not read).
+JointInputs free_joint_inputs(const Matrix3& R, const Case& in, bool prescribed, Eigen::VectorXd& qd,
+                              Eigen::VectorXd& ff_torques, Eigen::VectorXd& qdd_given);
 // The results of a solve in the solver's coordinates back in the public ones: qdd and
 // every torque vector of `d` (solver_qd: the rates the solve took).
 void free_joint_results(const Eigen::VectorXd& solver_qd, Data& d);

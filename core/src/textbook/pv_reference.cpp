@@ -417,7 +417,7 @@ ReferenceSolution pv_reference(const Model& model, const Case& c, const Options&
   s.qd.resize(model.num_rates());
   s.ff_torques.resize(model.num_rates());
   if (prescribed) s.qdd_given.resize(model.num_rates());
-  free_joint_inputs(c, prescribed, s.qd, s.ff_torques, s.qdd_given);
+  free_joint_inputs(free_joint_rotation(c.q.data() + 3), c, prescribed, s.qd, s.ff_torques, s.qdd_given);
   ReferenceSolution out = solve(model, s, o);
   const Matrix3 R = free_joint_rotation(c.q.data() + 3);
   free_joint_accelerations_to_public(R, s.qd.data(), out.qdd.data());
