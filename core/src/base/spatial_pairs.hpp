@@ -29,6 +29,13 @@ inline SpatialVector operator-(const SpatialVector& a, const SpatialVector& b) {
 inline SpatialVector operator*(const SpatialVector& a, Pair s) { return {{a.p[0] * s, a.p[1] * s, a.p[2] * s}}; }
 inline SpatialVector operator*(const SpatialVector& a, double s) { return a * splat(s); }
 
+// x + A y for the m columns A (column-major, six numbers a column), the columns added in
+// order.
+inline SpatialVector add_columns_times(SpatialVector x, const double* A, const double* y, int m) {
+  for (int j = 0; j < m; ++j) x = x + load_pairs(A + 6 * j) * y[j];
+  return x;
+}
+
 // a . b, summed as (pairs 0 + 1) + 2, then the two lanes.
 inline double dot(const SpatialVector& a, const SpatialVector& b) {
   const Pair s = (a.p[0] * b.p[0] + a.p[1] * b.p[1]) + a.p[2] * b.p[2];

@@ -21,6 +21,7 @@
 #include "free_joint.hpp"
 #include "free_joint_pairs.hpp"
 #include "joint_subspace.hpp"
+#include "spatial_pairs.hpp"
 
 namespace achd {
 
@@ -109,8 +110,11 @@ double free_joint_coupling(Data& d) {
 
 void free_joint_constraint_torques(const Model& model, Data& d) {
   const Data::Workspace& w = d.workspace;
-  Vector6 force;  // F nu', at the root's origin (m >= 1)
-  columns_times(d.E.data(), d.nu.data(), static_cast<int>(d.nu.size()), force.data());
+  // F nu', at the root's origin: the first column's share, then the others' (m >= 1)
+  const double* F = d.E.data();
+  Vector6 force;
+  const int m = static_cast<int>(d.nu.size());
+  store_pairs(force, add_columns_times(load_pairs(F) * d.nu[0], F + 6, d.nu.data() + 1, m - 1));
   for (int k = kFreeJointBodies - 1; k >= 0; --k) {
     // ct_k = -S_k^T f;  f <- f - U_k S_k^T f / D_k   (the six share one origin: no shift)
     const JointSubspace S = body_subspace(model, d, k);

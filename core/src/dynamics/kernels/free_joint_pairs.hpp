@@ -58,19 +58,4 @@ struct RootColumns {
   }
 };
 
-// f = F nu for the 6 x m columns F (column-major, 6 numbers a column): the columns summed
-// in order, three pairs a column, each component as a scalar loop over k would sum it.
-inline void columns_times(const double* F, const double* nu, int m, double* f) {
-  Pair f0 = load_pair(F) * splat(nu[0]), f1 = load_pair(F + 2) * splat(nu[0]), f2 = load_pair(F + 4) * splat(nu[0]);
-  for (int k = 1; k < m; ++k) {
-    const Pair x = splat(nu[k]);
-    f0 += load_pair(F + 6 * k) * x;
-    f1 += load_pair(F + 6 * k + 2) * x;
-    f2 += load_pair(F + 6 * k + 4) * x;
-  }
-  store_pair(f, f0);
-  store_pair(f + 2, f1);
-  store_pair(f + 4, f2);
-}
-
 }  // namespace achd

@@ -19,6 +19,7 @@
 #include "constraint_count.hpp"
 #include "constraint_pairs.hpp"
 #include "joint_subspace.hpp"
+#include "spatial_pairs.hpp"
 
 namespace achd {
 namespace {
@@ -141,20 +142,6 @@ inline double dot6(const double* x, const double* y) {
   return s[0] + s[1];
 }
 
-// x += A y, A 6 x 6 column-major, x and y of 6, two rows to a Pair.
-inline void add_product(const double* A, const double* y, double* x) {
-  Pair x0 = load_pair(x), x1 = load_pair(x + 2), x2 = load_pair(x + 4);
-  for (int j = 0; j < 6; ++j) {
-    const Pair s = splat(y[j]);
-    x0 += load_pair(A + 6 * j) * s;
-    x1 += load_pair(A + 6 * j + 2) * s;
-    x2 += load_pair(A + 6 * j + 4) * s;
-  }
-  store_pair(x, x0);
-  store_pair(x + 2, x1);
-  store_pair(x + 4, x2);
-}
-
 }  // namespace
 
 int shared_second_body(const Data& d, int last) {
@@ -207,10 +194,11 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
     const double* ck = C + 6 * k;
     double* mk = M + 6 * k;
     for (int r = 0; r < 6; ++r) mk[r] = 0;
-    add_product(Lambda, ck, mk);
+    store_pairs(mk, add_columns_times(load_pairs(mk), Lambda, ck, 6));
     if (has_Y[k])
       for (int r = 0; r < 6; ++r) mk[r] += Y[6 * k + r];
-    add_product(Phi, ck, d.E.col(k).data());
+    double* e = d.E.col(k).data();
+    store_pairs(e, add_columns_times(load_pairs(e), Phi, ck, 6));
     d.G0[k] += dot6(ck, g);
   }
   // K_kl += C_k^T M_l (+ Y_k C_l), l <= k, mirrored
