@@ -261,49 +261,83 @@ ConstraintVector kind_scales(const Data& data, const int* columns, int n) {
   return scale;
 }
 
+// K_HH, the coupling of the columns h[0..nh) among themselves.
+CouplingMatrix principal_block(const CouplingMatrix& K, const int* h, int nh) {
+  CouplingMatrix Khh(nh, nh);
+  for (int i = 0; i < nh; ++i)
+    for (int j = 0; j < nh; ++j) Khh(i, j) = K(h[i], h[j]);
+  return Khh;
+}
+
+// The columns that give way (solve_held_first), as few as leave the held ones H clear of
+// the singular region: first, for each damped eigen-direction, its largest component
+// among the columns not yet giving way; then, while K_HH still has an eigenvalue within
+// 4 eps, the largest component of K_HH's lowest eigen-direction. Below 2 eps the held
+// ones' exact solve would blend into the plain damping, and every column would carry
+// part of the lost motion without an event; choosing at twice that leaves room for the
+// later stages of a step, which keep the columns its first solve chose. A lost
+// combination spread over several columns (the LWR holding 6D on a driven base) so
+// gives way in the columns that span it, and the others stay exact.
+void choose_giving_columns(const Data& data, double eps, bool* gives_way) {
+  const int nc = static_cast<int>(data.K.rows());
+  int nl = 0;
+  for (Eigen::Index j = 0; j < data.damped.cols() && nl < nc - 1; ++j) {
+    int column = -1;
+    for (int i = 0; i < nc; ++i)
+      if (!gives_way[i] && (column < 0 || std::abs(data.damped(i, j)) > std::abs(data.damped(column, j))))
+        column = i;
+    gives_way[column] = true;
+    ++nl;
+  }
+  while (nl < nc - 1) {
+    int h[kMaxConstraintColumns], nh = 0;
+    for (int i = 0; i < nc; ++i)
+      if (!gives_way[i]) h[nh++] = i;
+    const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(principal_block(data.K, h, nh));
+    if (eig.eigenvalues()[0] > 4 * eps) return;
+    Eigen::Index lowest = 0;
+    eig.eigenvectors().col(0).cwiseAbs().maxCoeff(&lowest);
+    gives_way[h[lowest]] = true;
+    ++nl;
+  }
+}
+
 // After solve_by_eigen_decomposition has damped some eigen-directions of K (data.K,
-// data.workspace.rhs: the scaled K' and rhs): the columns L those directions belong to
-// (each one's largest component; or Options::gives_way) give way, and the others H are
-// solved exactly, so that a lost direction does not take the accuracy of the held ones
-// with it. With K in blocks, nu_H = K_HH^-1 (rhs_H - K_HL nu_L), and nu_L solves the
-// Schur complement S = K_LL - K_LH K_HH^-1 K_HL (the coupling of L once H is enforced)
-// with the same variable damping. Where K_HH itself nears the singular region, its
+// data.workspace.rhs: the scaled K' and rhs): the columns L of choose_giving_columns (or
+// Options::gives_way) give way, and the others H are solved exactly, so that a lost
+// direction does not take the accuracy of the held ones with it. With K in blocks,
+// nu_H = K_HH^-1 (rhs_H - K_HL nu_L), and nu_L solves the Schur complement
+// S = K_LL - K_LH K_HH^-1 K_HL (the coupling of L once H is enforced) with the same
+// variable damping: within L only the lost combination is damped. Where K_HH itself nears
+// the singular region (with the columns given, which a simulator fixes for a step), its
 // smallest eigenvalue k from 2 eps down to eps, the solve moves to the plain variable
 // damping (data.nu on entry) by nu = nu_vd + s (nu_hf - nu_vd), s = x^2 (3 - 2x),
 // x = k / eps - 1, so that the right-hand side of a simulation stays continuous there.
-// False (data.nu left as the plain variable damping) when every column gives way, when
-// two damped directions fall on one column (columns decided here), or k <= eps.
+// False (data.nu left as the plain variable damping) when every column gives way or
+// k <= eps.
 bool solve_held_first(Data& data, const Options& options) {
-  const int nc = static_cast<int>(data.K.rows()), ndamped = static_cast<int>(data.damped.cols());
+  const int nc = static_cast<int>(data.K.rows());
+  const CouplingMatrix& K = data.K;
+  const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  const double eps = options.singular_region * sigma_max;
   bool gives_way[kMaxConstraintColumns] = {false};
-  int nl = 0;
   if (options.gives_way) {
-    for (int i = 0; i < nc; ++i) nl += gives_way[i] = options.gives_way >> i & 1u;
+    for (int i = 0; i < nc; ++i) gives_way[i] = options.gives_way >> i & 1u;
   } else {
-    for (int j = 0; j < ndamped; ++j) {
-      Eigen::Index column = 0;
-      data.damped.col(j).cwiseAbs().maxCoeff(&column);
-      nl += !gives_way[column];
-      gives_way[column] = true;
-    }
-    if (nl != ndamped) return false;
+    choose_giving_columns(data, eps, gives_way);
   }
-  const int nh = nc - nl;
+  int h[kMaxConstraintColumns], l[kMaxConstraintColumns], nh = 0, nl = 0;
+  for (int i = 0; i < nc; ++i) (gives_way[i] ? l[nl++] : h[nh++]) = i;
   if (nl == 0 || nh == 0) return false;
   for (int i = 0; i < nc; ++i) data.workspace.gave_way |= static_cast<std::uint64_t>(gives_way[i]) << i;
-  int h[kMaxConstraintColumns], l[kMaxConstraintColumns];
-  for (int i = 0, a = 0, b = 0; i < nc; ++i) (gives_way[i] ? l[b++] : h[a++]) = i;
-  const CouplingMatrix& K = data.K;
   const ConstraintVector& rhs = data.workspace.rhs;
-  CouplingMatrix Khh(nh, nh), Khl(nh, nl), S(nl, nl);
+  const CouplingMatrix Khh = principal_block(K, h, nh);
+  CouplingMatrix Khl(nh, nl), S(nl, nl);
   ConstraintVector rh(nh), b(nl);
   for (int i = 0; i < nh; ++i) {
     rh[i] = rhs[h[i]];
-    for (int j = 0; j < nh; ++j) Khh(i, j) = K(h[i], h[j]);
     for (int j = 0; j < nl; ++j) Khl(i, j) = K(h[i], l[j]);
   }
-  const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-  const double eps = options.singular_region * sigma_max;
   // H must itself be clear of the singular region, or its exact solve is unbounded.
   const double khh_min = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(Khh, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
   if (!(khh_min > eps)) return false;

@@ -8,8 +8,8 @@
 namespace achd {
 namespace {
 
-// A direction is limited as soon as the damping acts on one of its eigen-directions
-// (lambda > 0: sigma below the singular region) with an effect: more than
+// A direction is limited as soon as the damping (lambda > 0 on an eigen-direction: sigma
+// below the singular region) leaves its own column with an effect: more than
 // kUnmetPosition w^2 of its acceleration undelivered (a constant unmet acceleration u
 // settles as a position error u / w^2 under the stabilisation at w, so below it the
 // direction stays within kUnmetPosition of its hold, m or rad). It is released when the
@@ -93,16 +93,22 @@ void DirectionEventLog::update(const Model& model, const std::vector<LinkDirecti
       unmet_[s][k] = std::abs(r / ws.alpha_scale[j]);
     }
   }
+  // The solve damps whole eigen-directions but leaves them undelivered in the columns that
+  // gave way (coupling_solve.cpp's held-first solve: the others are solved exactly), so a
+  // direction is lost when its own column's acceleration is undelivered with an effect,
+  // whichever eigen-direction the damping acted on; lambda / sigma, the largest of the
+  // damped eigen-directions, says whether the damping dominates.
   const double unmet_tolerance = kUnmetPosition * w * w;
+  double damping_ratio = 0;
   for (Eigen::Index j = 0; j < ndamped; ++j) {
-    Eigen::Index column = 0;
-    first.damped.col(j).cwiseAbs().maxCoeff(&column);
-    const auto [s, k] = column_[column];
     const double sigma = first.damped_sigma[j], lambda = first.damped_lambda[j];
-    const double r = sigma > 0 ? lambda / sigma : std::numeric_limits<double>::infinity();
-    if (!(unmet_[s][k] > unmet_tolerance)) continue;  // damped, to no effect: still followed
+    damping_ratio = std::max(damping_ratio, sigma > 0 ? lambda / sigma : std::numeric_limits<double>::infinity());
+  }
+  for (Eigen::Index j = 0; ndamped && j < nc; ++j) {
+    const auto [s, k] = column_[j];
+    if (!(unmet_[s][k] > unmet_tolerance)) continue;  // delivered: still followed
     lost_[s][k] = true;
-    ratio_[s][k] = std::max(ratio_[s][k], r);
+    ratio_[s][k] = damping_ratio;
   }
   // Pushed directions the solve gave up for the joints' efforts (yield_to_efforts.hpp):
   // lost while it did with an effect, released once wholly given up (yielded = 1).

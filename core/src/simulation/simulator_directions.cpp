@@ -125,8 +125,10 @@ std::array<double, kNumDirections> Simulator::residuals(int link) const {
 std::array<double, kNumDirections> Simulator::max_residuals(int link) const {
   std::array<double, kNumDirections> r = residuals(link);
   const LinkDirections* set = directions_->find(link);
-  if (set)
-    for (int k = 0; k < kNumDirections; ++k) r[k] = std::max(std::abs(r[k]), set->max_residual[k]);
+  if (!set) return r;
+  const int s = static_cast<int>(set - directions_->sets().data());
+  for (int k = 0; k < kNumDirections; ++k)
+    r[k] = std::max(directions_->events().released(s, k) ? 0.0 : std::abs(r[k]), set->max_residual[k]);
   return r;
 }
 
