@@ -23,15 +23,18 @@
 //     run used to stop there on the substep floor). The push gives way to the efforts:
 //     z is released with an event whose effort ratio is at least 2 and resumed later,
 //     rx stays held within 1e-9 and has no event, and the run reaches 4 s.
-//   - The LWR holding its tip in 6D while its base joint is driven on a sine, 1 rad about
-//     0.3 rad at 0.1 Hz (robots/scenes/kuka_lwr4_hold_6d_driven_base.json), 10 s: the
-//     drive drags the arm through poses where the six holds cannot all be followed. The
-//     run used to stop at t = 1.104 s on the 100000-substep cap of one step: the
-//     held-first solve switched, stage by stage, between two choices of the column that
-//     gives way (a jump of the right-hand side the adaptive step cannot pass). Now the
-//     choice is fixed for the rest of a step, the move to the plain variable damping is
-//     continuous, and the run reaches 10 s with its lost directions released and resumed
-//     by events, in under 100000 substeps in all.
+//   - The LWR holding its tip in 6D while its base joint follows 0.3 + 1.2 sin(2 pi 0.05 t)
+//     (robots/scenes/kuka_lwr4_hold_6d_driven_base.json), 20 s: the drive drags the arm
+//     through poses where the six holds cannot all be followed. The run reaches 20 s
+//     (it once stopped on the 100000-substep cap of one step), the directions that give
+//     way are released and resumed with events, and outside events every held residual
+//     stays within 1e-6: a lost combination gives way in the columns that span it, the
+//     others solved exactly (z drifted 4.5 mm without an event when the plain variable
+//     damping spread the lost motion over every column). "Outside events" excludes, per
+//     direction, the time from its limited or released event to its resumed one, and the
+//     stabilisation's settling time after its resumed event and after the start (kSettle:
+//     a direction resumed while moving is re-anchored where it is, and its speed decays as
+//     (1 + w t) e^-w t, as the scene's start, whose driven base moves at t = 0).
 // The CPU time is std::clock's: this process's, which a loaded machine's other work does
 // not count.
 #include <gtest/gtest.h>
@@ -48,8 +51,13 @@
 namespace achd::test {
 namespace {
 
+// The stabilisation's settling time at the default w: a held error decays to 1e-6 of
+// itself within it (simulator_options.hpp).
+constexpr double kSettle = 0.2;
+
 struct Figures {
   double residual = 0, energy_drift = 0, cpu_per_s = 0;
+  double residual_outside_events = 0;  // per direction: neither lost nor within kSettle of the start or its resumption
   std::size_t events = 0;
   std::int64_t substeps = 0, stiff_substeps = 0;
 };
@@ -63,22 +71,38 @@ Figures run_scene(const char* file) {
   const double E0 = sim.energy();
   double max_T = sim.kinetic_energy(), max_dE = 0;
   Figures f;
+  // per link and direction: lost (limited or released), and since when it is followed
+  std::vector<std::array<bool, kNumDirections>> lost(sim.model().num_links());
+  std::vector<std::array<double, kNumDirections>> followed_since(sim.model().num_links());
+  std::size_t seen = 0;
   const std::clock_t start = std::clock();
   for (std::int64_t k = 0; k < scene.steps(); ++k) {
     sim.step(scene.dt);
     max_T = std::max(max_T, sim.kinetic_energy());
     max_dE = std::max(max_dE, std::abs(sim.energy() - E0));
-    for (const LinkDirections& set : sim.direction_sets())
-      for (double x : sim.residuals(set.link)) f.residual = std::max(f.residual, std::abs(x));
+    for (; seen < sim.events().size(); ++seen) {
+      const DirectionEvent& e = sim.events()[seen];
+      if (e.link < 0) continue;  // a loop's
+      lost[e.link][e.direction] = e.kind != DirectionEventKind::Resumed;
+      followed_since[e.link][e.direction] = e.t;
+    }
+    for (const LinkDirections& set : sim.direction_sets()) {
+      const auto r = sim.residuals(set.link);
+      for (int d = 0; d < kNumDirections; ++d) {
+        f.residual = std::max(f.residual, std::abs(r[d]));
+        if (!lost[set.link][d] && sim.t - followed_since[set.link][d] > kSettle)
+          f.residual_outside_events = std::max(f.residual_outside_events, std::abs(r[d]));
+      }
+    }
   }
   f.cpu_per_s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC / sim.t;
   f.energy_drift = max_dE / max_T;
   f.events = sim.events().size();
   f.substeps = sim.substeps();
   f.stiff_substeps = sim.stiff_substeps();
-  std::printf("%s, %.2f s: held residual %.3g, energy drift %.3g (max T %.4g J), %zu events, %lld substeps "
+  std::printf("%s, %.2f s: held residual %.3g (%.3g outside events), energy drift %.3g (max T %.4g J), %zu events, %lld substeps "
               "(%lld rejected, %lld stiff), %.3g s CPU per simulated s\n",
-              file, sim.t, f.residual, f.energy_drift, max_T, f.events, static_cast<long long>(f.substeps),
+              file, sim.t, f.residual, f.residual_outside_events, f.energy_drift, max_T, f.events, static_cast<long long>(f.substeps),
               static_cast<long long>(sim.rejected_substeps()), static_cast<long long>(f.stiff_substeps), f.cpu_per_s);
   return f;
 }
@@ -101,7 +125,8 @@ TEST(HardScenes, FloatingHumanoidHoldsBothSolesUnderAStiffJointPd) {
 TEST(HardScenes, LwrHoldingSixDirectionsRunsOnWhileItsBaseIsDriven) {
   const Figures f = run_scene("kuka_lwr4_hold_6d_driven_base.json");  // throws if a step fails
   EXPECT_GT(f.events, 0u);  // the directions it cannot follow are reported
-  EXPECT_LE(f.substeps, 100000);
+  EXPECT_LE(f.residual_outside_events, 1e-6);
+  EXPECT_LE(f.substeps, 150000);
 }
 
 TEST(HardScenes, Ur5PushGivesWayAtItsBoundaryWhileRxStaysHeld) {
