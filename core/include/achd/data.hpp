@@ -166,6 +166,9 @@ struct Data {
     // variable_damping: the columns that gave way in the last solve, or were chosen to
     // (solve_held_first; Options::gives_way; bit j: column j), 0 when none was.
     std::uint64_t gave_way = 0;
+    // variable_damping: the columns that may yield (ConstraintBlock::yields, bit j: column
+    // j), which give way first where the solve must give way (solve_held_first).
+    std::uint64_t yielding = 0;
     // Set by a caller that has already put body_poses at the next solve's q into X0 and r
     // (the simulator, whose held directions need the poses before the solve): that solve
     // takes them as they are and clears the flag; any other solve computes them.

@@ -271,7 +271,9 @@ CouplingMatrix principal_block(const CouplingMatrix& K, const int* h, int nh) {
 
 // The columns that give way (solve_held_first), as few as leave the held ones H clear of
 // the singular region: first, for each damped eigen-direction, its largest component
-// among the columns not yet giving way; then, while K_HH still has an eigenvalue within
+// among the columns not yet giving way (a yielding column, one that asks for motion,
+// where its component is at least half that: a push into the boundary gives way before
+// the holds beside it); then, while K_HH still has an eigenvalue within
 // 4 eps, the largest component of K_HH's lowest eigen-direction. Below 2 eps the held
 // ones' exact solve would blend into the plain damping, and every column would carry
 // part of the lost motion without an event; choosing at twice that leaves room for the
@@ -281,11 +283,19 @@ CouplingMatrix principal_block(const CouplingMatrix& K, const int* h, int nh) {
 void choose_giving_columns(const Data& data, double eps, bool* gives_way) {
   const int nc = static_cast<int>(data.K.rows());
   int nl = 0;
-  for (Eigen::Index j = 0; j < data.damped.cols() && nl < nc - 1; ++j) {
+  const auto largest = [&](Eigen::Index j, std::uint64_t among) {
     int column = -1;
     for (int i = 0; i < nc; ++i)
-      if (!gives_way[i] && (column < 0 || std::abs(data.damped(i, j)) > std::abs(data.damped(column, j))))
+      if (!gives_way[i] && (among >> i & 1u) &&
+          (column < 0 || std::abs(data.damped(i, j)) > std::abs(data.damped(column, j))))
         column = i;
+    return column;
+  };
+  for (Eigen::Index j = 0; j < data.damped.cols() && nl < nc - 1; ++j) {
+    int column = largest(j, ~std::uint64_t{0});
+    const int yielding = largest(j, data.workspace.yielding);
+    if (yielding >= 0 && std::abs(data.damped(yielding, j)) >= 0.5 * std::abs(data.damped(column, j)))
+      column = yielding;
     gives_way[column] = true;
     ++nl;
   }

@@ -360,6 +360,17 @@ void keep_the_exact_solve_within_efforts(const Model& model, Data& d, const Case
   d.damped_lambda.resize(0);
 }
 
+// The variable_damping coupling solve: the columns that may yield give way first where
+// the solve must give way (Data::workspace.yielding), the exact solve is kept where the
+// joints' efforts allow it, and the yielding columns give way to the efforts. Not inlined:
+// the other policies' solve does not carry it.
+[[gnu::noinline]] void solve_variably_damped(const Model& model, Data& d, const Case& c, const Options& o) {
+  d.workspace.yielding = yielding_columns(c);
+  solve_coupling(d, o);
+  if (d.workspace.exact_nu.size()) keep_the_exact_solve_within_efforts(model, d, c);
+  yield_to_efforts(model, d, c, o);
+}
+
 // Steps 1 to 4 on a validated case whose joint inputs j are in the solver's coordinates
 // (a floating base's converted); `prescribed`: c.any_prescribed().
 void solve(const Model& model, Data& d, const Case& c, const JointInputs& j, const Options& o, bool prescribed) {
@@ -402,10 +413,12 @@ void solve(const Model& model, Data& d, const Case& c, const JointInputs& j, con
     // K nu = E_0^T a_0 + G_0 - beta' (constraint_sweep.hpp), in the scaled columns.
     constraint_rhs(d, c, o, moving);
     if (has_driver_weights(c)) weigh_drivers(model, d, c, j.ff_torques, o, prescribed);
-    solve_coupling(d, o);
-    if (d.workspace.exact_nu.size()) keep_the_exact_solve_within_efforts(model, d, c);
-    if (o.policy == SingularityPolicy::VariableDamping) yield_to_efforts(model, d, c, o);  // yielding columns
-    else d.effort_ratio = d.yielded = 0;
+    if (o.policy == SingularityPolicy::VariableDamping) {
+      solve_variably_damped(model, d, c, o);
+    } else {
+      solve_coupling(d, o);
+      d.effort_ratio = d.yielded = 0;
+    }
   } else {
     d.effort_ratio = 0;
     d.yielded = 0;

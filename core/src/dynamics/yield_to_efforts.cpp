@@ -9,23 +9,27 @@
 
 namespace achd {
 
+std::uint64_t yielding_columns(const Case& c) {
+  // in nu's order: the tip's columns (none yield), then each block's
+  std::uint64_t mask = 0;
+  int column = static_cast<int>(c.alpha.cols());
+  for (const ConstraintBlock& b : c.constraints) {
+    mask |= static_cast<std::uint64_t>(b.yields & ((1u << b.alpha.cols()) - 1)) << column;
+    column += static_cast<int>(b.alpha.cols());
+  }
+  return mask;
+}
+
 void yield_to_efforts(const Model& model, Data& d, const Case& c, const Options& options) {
   d.effort_ratio = 0;
   d.yielded = 0;
   // Coupled joints superpose several solves (joint_couplings.hpp), which a nonlinear
   // yield inside each would break: their columns are followed as asked.
   if (!model.couplings.empty()) return;
-  // The yielding columns, in nu's order: the tip's columns (none yield), then each block's.
+  const std::uint64_t mask = d.workspace.yielding;
+  if (!mask) return;
   bool yielding[kMaxConstraintColumns] = {false};
-  bool any = false;
-  int column = static_cast<int>(c.alpha.cols());
-  for (const ConstraintBlock& b : c.constraints) {
-    for (int k = 0; k < b.alpha.cols(); ++k, ++column) {
-      yielding[column] = b.yields >> k & 1u;
-      any = any || yielding[column];
-    }
-  }
-  if (!any) return;
+  for (int j = 0; j < kMaxConstraintColumns; ++j) yielding[j] = mask >> j & 1u;
   constraint_force_torques(model, d, c, d.nu);
   const bool prescribed = c.any_prescribed();
   double r = 0;

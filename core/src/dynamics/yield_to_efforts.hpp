@@ -14,12 +14,20 @@
 // stands. r is measured on the solve with the yielding columns, so the push is followed
 // again as soon as its torques fall back within the efforts. On a model with coupled
 // joints, whose solve superposes several (joint_couplings.hpp), nothing yields.
+#include <cstdint>
+
 #include "achd/case.hpp"
 #include "achd/data.hpp"
 #include "achd/model.hpp"
 #include "achd/options.hpp"
 
 namespace achd {
+
+// The columns that may yield, in nu's order (the case's tip columns, which never yield,
+// then each block's; ConstraintBlock::yields): bit j for column j. Kept by hybrid_dynamics
+// in Data::workspace.yielding under variable_damping, where they also give way first
+// (coupling_solve.cpp).
+std::uint64_t yielding_columns(const Case& c);
 
 // After the variable_damping coupling solve (data.nu in the scaled columns): applies the
 // rule above and sets data.effort_ratio and data.yielded (both 0 when no column yields).

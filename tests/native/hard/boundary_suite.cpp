@@ -1,19 +1,17 @@
 // The workspace-boundary suite: each robot's tip pushed along one linear
 // direction by a constant setpoint (0.5 m/s^2) into the edge of its workspace while
-// other directions are held, 60 s with the simulator's defaults (SimulatorOptions{}). The
+// one, two or three other directions are held, 60 s with the simulator's defaults (SimulatorOptions{}). The
 // run must reach its duration with a finite state and no error, and (LWR, UR5) report the
 // loss as an event naming the pushed direction. Before variable_damping (truncate): the
 // UR5 with z, rx held and y pushed failed at t = 2.183 s ("the acceleration to enforce
 // along direction y is not finite"), the LWR at 1.976 s.
-// The other held directions stay within 1e-6 (m or rad) at every step from 0.5 s (the
-// stabilisation transient) to the first event and, those the run ends following (no
-// event of theirs, or a resumption last), from 0.1 s after the last (the transient of a
-// resumption: the mixed chain pushed along x, its z resumed at 59.83 s with the tip
-// moving along z, is 6.1e-5 m off 0.013 s later and 9e-7 after 0.073 s) (measured with the default
-// dormand_prince: 3e-13..2.2e-11 before, 1e-15..1.7e-7 after). A held direction released
-// and not resumed by the end is not followed there: the mixed chain pushed along x ends
-// with z released at 59.76 s or with z resumed at 59.77 s depending on the last bits of
-// its solves (some 350 events in 60 s).
+// Every held direction stays within 1e-6 (m or rad) outside its events: from 0.5 s (the
+// start's transient) at every step where it is neither limited nor released nor within
+// 0.2 s of its resumption (measured with the default dormand_prince: 1e-13 to 2e-9).
+// With one or two held directions none is released; with three, where the pushed
+// direction's loss also takes a held combination with it, a few are (the UR5 pushed
+// along y holding z, ry and rz: 20 releases in 60 s), and the solve gives way first in
+// the pushed column (coupling_solve.cpp).
 // The mixed chain's prismatic joint j2 extends without bound under the default limits
 // ('report': to 1000 m in 60 s), so it has no workspace boundary there; its suite runs
 // with limits 'clamp', where its URDF limits (j2 in [-0.1, 0.3] m) make the boundary.
@@ -49,6 +47,8 @@ std::vector<BoundaryCase> cases() {
   const LimitPolicy clamp = LimitPolicy::Clamp;
   return {{"kuka_lwr4", 0, {2, 3}},       {"kuka_lwr4", 1, {2, 3}},       {"kuka_lwr4", 2, {1, 3}},
           {"ur5", 0, {2, 3}},             {"ur5", 1, {2, 3}},             {"ur5", 2, {1, 3}},
+          {"kuka_lwr4", 0, {2, 3, 4}},    {"kuka_lwr4", 1, {2, 4, 5}},    {"kuka_lwr4", 2, {1, 3, 4}},
+          {"ur5", 0, {2, 3, 4}},          {"ur5", 1, {2, 4, 5}},          {"ur5", 2, {1, 3, 4}},
           {"mixed_chain", 0, {2}, clamp}, {"mixed_chain", 1, {0}, clamp}, {"mixed_chain", 2, {0}, clamp}};
 }
 
@@ -57,6 +57,10 @@ std::string name_of(const BoundaryCase& c) {
   for (int k : c.held) held += std::string(" ") + direction_name(k);
   return c.robot + " pushed " + direction_name(c.pushed) + ", held" + held;
 }
+
+// The stabilisation's settling time at the default w: a held error decays to 1e-6 of
+// itself within it (simulator_options.hpp).
+constexpr double kSettle = 0.2;
 
 class BoundarySuite : public ::testing::TestWithParam<BoundaryCase> {};
 
@@ -96,34 +100,41 @@ TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirectio
   EXPECT_TRUE(pushed_reported) << name_of(bc) << ": " << events.size() << " events, none names the pushed direction";
   if (events.empty()) return;
 
-  // The held residuals: after step s the state is the one after s + 1 steps; an event at
-  // `step` describes the state after `step` steps.
-  const std::int64_t from = steps_for_duration(0.5, dt), first = events.front().step, last = events.back().step;
-  // A resumed direction restarts where the tip is, but with the tip's speed along it: the
-  // stabilisation (w = 100 rad/s, critically damped) takes it back within 1e-6 in about
-  // 0.07 s, so the residuals after the last event count from 0.1 s after it.
-  const std::int64_t settle = steps_for_duration(0.1, dt);
-  std::array<bool, kNumDirections> followed_at_end;
-  followed_at_end.fill(true);
-  for (const DirectionEvent& e : events) followed_at_end[e.direction] = e.kind == DirectionEventKind::Resumed;
-  double before = 0, after = 0;
-  for (std::int64_t s = from; s < steps; ++s) {
+  // The held residuals outside events, per direction: after step s the state is the one
+  // after s + 1 steps; an event at `step` describes the state after `step` steps. A
+  // direction is out from its limited or released event to its resumed one, and for
+  // kSettle after that: a resumed direction restarts where the tip is, but with the tip's
+  // speed along it, which the stabilisation (w = 100 rad/s, critically damped) takes
+  // back within 1e-6 in 0.2 s. The first 0.5 s are the start's transient.
+  const std::int64_t from = steps_for_duration(0.5, dt), settle = steps_for_duration(kSettle, dt);
+  std::array<std::int64_t, kNumDirections> followed_from;
+  followed_from.fill(from);
+  std::array<bool, kNumDirections> lost{};
+  std::size_t next = 0;
+  double worst = 0;
+  for (std::int64_t s = 0; s < steps; ++s) {
     const std::int64_t state = s + 1;
-    for (int k : bc.held) {
-      if (state < first) before = std::max(before, residual[s][k]);
-      if (state > last + settle && followed_at_end[k]) after = std::max(after, residual[s][k]);
+    for (; next < events.size() && events[next].step <= state; ++next) {
+      const DirectionEvent& e = events[next];
+      lost[e.direction] = e.kind != DirectionEventKind::Resumed;
+      followed_from[e.direction] = std::max(from, e.step + settle);
     }
+    for (int k : bc.held)
+      if (!lost[k] && state > followed_from[k]) worst = std::max(worst, residual[s][k]);
   }
-  EXPECT_LE(before, 1e-6) << name_of(bc) << ": before the first event, t = " << events.front().t;
-  EXPECT_LE(after, 1e-6) << name_of(bc) << ": after the last event, t = " << events.back().t;
-  std::cout << name_of(bc) << ": " << events.size() << " events, first t = " << events.front().t
-            << ", last t = " << events.back().t << "; worst other held residual before " << before << ", after "
-            << after << "\n";
+  EXPECT_LE(worst, 1e-6) << name_of(bc) << ": a held direction outside its events";
+  std::size_t held_released = 0;  // releases of a held direction (not the pushed one)
+  for (const DirectionEvent& e : events) held_released += e.direction != bc.pushed && e.kind == DirectionEventKind::Released;
+  std::cout << name_of(bc) << ": " << events.size() << " events (" << held_released
+            << " releases of a held direction), first t = " << events.front().t
+            << ", last t = " << events.back().t << "; worst held residual outside events " << worst << "\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, BoundarySuite, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<BoundaryCase>& info) {
-                           return info.param.robot + "_push_" + direction_name(info.param.pushed);
+                           std::string name = info.param.robot + "_push_" + direction_name(info.param.pushed) + "_hold";
+                           for (int k : info.param.held) name += std::string("_") + direction_name(k);
+                           return name;
                          });
 
 }  // namespace

@@ -214,5 +214,75 @@ TEST(VariableDamping, TheColumnsThatGiveWayCanBeFixed) {
   EXPECT_EQ(decided, 20);
 }
 
+// Two eigenvalues near the region, the lowest in it (0.3 eps) and the next just above it
+// (1.5 eps), along random directions: no single column's release leaves the rest clear
+// of the region, so more columns give way (the lowest eigen-direction of the rest's
+// coupling, until its smallest eigenvalue clears 4 eps) and the rest is solved exactly:
+// K nu = rhs in every held column. (With one column given way the solve blended into the
+// plain variable damping, which leaves part of the lost motion in every column.) A
+// yielding column (a pushed direction) whose component in the damped direction is at
+// least half the largest gives way in place of the largest.
+TEST(VariableDamping, HeldColumnsAreSolvedExactlyAndAPushGivesWayFirst) {
+  Data d(Model{});
+  Options o;
+  o.policy = SingularityPolicy::VariableDamping;
+  o.exact_within_efforts = false;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1), spread(0.05, 1);
+  int more_than_one = 0, pushes = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const int n = 6;
+    const Eigen::MatrixXd V = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return U(rng); }).householderQr().householderQ();
+    Eigen::VectorXd sigma = Eigen::VectorXd::NullaryExpr(n, [&] { return spread(rng); });
+    sigma[0] = 1;
+    sigma[n - 2] = 1.5 * o.singular_region;
+    sigma[n - 1] = 0.3 * o.singular_region;
+    const Eigen::MatrixXd K = V * sigma.asDiagonal() * V.transpose();
+    const CouplingMatrix K0 = (K + K.transpose()) / 2;
+    const ConstraintVector rhs = ConstraintVector::NullaryExpr(n, [&] { return U(rng); });
+    for (int i = 0; i < n; ++i) d.workspace.has_force[i] = true;
+    const auto solve = [&](std::uint64_t yielding) {
+      d.K = K0;
+      d.workspace.rhs = rhs;
+      d.workspace.yielding = yielding;
+      o.gives_way = 0;
+      solve_coupling(d, o);
+      return d.workspace.gave_way;
+    };
+    const std::uint64_t gave = solve(0);
+    ASSERT_EQ(d.damped.cols(), 1) << "trial " << trial;
+    const ConstraintVector r = K0 * d.nu - rhs;
+    int h[kMaxConstraintColumns], nh = 0;
+    for (int i = 0; i < n; ++i) {
+      if (gave >> i & 1u) continue;
+      EXPECT_LE(std::abs(r[i]), 1e-12 * d.nu.cwiseAbs().maxCoeff()) << "trial " << trial << ": held column " << i;
+      h[nh++] = i;
+    }
+    ASSERT_GT(nh, 0);
+    CouplingMatrix Khh(nh, nh);
+    for (int i = 0; i < nh; ++i)
+      for (int j = 0; j < nh; ++j) Khh(i, j) = K0(h[i], h[j]);
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<CouplingMatrix>(Khh).eigenvalues().minCoeff(), 4 * o.singular_region);
+    more_than_one += (gave & (gave - 1)) != 0;
+    // The damped direction's largest component and the largest of the others.
+    Eigen::Index first = 0;
+    const Eigen::VectorXd v = d.damped.col(0).cwiseAbs();
+    v.maxCoeff(&first);
+    Eigen::Index second = first == 0 ? 1 : 0;
+    for (int i = 0; i < n; ++i)
+      if (i != first && v[i] > v[second]) second = i;
+    const std::uint64_t pushed = std::uint64_t{1} << second;
+    const std::uint64_t gave_pushed = solve(pushed);
+    if (v[second] >= 0.5 * v[first]) {
+      ++pushes;
+      EXPECT_NE(gave_pushed & pushed, 0u) << "trial " << trial << ": the pushed column gives way";
+    } else {
+      EXPECT_EQ(gave_pushed, gave) << "trial " << trial << ": a push with a small share changes nothing";
+    }
+  }
+  EXPECT_GT(more_than_one, 20);  // the case this test is about
+  EXPECT_GT(pushes, 5);
+}
+
 }  // namespace
 }  // namespace achd::test
