@@ -139,8 +139,8 @@ double smallest_eigenvalue_of(const CouplingMatrix& K) {
 
 // nu = K^-1 rhs by the eigen-decomposition K = V diag(sigma) V^T with the singularity
 // policy (K is symmetric positive semi-definite, so its eigenvalues are its singular
-// values; round-off negatives count as zero).
-void solve_by_eigen_decomposition(Data& data, const Options& options) {
+// values; round-off negatives count as zero). Returns K's largest eigenvalue.
+double solve_by_eigen_decomposition(Data& data, const Options& options) {
   const int nc = static_cast<int>(data.K.rows());
   Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(data.K);
   const ConstraintVector sigma = eig.eigenvalues().cwiseMax(0.0);
@@ -208,6 +208,7 @@ void solve_by_eigen_decomposition(Data& data, const Options& options) {
     data.damped_sigma[j] = sigma[k];
     data.damped_lambda[j++] = damping[k];
   }
+  return sigma_max;
 }
 
 // variable_damping measures the singular region on K with its columns scaled by kind:
@@ -269,6 +270,22 @@ CouplingMatrix principal_block(const CouplingMatrix& K, const int* h, int nh) {
   return Khh;
 }
 
+// The smallest eigenvalue of K_HH, H the columns that do not give way, and (when lowest
+// is given) the column of its eigen-direction's largest component.
+double smallest_held_eigenvalue(const CouplingMatrix& K, const bool* gives_way, int* lowest) {
+  int h[kMaxConstraintColumns], nh = 0;
+  for (int i = 0; i < K.rows(); ++i)
+    if (!gives_way[i]) h[nh++] = i;
+  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(principal_block(K, h, nh),
+                                                          lowest ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (lowest) {
+    Eigen::Index k = 0;
+    eig.eigenvectors().col(0).cwiseAbs().maxCoeff(&k);
+    *lowest = h[k];
+  }
+  return eig.eigenvalues()[0];
+}
+
 // The columns that give way (solve_held_first), as few as leave the held ones H clear of
 // the singular region: first, for each damped eigen-direction, its largest component
 // among the columns not yet giving way (a yielding column, one that asks for motion,
@@ -279,8 +296,9 @@ CouplingMatrix principal_block(const CouplingMatrix& K, const int* h, int nh) {
 // part of the lost motion without an event; choosing at twice that leaves room for the
 // later stages of a step, which keep the columns its first solve chose. A lost
 // combination spread over several columns (the LWR holding 6D on a driven base) so
-// gives way in the columns that span it, and the others stay exact.
-void choose_giving_columns(const Data& data, double eps, bool* gives_way) {
+// gives way in the columns that span it, and the others stay exact. Returns K_HH's
+// smallest eigenvalue (every column giving way but one at most).
+double choose_giving_columns(const Data& data, double eps, bool* gives_way) {
   const int nc = static_cast<int>(data.K.rows());
   int nl = 0;
   const auto largest = [&](Eigen::Index j, std::uint64_t among) {
@@ -299,17 +317,14 @@ void choose_giving_columns(const Data& data, double eps, bool* gives_way) {
     gives_way[column] = true;
     ++nl;
   }
-  while (nl < nc - 1) {
-    int h[kMaxConstraintColumns], nh = 0;
-    for (int i = 0; i < nc; ++i)
-      if (!gives_way[i]) h[nh++] = i;
-    const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(principal_block(data.K, h, nh));
-    if (eig.eigenvalues()[0] > 4 * eps) return;
-    Eigen::Index lowest = 0;
-    eig.eigenvectors().col(0).cwiseAbs().maxCoeff(&lowest);
-    gives_way[h[lowest]] = true;
+  int lowest = 0;
+  double khh_min = smallest_held_eigenvalue(data.K, gives_way, &lowest);
+  while (nl < nc - 1 && !(khh_min > 4 * eps)) {
+    gives_way[lowest] = true;
     ++nl;
+    khh_min = smallest_held_eigenvalue(data.K, gives_way, &lowest);
   }
+  return khh_min;
 }
 
 // After solve_by_eigen_decomposition has damped some eigen-directions of K (data.K,
@@ -325,18 +340,21 @@ void choose_giving_columns(const Data& data, double eps, bool* gives_way) {
 // x = k / eps - 1, so that the right-hand side of a simulation stays continuous there.
 // False (data.nu left as the plain variable damping) when every column gives way or
 // k <= eps.
-bool solve_held_first(Data& data, const Options& options) {
+bool solve_held_first(Data& data, const Options& options, double sigma_max) {
   const int nc = static_cast<int>(data.K.rows());
   const CouplingMatrix& K = data.K;
-  const double sigma_max = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
   const double eps = options.singular_region * sigma_max;
   bool gives_way[kMaxConstraintColumns] = {false};
+  int nl = 0;
+  double khh_min = 0;  // K_HH's smallest eigenvalue
   if (options.gives_way) {
-    for (int i = 0; i < nc; ++i) gives_way[i] = options.gives_way >> i & 1u;
+    for (int i = 0; i < nc; ++i) nl += gives_way[i] = options.gives_way >> i & 1u;
+    if (nl < nc) khh_min = smallest_held_eigenvalue(K, gives_way, nullptr);
   } else {
-    choose_giving_columns(data, eps, gives_way);
+    khh_min = choose_giving_columns(data, eps, gives_way);
   }
-  int h[kMaxConstraintColumns], l[kMaxConstraintColumns], nh = 0, nl = 0;
+  int h[kMaxConstraintColumns], l[kMaxConstraintColumns], nh = 0;
+  nl = 0;
   for (int i = 0; i < nc; ++i) (gives_way[i] ? l[nl++] : h[nh++]) = i;
   if (nl == 0 || nh == 0) return false;
   for (int i = 0; i < nc; ++i) data.workspace.gave_way |= static_cast<std::uint64_t>(gives_way[i]) << i;
@@ -349,7 +367,6 @@ bool solve_held_first(Data& data, const Options& options) {
     for (int j = 0; j < nl; ++j) Khl(i, j) = K(h[i], l[j]);
   }
   // H must itself be clear of the singular region, or its exact solve is unbounded.
-  const double khh_min = Eigen::SelfAdjointEigenSolver<CouplingMatrix>(Khh, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
   if (!(khh_min > eps)) return false;
   const double x = std::min(khh_min / eps - 1, 1.0), blend = x * x * (3 - 2 * x);
   const Eigen::LLT<CouplingMatrix> llt(Khh);
@@ -381,8 +398,8 @@ void solve_variable_damping(Data& data, const Options& options) {
     data.workspace.rhs[i] = rhs[i] * scale[i];
   }
   if (!solve_by_ldlt(data, options)) {
-    solve_by_eigen_decomposition(data, options);
-    if (data.damped.cols()) solve_held_first(data, options);
+    const double sigma_max = solve_by_eigen_decomposition(data, options);
+    if (data.damped.cols()) solve_held_first(data, options, sigma_max);
   }
   for (int i = 0; i < nc; ++i) data.nu[i] *= scale[i];
   for (int i = 0; i < data.workspace.exact_nu.size(); ++i) data.workspace.exact_nu[i] *= scale[i];
