@@ -124,6 +124,33 @@ bool solve_by_ldlt(Data& data, const Options& options) {
   return with_coupling_size(m, [&](auto n) { return solve_by_ldlt_n<decltype(n)::value>(data, options); });
 }
 
+// The eigen-decomposition of the symmetric n x n K: eigenvalues ascending and, when
+// asked, the unit eigenvectors as columns. Eigen's SelfAdjointEigenSolver on a fixed-size
+// copy for n <= kMaxConstraints (its loops unrolled: a 6 x 6 decomposition at run-time
+// size took most of a damped solve), at run-time size above.
+struct SymmetricEigen {
+  ConstraintVector values;
+  CouplingMatrix vectors;
+  SymmetricEigen(const CouplingMatrix& K, bool with_vectors) {
+    const int n = static_cast<int>(K.rows());
+    const int what = with_vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly;
+    if (n == 0) return;
+    with_coupling_size(n, [&](auto size) {
+      constexpr int N = decltype(size)::value;
+      if constexpr (N == 0) {
+        const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(K, what);
+        values = eig.eigenvalues();
+        if (with_vectors) vectors = eig.eigenvectors();
+      } else {
+        const Eigen::Matrix<double, N, N> A = K;
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(A, what);
+        values = eig.eigenvalues();
+        if (with_vectors) vectors = eig.eigenvectors();
+      }
+    });
+  }
+};
+
 // The smallest eigenvalue of the n x n K: by Laguerre's iteration from the LDL^T bound
 // when K is clearly positive definite, else from the eigen-decomposition (round-off
 // negatives count as zero).
@@ -134,7 +161,7 @@ double smallest_eigenvalue_of(const CouplingMatrix& K) {
     const double below = lower_bound_of_lambda_min(f);
     if (below >= kFactorMinRatio * K.trace()) return N == 1 ? K(0, 0) : smallest_eigenvalue_n<N>(K, below);
   }
-  return Eigen::SelfAdjointEigenSolver<CouplingMatrix>(K, Eigen::EigenvaluesOnly).eigenvalues().cwiseMax(0.0).minCoeff();
+  return SymmetricEigen(K, false).values.cwiseMax(0.0).minCoeff();
 }
 
 // nu = K^-1 rhs by the eigen-decomposition K = V diag(sigma) V^T with the singularity
@@ -142,9 +169,9 @@ double smallest_eigenvalue_of(const CouplingMatrix& K) {
 // values; round-off negatives count as zero). Returns K's largest eigenvalue.
 double solve_by_eigen_decomposition(Data& data, const Options& options) {
   const int nc = static_cast<int>(data.K.rows());
-  Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(data.K);
-  const ConstraintVector sigma = eig.eigenvalues().cwiseMax(0.0);
-  const CouplingMatrix& V = eig.eigenvectors();
+  const SymmetricEigen eig(data.K, true);
+  const ConstraintVector sigma = eig.values.cwiseMax(0.0);
+  const CouplingMatrix& V = eig.vectors;
   const double sigma_max = sigma.size() ? sigma.maxCoeff() : 0.0;
   const double threshold =
       options.absolute_tolerance ? options.tolerance : options.tolerance * sigma_max;
@@ -235,13 +262,13 @@ double variable_damping_gain(double sigma, double eps, double lambda_max) {
 // relative to sigma_max (M's largest eigenvalue when sigma_max < 0).
 ConstraintVector variably_damped_solve(const CouplingMatrix& M, const ConstraintVector& b, const Options& options,
                                        double sigma_max) {
-  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(M);
-  if (sigma_max < 0) sigma_max = std::max(eig.eigenvalues().maxCoeff(), 0.0);
+  const SymmetricEigen eig(M, true);
+  if (sigma_max < 0) sigma_max = std::max(eig.values.maxCoeff(), 0.0);
   const double eps = options.singular_region * sigma_max, lambda_max = options.max_damping * sigma_max;
   ConstraintVector x = ConstraintVector::Zero(M.rows());
   for (int k = 0; k < M.rows(); ++k) {
-    const double w = variable_damping_gain(std::max(eig.eigenvalues()[k], 0.0), eps, lambda_max);
-    if (w != 0.0) x.noalias() += eig.eigenvectors().col(k) * (w * eig.eigenvectors().col(k).dot(b));
+    const double w = variable_damping_gain(std::max(eig.values[k], 0.0), eps, lambda_max);
+    if (w != 0.0) x.noalias() += eig.vectors.col(k) * (w * eig.vectors.col(k).dot(b));
   }
   return x;
 }
@@ -276,14 +303,13 @@ double smallest_held_eigenvalue(const CouplingMatrix& K, const bool* gives_way, 
   int h[kMaxConstraintColumns], nh = 0;
   for (int i = 0; i < K.rows(); ++i)
     if (!gives_way[i]) h[nh++] = i;
-  const Eigen::SelfAdjointEigenSolver<CouplingMatrix> eig(principal_block(K, h, nh),
-                                                          lowest ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  const SymmetricEigen eig(principal_block(K, h, nh), lowest != nullptr);
   if (lowest) {
     Eigen::Index k = 0;
-    eig.eigenvectors().col(0).cwiseAbs().maxCoeff(&k);
+    eig.vectors.col(0).cwiseAbs().maxCoeff(&k);
     *lowest = h[k];
   }
-  return eig.eigenvalues()[0];
+  return eig.values[0];
 }
 
 // The columns that give way (solve_held_first), as few as leave the held ones H clear of
