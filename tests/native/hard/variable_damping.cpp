@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -162,26 +163,41 @@ TEST(VariableDamping, SingularRegionEdgeAtTheCouplingSolve) {
   }
 }
 
+// variable_damping alone, without the exact solve the joints' efforts could keep.
+Options variable_damping_alone() {
+  Options o;
+  o.policy = SingularityPolicy::VariableDamping;
+  o.exact_within_efforts = false;
+  return o;
+}
+
+// A 6 x 6 coupling V diag(sigma) V^T along random orthonormal directions V, its largest
+// eigenvalue 1, the others drawn from [0.05, 1] but for the last lowest.size(), which are
+// `lowest` in order; symmetric to the bit.
+CouplingMatrix random_coupling(std::mt19937& rng, const std::vector<double>& lowest) {
+  std::uniform_real_distribution<double> U(-1, 1), spread(0.05, 1);
+  const int n = 6;
+  const Eigen::MatrixXd V = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return U(rng); }).householderQr().householderQ();
+  Eigen::VectorXd sigma = Eigen::VectorXd::NullaryExpr(n, [&] { return spread(rng); });
+  sigma[0] = 1;
+  for (std::size_t i = 0; i < lowest.size(); ++i) sigma[n - static_cast<int>(lowest.size() - i)] = lowest[i];
+  const Eigen::MatrixXd K = V * sigma.asDiagonal() * V.transpose();
+  return (K + K.transpose()) / 2;
+}
+
 // The columns that give way (Options::gives_way): a solve with one direction in the
 // singular region reports the column its damped eigen-direction points to
 // (Data::workspace.gave_way, one bit), and the same solve told those columns gives the
 // same nu to the bit; told another column, that one gives way, and every result is finite.
 TEST(VariableDamping, TheColumnsThatGiveWayCanBeFixed) {
   Data d(Model{});
-  Options o;
-  o.policy = SingularityPolicy::VariableDamping;
-  o.exact_within_efforts = false;
+  Options o = variable_damping_alone();
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> U(-1, 1), spread(0.05, 1);
+  std::uniform_real_distribution<double> U(-1, 1);
   int decided = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const int n = 6;
-    const Eigen::MatrixXd V = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return U(rng); }).householderQr().householderQ();
-    Eigen::VectorXd sigma = Eigen::VectorXd::NullaryExpr(n, [&] { return spread(rng); });
-    sigma[0] = 1;
-    sigma[n - 1] = 0.3 * o.singular_region;
-    const Eigen::MatrixXd K = V * sigma.asDiagonal() * V.transpose();
-    d.K = (K + K.transpose()) / 2;
+    d.K = random_coupling(rng, {0.3 * o.singular_region});
     const CouplingMatrix K0 = d.K;
     const ConstraintVector rhs = ConstraintVector::NullaryExpr(n, [&] { return U(rng); });
     for (int i = 0; i < n; ++i) d.workspace.has_force[i] = true;
@@ -224,21 +240,13 @@ TEST(VariableDamping, TheColumnsThatGiveWayCanBeFixed) {
 // least half the largest gives way in place of the largest.
 TEST(VariableDamping, HeldColumnsAreSolvedExactlyAndAPushGivesWayFirst) {
   Data d(Model{});
-  Options o;
-  o.policy = SingularityPolicy::VariableDamping;
-  o.exact_within_efforts = false;
+  Options o = variable_damping_alone();
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> U(-1, 1), spread(0.05, 1);
+  std::uniform_real_distribution<double> U(-1, 1);
   int more_than_one = 0, pushes = 0;
   for (int trial = 0; trial < 40; ++trial) {
     const int n = 6;
-    const Eigen::MatrixXd V = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return U(rng); }).householderQr().householderQ();
-    Eigen::VectorXd sigma = Eigen::VectorXd::NullaryExpr(n, [&] { return spread(rng); });
-    sigma[0] = 1;
-    sigma[n - 2] = 1.5 * o.singular_region;
-    sigma[n - 1] = 0.3 * o.singular_region;
-    const Eigen::MatrixXd K = V * sigma.asDiagonal() * V.transpose();
-    const CouplingMatrix K0 = (K + K.transpose()) / 2;
+    const CouplingMatrix K0 = random_coupling(rng, {1.5 * o.singular_region, 0.3 * o.singular_region});
     const ConstraintVector rhs = ConstraintVector::NullaryExpr(n, [&] { return U(rng); });
     for (int i = 0; i < n; ++i) d.workspace.has_force[i] = true;
     const auto solve = [&](std::uint64_t yielding) {
