@@ -297,18 +297,16 @@ CouplingMatrix principal_block(const CouplingMatrix& K, const int* h, int nh) {
   return Khh;
 }
 
-// The smallest eigenvalue of K_HH, H the columns that do not give way, and (when lowest
-// is given) the column of its eigen-direction's largest component.
-double smallest_held_eigenvalue(const CouplingMatrix& K, const bool* gives_way, int* lowest) {
+// The smallest eigenvalue of K_HH, H the columns that do not give way (at least one), and
+// in `lowest` the column of its eigen-direction's largest component.
+double smallest_held_eigenvalue(const CouplingMatrix& K, const bool* gives_way, int& lowest) {
   int h[kMaxConstraintColumns], nh = 0;
   for (int i = 0; i < K.rows(); ++i)
     if (!gives_way[i]) h[nh++] = i;
-  const SymmetricEigen eig(principal_block(K, h, nh), lowest != nullptr);
-  if (lowest) {
-    Eigen::Index k = 0;
-    eig.vectors.col(0).cwiseAbs().maxCoeff(&k);
-    *lowest = h[k];
-  }
+  const SymmetricEigen eig(principal_block(K, h, nh), true);
+  Eigen::Index k = 0;
+  eig.vectors.col(0).cwiseAbs().maxCoeff(&k);
+  lowest = h[k];
   return eig.values[0];
 }
 
@@ -344,11 +342,11 @@ double choose_giving_columns(const Data& data, double eps, bool* gives_way) {
     ++nl;
   }
   int lowest = 0;
-  double khh_min = smallest_held_eigenvalue(data.K, gives_way, &lowest);
+  double khh_min = smallest_held_eigenvalue(data.K, gives_way, lowest);
   while (nl < nc - 1 && !(khh_min > 4 * eps)) {
     gives_way[lowest] = true;
     ++nl;
-    khh_min = smallest_held_eigenvalue(data.K, gives_way, &lowest);
+    khh_min = smallest_held_eigenvalue(data.K, gives_way, lowest);
   }
   return khh_min;
 }
@@ -371,21 +369,19 @@ bool solve_held_first(Data& data, const Options& options, double sigma_max) {
   const CouplingMatrix& K = data.K;
   const double eps = options.singular_region * sigma_max;
   bool gives_way[kMaxConstraintColumns] = {false};
-  int nl = 0;
-  double khh_min = 0;  // K_HH's smallest eigenvalue
+  double khh_min = 0;  // K_HH's smallest eigenvalue, as choose_giving_columns found it
   if (options.gives_way) {
-    for (int i = 0; i < nc; ++i) nl += gives_way[i] = options.gives_way >> i & 1u;
-    if (nl < nc) khh_min = smallest_held_eigenvalue(K, gives_way, nullptr);
+    for (int i = 0; i < nc; ++i) gives_way[i] = options.gives_way >> i & 1u;
   } else {
     khh_min = choose_giving_columns(data, eps, gives_way);
   }
-  int h[kMaxConstraintColumns], l[kMaxConstraintColumns], nh = 0;
-  nl = 0;
+  int h[kMaxConstraintColumns], l[kMaxConstraintColumns], nh = 0, nl = 0;
   for (int i = 0; i < nc; ++i) (gives_way[i] ? l[nl++] : h[nh++]) = i;
   if (nl == 0 || nh == 0) return false;
   for (int i = 0; i < nc; ++i) data.workspace.gave_way |= static_cast<std::uint64_t>(gives_way[i]) << i;
   const ConstraintVector& rhs = data.workspace.rhs;
   const CouplingMatrix Khh = principal_block(K, h, nh);
+  if (options.gives_way) khh_min = SymmetricEigen(Khh, false).values[0];
   CouplingMatrix Khl(nh, nl), S(nl, nl);
   ConstraintVector rh(nh), b(nl);
   for (int i = 0; i < nh; ++i) {
