@@ -185,6 +185,9 @@ struct Data {
     // Loop joints (loop_blocks.hpp): one block per Model::loops entry at the solve's q, held
     // after the case's own blocks; sized by the constructor.
     std::vector<ConstraintBlock> loop_blocks;
+    // where each loop block acts at the solve's q: its bodies and arms (ConstraintSource's
+    // body, arm, relative, body_b, arm_b), set with loop_blocks
+    std::vector<ConstraintSource> loop_placements;
     Eigen::MatrixXd coupling_response;
   } workspace;
  private:

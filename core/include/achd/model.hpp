@@ -74,6 +74,10 @@ struct LoopJoint {
   Transform frame_a, frame_b;    // the loop frame in link a's and in link b's frame
   unsigned directions = 0;       // held directions of the loop frame, bit k = x..rz
   unsigned dropped = 0;          // the type's directions the tree cannot violate
+  // Set by add_loops from the links: the bodies links a and b ride on (-1: the base) and
+  // the loop frame in each body's frame (the link's offset times frame_a or frame_b).
+  int body_a = -1, body_b = -1;
+  Transform body_frame_a, body_frame_b;
   int num_columns() const;
 };
 

@@ -111,24 +111,33 @@ __attribute__((always_inline)) inline Vector3 arm_of(const Model& model, const D
   return l.body < 0 ? in_body : Vector3(d.X0[l.body].R * in_body);
 }
 
-// Appends the source of `columns` columns acting on link `link` at `point` (its frame),
-// relative to link `link_b` at `point_b` when link_b >= 0.
-void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, int link, const Vector3& point,
-                int link_b, const Vector3& point_b, int block, int& m, int& ez) {
-  Data::Workspace& w = d.workspace;
+// Where a block of the case acts: on link `link` at `point` (its frame), relative to link
+// `link_b` at `point_b` when link_b >= 0 (ConstraintSource's body, arm, relative, body_b,
+// arm_b).
+ConstraintSource placed(const Model& model, const Data& d, int link, const Vector3& point, int link_b,
+                        const Vector3& point_b) {
   ConstraintSource s;
-  s.body = s.body_b = s.meet = model.links[link].body;
-  s.column = m;
-  s.columns = static_cast<int>(alpha.cols());
-  s.block = block;
-  s.ez = ez;
+  s.body = model.links[link].body;
   s.arm = arm_of(model, d, link, point);
   if (link_b >= 0) {
     s.relative = true;
     s.body_b = model.links[link_b].body;
-    s.meet = common_ancestor(model, s.body, s.body_b);
     s.arm_b = arm_of(model, d, link_b, point_b);
   }
+  return s;
+}
+
+// Appends the source of alpha's columns acting where `s` is placed (placed, or a loop's
+// placement).
+void add_source(const Model& model, Data& d, const ConstraintMatrix& alpha, ConstraintSource s, int block, int& m,
+                int& ez) {
+  Data::Workspace& w = d.workspace;
+  s.column = m;
+  s.columns = static_cast<int>(alpha.cols());
+  s.block = block;
+  s.ez = ez;
+  if (s.relative) s.meet = common_ancestor(model, s.body, s.body_b);
+  else s.body_b = s.meet = s.body;
   // E = alpha s moved from the point to the body's origin: [f; n + arm x f]
   for (int k = 0; k < s.columns; ++k) {
     const double scale = column_scale(alpha.col(k).data());
@@ -287,12 +296,17 @@ int constraint_sources(const Model& model, Data& d, const Case& c) {
   w.alpha_scale.resize(m);
   int column = 0, ez = 0;
   if (c.alpha.cols())
-    add_source(model, d, c.alpha, model.num_links() - 1, Vector3::Zero(), -1, Vector3::Zero(), -1, column, ez);
-  for (int b = 0; b < num_solve_blocks(c, d); ++b) {
-    const ConstraintBlock& block = solve_block(c, d, b);
+    add_source(model, d, c.alpha, placed(model, d, model.num_links() - 1, Vector3::Zero(), -1, Vector3::Zero()), -1,
+               column, ez);
+  const int own = static_cast<int>(c.constraints.size());
+  for (int b = 0; b < own; ++b) {
+    const ConstraintBlock& block = c.constraints[b];
     if (block.alpha.cols())
-      add_source(model, d, block.alpha, block.link, block.point, block.link_b, block.point_b, b, column, ez);
+      add_source(model, d, block.alpha, placed(model, d, block.link, block.point, block.link_b, block.point_b), b,
+                 column, ez);
   }
+  for (size_t l = 0; l < w.loop_blocks.size(); ++l)
+    add_source(model, d, w.loop_blocks[l].alpha, w.loop_placements[l], own + static_cast<int>(l), column, ez);
   return m;
 }
 

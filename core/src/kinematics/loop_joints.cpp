@@ -165,6 +165,12 @@ void add_loops(Model& model, const std::vector<LoopJointSpec>& loops) {
     }
     loop.frame_a = spec.origin_a * Transform{turn, Vector3::Zero()};
     loop.frame_b = spec.origin_b * Transform{turn, Vector3::Zero()};
+    const auto in_body = [&](int link, const Transform& frame, int& body, Transform& body_frame) {
+      body = link < 0 ? -1 : model.links[link].body;
+      body_frame = link < 0 ? frame : model.links[link].offset * frame;
+    };
+    in_body(loop.link_a, loop.frame_a, loop.body_a, loop.body_frame_a);
+    in_body(loop.link_b, loop.frame_b, loop.body_b, loop.body_frame_b);
     const unsigned allowed = loop_type_directions(spec.type);
     loop.directions = spec.directions.empty() ? allowed : 0;
     for (const std::string& d : spec.directions) {

@@ -60,6 +60,7 @@ Data::Data(const Model& model, int constraint_capacity) : capacity_(constraint_c
     w.coupling_response = Eigen::MatrixXd::Zero(n, model.couplings.size());
   }
   w.loop_blocks.resize(model.loops.size());
+  w.loop_placements.resize(model.loops.size());
   for (size_t l = 0; l < model.loops.size(); ++l) {
     const int columns = model.loops[l].num_columns();
     w.loop_blocks[l].alpha = ConstraintMatrix::Zero(6, columns);

@@ -6,8 +6,9 @@
 
 namespace achd {
 
-// One block per loop into d.workspace.loop_blocks (allocates nothing: the Data was made
-// for the model): for loop l and each held direction k of its loop frame, the column
+// One block per loop into d.workspace.loop_blocks, where it acts into loop_placements
+// (allocates nothing: the Data was made for the model): for loop l and each held
+// direction k of its loop frame, the column
 // [e; 0] (x y z) or [0; e] (rx ry rz), e the frame's axis k in base axes at q, on link a at
 // the point where frame b's origin is and on link b at frame b's origin:
 //   e^T (a_A(Q) - a_B(Q)) = beta.
