@@ -73,12 +73,17 @@ struct UnitConstraintForces {
     const int o = S.first_row();
     const Pair z0 = splat(S.z[0]), z1 = splat(S.z[1]), z2 = splat(S.z[2]), Dinv2 = splat(Dinv);
     const Pair r0 = splat(r[0]), r1 = splat(r[1]), r2 = splat(r[2]);
+    // (U read once for three pairs and more: ez may alias it, so each read after a store to
+    // ez is repeated; with two pairs the register pressure of holding it costs more)
+    Pair u[6];
+    if constexpr (NP >= 3)
+      for (int row = 0; row < 6; ++row) u[row] = splat(U[row]);
     for (int j = 0; j < NP; ++j) {
       Pair* e = E[j];
       const Pair e_z = (e[o] * z0 + e[o + 1] * z1) + e[o + 2] * z2;
       store_pair(ez + 2 * j, e_z);
       const Pair ezd = e_z * Dinv2;
-      for (int row = 0; row < 6; ++row) e[row] -= splat(U[row]) * ezd;
+      for (int row = 0; row < 6; ++row) e[row] -= (NP >= 3 ? u[row] : splat(U[row])) * ezd;
       e[3] += r1 * e[2] - r2 * e[1];
       e[4] += r2 * e[0] - r0 * e[2];
       e[5] += r0 * e[1] - r1 * e[0];

@@ -64,12 +64,15 @@ double first_leg(const Model& model, Data& d, const Case& c, const Eigen::Vector
   return sums.store(d.K, d.G0, s.column);
 }
 
-// K_st over the first legs' common path (from a_s and a_t's lowest common ancestor).
+// K_st over the first legs' common path (from a_s and a_t's lowest common ancestor); K_st
+// untouched (0) when they have none (the arms of a parallel robot).
 template <int NS, int NT>
 void first_legs_coupling(const Model& model, Data& d, const ConstraintSource& s, const ConstraintSource& t) {
   const Data::Workspace& w = d.workspace;
+  const int a = common_ancestor(model, s.body, t.body);
+  if (a < 0) return;
   double K[NS][NT] = {};
-  for (int i = common_ancestor(model, s.body, t.body); i >= 0; i = model.bodies[i].parent) {
+  for (int i = a; i >= 0; i = model.bodies[i].parent) {
     const double* es = w.ez.data() + s.ez + i * ez_stride<NS>();
     const double* et = w.ez.data() + t.ez + i * ez_stride<NT>();
     for (int k = 0; k < NS; ++k) {
@@ -162,6 +165,7 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
   const int m = static_cast<int>(d.E.cols());
   double* C = w.shared_C.data();  // column k's force at b: C + 6 k
   double probe = 0;
+  d.K.setZero();  // (the first legs that meet nowhere leave their K_st at 0)
   for (const ConstraintSource& s : w.sources)
     probe += with_constraint_count(s.columns, [&](auto n) {
       constexpr int NC = decltype(n)::value;
