@@ -34,6 +34,14 @@ int common_ancestor(const Model& model, int a, int b) {
   return a;
 }
 
+// The body below the base that body i hangs from (-1: the base): two bodies with different
+// ones have no common ancestor.
+int branch_of(const Model& model, int i) {
+  if (i < 0) return -1;
+  while (model.bodies[i].parent >= 0) i = model.bodies[i].parent;
+  return i;
+}
+
 // The first leg of source s alone, a block on its first body: rolled to the base (its
 // A_s,i into the source's EZ, E_s,a at the base into col), then its share of K_ss and
 // G_s, summed from the base outward. C (6 x NC, column-major) gets the second leg's
@@ -173,8 +181,12 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
       return prescribed ? first_leg<NC, true>(model, d, c, qdd_given, s, Cs)
                         : first_leg<NC, false>(model, d, c, qdd_given, s, Cs);
     });
+  int branch[kMaxConstraintColumns];
+  for (size_t s = 0; s < w.sources.size(); ++s) branch[s] = branch_of(model, w.sources[s].body);
+  const int branch_b = branch_of(model, b);
   for (size_t s = 0; s < w.sources.size(); ++s)
     for (size_t t = s + 1; t < w.sources.size(); ++t)
+      if (branch[s] >= 0 && branch[s] == branch[t])
       with_constraint_count(w.sources[s].columns, [&](auto ns) {
         with_constraint_count(w.sources[t].columns, [&](auto nt) {
           first_legs_coupling<decltype(ns)::value, decltype(nt)::value>(model, d, w.sources[s], w.sources[t]);
@@ -186,8 +198,9 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
   // Y (row k at Y + 6 k), 0 for the blocks whose first leg does not meet b's path
   double Y[6 * kMaxConstraintColumns];
   bool has_Y[kMaxConstraintColumns];
-  for (const ConstraintSource& s : w.sources) {
-    const bool met = with_constraint_count(s.columns, [&](auto n) {
+  for (size_t i = 0; i < w.sources.size(); ++i) {
+    const ConstraintSource& s = w.sources[i];
+    const bool met = branch_b >= 0 && branch[i] == branch_b && with_constraint_count(s.columns, [&](auto n) {
       return first_leg_and_unit_coupling<decltype(n)::value>(model, d, s, b, Y + 6 * s.column);
     });
     for (int k = 0; k < s.columns; ++k) has_Y[s.column + k] = met;
