@@ -385,7 +385,6 @@ void start_scene(const Scene& scene, Simulator& sim) {
   sim.reset(scene.q0, scene.qd0);
   sim.ff_torques = scene.ff_torques;
   sim.f_ext = scene.f_ext;
-  for (const auto& [joint, motion] : scene.prescribed) sim.prescribe(joint, motion);
   if (scene.model.has_tip())
     for (int k = 0; k < kNumDirections; ++k) {
       sim.set_direction_weights(k, scene.w_fext[k], scene.w_ff[k]);
@@ -403,6 +402,9 @@ void start_scene(const Scene& scene, Simulator& sim) {
       throw Error(scene.source + ": link_directions[" + std::to_string(e) + "]: " + err.what());
     }
   }
+  // After the held directions: a prescribed joint jumps onto its trajectory as an impulse
+  // they respect (Simulator::prescribe), so the scene starts with them at rest.
+  for (const auto& [joint, motion] : scene.prescribed) sim.prescribe(joint, motion);
   if (scene.joint_control) {
     try {
       sim.set_joint_control(scene.control);

@@ -295,12 +295,10 @@ export class Simulation {
     this.applyDrivers();
   }
 
-  // The prescribed joints first (a held direction then holds where its link is on their
-  // trajectories), the PD controller, each direction's priority, then the directions, link
-  // by link.
+  // Each direction's priority and the directions, link by link, then the prescribed joints
+  // (their jumps onto their trajectories keep the held directions where their links are,
+  // at rest) and the PD controller.
   applyDrivers() {
-    for (const joint of Object.keys(this.settings.prescribed)) this.applyPrescribed(joint);
-    if (this.control) this.sim.setJointControl({ target: this.controlTarget ?? this.q0, ...this.control });
     for (const link of this.setLinks()) {
       if (this.points.has(link)) this.sim.setDirectionPoint(link, this.points.get(link));
       for (const name of DIRECTIONS) {
@@ -308,6 +306,9 @@ export class Simulation {
         this.applyDirection(name, link);
       }
     }
+    // after the directions: a joint's jump onto its trajectory respects the held ones
+    for (const joint of Object.keys(this.settings.prescribed)) this.applyPrescribed(joint);
+    if (this.control) this.sim.setJointControl({ target: this.controlTarget ?? this.q0, ...this.control });
   }
 
   // settings.prescribed[joint] (page time) given to the simulator (its time starts at

@@ -50,10 +50,6 @@ function startScene(scene, robot) {
   sim.reset(scene.q0 ?? robot.startPose, scene.qd0);
   if (scene.ff_torques) sim.ff_torques.set(scene.ff_torques);
   for (const [link, wrench] of Object.entries(scene.f_ext ?? {})) sim.setExternalWrench(link, wrench);
-  for (const p of scene.prescribed ?? []) {
-    const { joint, ...motion } = p;
-    sim.prescribe(joint, motion);
-  }
   for (const [name, w] of Object.entries(scene.direction_weights ?? {}))
     sim.setDirectionWeights(name, { wFext: w.w_fext, wFf: w.w_ff });
   for (const [name, mode] of Object.entries(scene.directions ?? {})) sim.setDirection(name, mode);
@@ -62,6 +58,10 @@ function startScene(scene, robot) {
     for (const [name, w] of Object.entries(set.direction_weights ?? {}))
       sim.setDirectionWeights(name, { wFext: w.w_fext, wFf: w.w_ff }, set.link);
     for (const [name, mode] of Object.entries(set.directions ?? {})) sim.setDirection(name, mode, set.link);
+  }
+  for (const p of scene.prescribed ?? []) {
+    const { joint, ...motion } = p;
+    sim.prescribe(joint, motion);  // after the directions: its jump respects them
   }
   if (scene.joint_control) {
     const { damping_ratio: dampingRatio, ...control } = scene.joint_control;

@@ -120,15 +120,20 @@ class Simulator : public SimulationState {
   bool joint_control_on() const { return control_on_; }
   const JointControl& joint_control() const { return control_; }
   // Prescribed joint motion (joint_motion.hpp): from now on joint `joint` follows
-  // `motion` in the simulated time t. It is put on the trajectory at once (q, qd at t),
-  // every solve gives it the trajectory's acceleration at the solve's time
+  // `motion` in the simulated time t. It is put on the trajectory at once (q, qd at t);
+  // with held directions, loops or coupled joints, the free joints then move back, as
+  // little as the joint-space inertia's metric allows, so that the held directions keep
+  // where and how fast they were and the loops stay closed (a limit stop's position
+  // projection and impact; a scene that holds its tip and drives a joint moving at t = 0
+  // starts with the tip at rest). Every solve gives it the trajectory's acceleration at the solve's time
   // (Case::prescribed: the other joints and the held directions are solved around it, and
   // data().prescribed_torques holds the torque it takes), and after every step its q and
   // qd are set to the trajectory's at the new t (the integrator's values differ from them
   // by its error only). Under LimitPolicy::Clamp a prescribed joint is not stopped at its
   // limits (its motion is given; limit_hits() still lists it past one), and the impacts of
   // the other joints leave its velocity as it is. reset() releases every prescribed joint.
-  // An achd::Error names the joint on a bad index or motion parameter.
+  // An achd::Error names the joint on a bad index or motion parameter, or when the jump's
+  // solve fails; q, qd and the prescribed joints are then unchanged.
   void prescribe(int joint, const JointMotion& motion);
   // The joint is driven by its torques again, from its current q and qd.
   void release(int joint);
@@ -223,7 +228,25 @@ class Simulator : public SimulationState {
   // respect, and rest on it (their acceleration prescribed as 0 in every solve).
   void update_limit_stops(double w_n, double zeta);
   void stop_at_limits();
-  void solve_impact(const char* what);
+  // Impacts (joint_limits.cpp): one solve of impact_case_ (`what` and the joint put on its
+  // trajectory, or -1 for the joints at their limits, name it in an error); its blocks, the
+  // held columns of every set (beta 0); the held columns' and loops' changes since
+  // impact_points_ (record_impact_points) into their beta (positions or velocities),
+  // returning the largest; q moved (Newton) until each joint marked in
+  // impact_case_.prescribed is at impact_target_ with the held quantities unchanged and
+  // the loops closed; and the impulse that changes each marked joint's qd by
+  // impact_case_.qdd_given and gives the held directions back their velocities.
+  void solve_impact(const char* what, int joint);
+  void set_impact_blocks();
+  double held_changes(bool velocity);
+  double loop_changes(bool velocity);
+  void record_impact_points();  // each set's point state now (and the body motion)
+  // `moved`: q already moved (the held quantities and loops count from the first iteration)
+  void project_positions(int joint, bool moved);
+  void project_velocities(const char* what, int joint);
+  // prescribe(): joint `joint` put at q_at and qd_at as an inelastic jump that the held
+  // directions, loops and coupled joints respect (nothing changed when it throws).
+  void jump_onto_trajectory(int joint, double q_at, double qd_at);
   // Re-anchors the held directions with bit k set in bits[s] of set s where the point is
   // (linear: target = e . p_point; angular: held angle 0).
   void anchor_directions(const std::vector<unsigned>& bits);
@@ -262,6 +285,7 @@ class Simulator : public SimulationState {
   std::vector<JointMotion> motions_;
   std::vector<char> moving_;
   Case impact_case_;
+  Eigen::VectorXd impact_target_;  // per joint: where project_positions() puts a marked one
   Data limit_data_;
   HeldAngles limit_angle_rate_;
 };

@@ -142,13 +142,15 @@ void Simulator::prescribe(int joint, const JointMotion& motion) {
                 "after it take a motion");
   validate(motion, "joint '" + model_.bodies[joint].joint_name + "': ");
   if (!std::isfinite(t)) throw Error("prescribe: t is not finite");
+  const JointSample at = sample(motion, t);
+  if (!std::isfinite(at.q) || !std::isfinite(at.qd) || !std::isfinite(at.qdd))
+    throw Error("prescribe: joint '" + model_.bodies[joint].joint_name + "': its motion is not finite at t = " +
+                std::to_string(t));
+  jump_onto_trajectory(joint, at.q, at.qd);  // throws with nothing changed
   motions_[joint] = motion;
   moving_[joint] = 1;
   case_.prescribed[joint] = true;
   limit_stop_[joint] = 0;  // its motion is given: no stop holds it
-  const JointSample at = sample(motion, t);
-  q[model_.position_index(joint)] = at.q;
-  qd[joint] = at.qd;
   case_.qdd_given[joint] = at.qdd;
 }
 

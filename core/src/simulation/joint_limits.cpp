@@ -1,5 +1,6 @@
 // Joint limits as inelastic stops that the held directions respect (LimitPolicy::Clamp),
-// the Simulator's members for it (the hooks in simulator.cpp call them).
+// and a prescribed joint's jump onto its trajectory by the same impact solves: the
+// Simulator's members for them (the hooks in simulator.cpp and prescribe() call them).
 //
 // Impact. A joint that reached its limit in a step (q_i at or past it, not yet resting on
 // it) is put back on the limit and, when it moves into the limit, stopped by an
@@ -25,6 +26,14 @@
 // Prescribed joints (Simulator::prescribe) follow their trajectories through their limits:
 // they are never stopped, and in the impact solves they are prescribed with dq = dqd = 0,
 // so that an impact of another joint leaves their motion as given.
+// Onto a trajectory. Simulator::prescribe sets its joint's q and qd to the trajectory's;
+// with held directions, loops or coupled joints, the same two solves then move the free
+// joints back (jump_onto_trajectory): the position projection and the impulse with every
+// prescribed joint (this one included) and every joint resting on a stop kept (dq = dqd =
+// 0), beta the held quantities' and velocities' change since before the jump, so that
+// the held directions keep where and how fast they were and the loops stay closed. A jump
+// the held directions do not see changes no other joint. Without them (or with
+// constraints off) the joint's q and qd are simply set.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -47,8 +56,10 @@ int limit_side(const JointLimits& l, double q) { return q >= l.upper ? 1 : q <= 
 double limit_at(const JointLimits& l, int side) { return side > 0 ? l.upper : l.lower; }
 
 // Newton iterations of the position projection; the first leaves the held quantities
-// changed by O(dq^2), each next squares that.
-constexpr int kProjectionIterations = 4;
+// changed by O(dq^2), each next squares that. A limit's dq is one step's overshoot; a jump
+// onto a trajectory may be tenths of a radian, and takes more to reach round-off (the
+// LWR's base by 0.2 rad, its tip held in 6D: 3e-12 m left after 4).
+constexpr int kProjectionIterations = 4, kJumpIterations = 10;
 
 // The held quantity of a held direction k at the tip, measured from `before`: the tip
 // origin's displacement along a linear direction, the rotation about an angular one.
@@ -95,20 +106,113 @@ void Simulator::update_limit_stops(double w_n, double zeta) {
 }
 
 // One solve of the impact case (impact_case_ holds q, the prescribed joints and beta),
-// with only the constraints and rotor inertia on; `what` names it in an error.
-void Simulator::solve_impact(const char* what) {
+// with only the constraints and rotor inertia on; `what` names it in an error, with the
+// joint put on its trajectory (`joint` >= 0) or else the joints at their limits.
+void Simulator::solve_impact(const char* what, int joint) {
   Options o = solver_;
   o.effects = options_.effects & (kConstraints | kRotorInertia);
   o.convention = Convention::Physical;
   try {
     hybrid_dynamics(model_, limit_data_, impact_case_, o);
   } catch (const Error& e) {
+    if (joint >= 0)
+      throw Error(std::string("the ") + what + " putting joint '" + model_.bodies[joint].joint_name +
+                  "' on its trajectory failed: " + e.what());
     std::string joints;
     for (int i = 0; i < model_.num_rates(); ++i)
       if (limit_reached_[i])
         joints += (joints.empty() ? "'" : ", '") + model_.bodies[i].joint_name + "'";
     throw Error(std::string("the ") + what + " of joint " + joints + " at its limit failed: " + e.what());
   }
+}
+
+void Simulator::set_impact_blocks() {
+  impact_case_.constraints.clear();
+  for (const LinkDirections& set : directions_->sets()) {
+    int nc = 0;
+    for (int k = 0; k < kNumDirections; ++k) nc += set.held.mode[k] == DirectionMode::Hold;
+    if (!nc) continue;
+    ConstraintBlock& b = impact_case_.constraints.emplace_back();
+    b.link = set.link;
+    b.point = set.point;
+    b.alpha.setZero(6, nc);
+    b.beta.setZero(nc);
+    for (int k = 0, col = 0; k < kNumDirections; ++k)
+      if (set.held.mode[k] == DirectionMode::Hold) b.alpha(k, col++) = 1;  // [e; 0] or [0; e]: row k
+  }
+}
+
+double Simulator::held_changes(bool velocity) {
+  const std::vector<LinkDirections>& sets = directions_->sets();
+  size_t b = 0;
+  double off = 0;
+  for (size_t s = 0; s < sets.size(); ++s) {
+    const LinkDirections& set = sets[s];
+    if (b >= impact_case_.constraints.size() || impact_case_.constraints[b].link != set.link) continue;
+    const TipState now = link_state(model_, X0_, v_, set.link, set.point);
+    const TipState& before = impact_points_[s];
+    ConstraintVector& beta = impact_case_.constraints[b++].beta;
+    for (int k = 0, col = 0; k < kNumDirections; ++k) {
+      if (set.held.mode[k] != DirectionMode::Hold) continue;
+      const Vector3 e = direction_axis(k);
+      beta[col] = !velocity ? -held_change(k, before.pose, now.pose)
+                  : is_linear_direction(k) ? e.dot(before.v - now.v) : e.dot(before.w - now.w);
+      off = std::max(off, std::abs(beta[col++]));
+    }
+  }
+  return off;
+}
+
+double Simulator::loop_changes(bool velocity) {
+  double off = 0, e[kNumDirections], g[kNumDirections];
+  int column = 0;
+  for (const LoopJoint& loop : model_.loops) {
+    loop_errors(model_, loop, X0_, v_, e, g);
+    for (int j = 0; j < loop.num_columns(); ++j) {
+      impact_case_.loop_beta[column++] = -(velocity ? g[j] : e[j]);
+      off = std::max(off, std::abs(velocity ? g[j] : e[j]));
+    }
+  }
+  return off;
+}
+
+void Simulator::record_impact_points() {
+  const std::vector<LinkDirections>& sets = directions_->sets();
+  body_motion(model_, q, qd, X0_, r_, v_);
+  for (size_t s = 0; s < sets.size(); ++s)
+    impact_points_[s] = link_state(model_, X0_, v_, sets[s].link, sets[s].point);
+}
+
+void Simulator::project_positions(int joint, bool moved) {
+  const int n = model_.num_rates();
+  body_motion(model_, q, qd, X0_, r_, v_);
+  for (int it = 0; it < (moved ? kJumpIterations : kProjectionIterations); ++it) {
+    double off = 0;
+    for (int i = 0; i < n; ++i) {
+      const double to_target = impact_case_.prescribed[i] ? impact_target_[i] - q[model_.position_index(i)] : 0.0;
+      impact_case_.qdd_given[i] = to_target;
+      off = std::max(off, std::abs(to_target));
+    }
+    // The held quantities and loops count from the first iteration when q has already moved.
+    if (it > 0 || moved) off = std::max(off, held_changes(false));
+    const double loops_open = loop_changes(false);  // the loops closed again
+    if (it > 0 || moved) off = std::max(off, loops_open);
+    if (off == 0) break;
+    impact_case_.q = q;
+    solve_impact("position projection", joint);
+    integrate(model_, q, limit_data_.qdd, 1.0, q);  // the solve's qdd is the displacement
+    for (int i = 0; i < n; ++i)
+      if (impact_case_.prescribed[i]) q[model_.position_index(i)] = impact_target_[i];
+    body_motion(model_, q, qd, X0_, r_, v_);
+  }
+}
+
+void Simulator::project_velocities(const char* what, int joint) {
+  held_changes(true);
+  loop_changes(true);  // and the loops their relative velocity 0
+  impact_case_.q = q;
+  solve_impact(what, joint);
+  qd += limit_data_.qdd;
 }
 
 void Simulator::stop_at_limits() {
@@ -131,104 +235,65 @@ void Simulator::stop_at_limits() {
   }
   if (!reached) return;
   integrator_->stage = -1;  // a failure here is no integrator stage's
-  const std::vector<LinkDirections>& sets = directions_->sets();
-
-  // The held columns of every link, one block per link with some (beta filled below);
-  // accelerated directions are free.
-  impact_case_.constraints.clear();
-  for (const LinkDirections& set : sets) {
-    int nc = 0;
-    for (int k = 0; k < kNumDirections; ++k) nc += set.held.mode[k] == DirectionMode::Hold;
-    if (!nc) continue;
-    ConstraintBlock& b = impact_case_.constraints.emplace_back();
-    b.link = set.link;
-    b.point = set.point;
-    b.alpha.setZero(6, nc);
-    b.beta.setZero(nc);
-    for (int k = 0, col = 0; k < kNumDirections; ++k)
-      if (set.held.mode[k] == DirectionMode::Hold) b.alpha(k, col++) = 1;  // [e; 0] or [0; e]: row k
+  set_impact_blocks();
+  // Position: back on the limit with the held quantities unchanged (and the loops closed);
+  // a prescribed joint keeps its trajectory through an impact: dq_i = dqd_i = 0.
+  for (int i = 0; i < n; ++i) {
+    impact_case_.prescribed[i] = limit_stop_[i] || limit_reached_[i] || moving_[i];
+    impact_target_[i] = limit_reached_[i] ? limit_at(model_.bodies[i].limits, limit_reached_[i])
+                                          : q[model_.position_index(i)];
   }
-  // Each held column's change since `before` (per set), from the points' states `now`.
-  const auto held_changes = [&](bool velocity) {
-    size_t b = 0;
-    double off = 0;
-    for (size_t s = 0; s < sets.size(); ++s) {
-      const LinkDirections& set = sets[s];
-      if (b >= impact_case_.constraints.size() || impact_case_.constraints[b].link != set.link) continue;
-      const TipState now = link_state(model_, X0_, v_, set.link, set.point);
-      const TipState& before = impact_points_[s];
-      ConstraintVector& beta = impact_case_.constraints[b++].beta;
-      for (int k = 0, col = 0; k < kNumDirections; ++k) {
-        if (set.held.mode[k] != DirectionMode::Hold) continue;
-        const Vector3 e = direction_axis(k);
-        beta[col] = !velocity ? -held_change(k, before.pose, now.pose)
-                    : is_linear_direction(k) ? e.dot(before.v - now.v) : e.dot(before.w - now.w);
-        off = std::max(off, std::abs(beta[col++]));
-      }
-    }
-    return off;
-  };
-  // Each loop column's error, position (e) or velocity (g), into loop_beta as its change
-  // -e or -g (loop_closure.hpp), from the state of X0_ and v_; returns the largest.
-  const auto loop_changes = [&](bool velocity) {
-    double off = 0, e[kNumDirections], g[kNumDirections];
-    int column = 0;
-    for (const LoopJoint& loop : model_.loops) {
-      loop_errors(model_, loop, X0_, v_, e, g);
-      for (int j = 0; j < loop.num_columns(); ++j) {
-        impact_case_.loop_beta[column++] = -(velocity ? g[j] : e[j]);
-        off = std::max(off, std::abs(velocity ? g[j] : e[j]));
-      }
-    }
-    return off;
-  };
-  // A prescribed joint keeps its trajectory through an impact: dq_i = dqd_i = 0.
-  for (int i = 0; i < n; ++i) impact_case_.prescribed[i] = limit_stop_[i] || limit_reached_[i] || moving_[i];
-
-  // Position: back on the limit with the held quantities unchanged (and the loops closed).
-  body_motion(model_, q, qd, X0_, r_, v_);
-  for (size_t s = 0; s < sets.size(); ++s)
-    impact_points_[s] = link_state(model_, X0_, v_, sets[s].link, sets[s].point);
-  for (int it = 0; it < kProjectionIterations; ++it) {
-    double off = 0;
-    for (int i = 0; i < n; ++i) {
-      const double to_limit =
-          limit_reached_[i] ? limit_at(model_.bodies[i].limits, limit_reached_[i]) - q[model_.position_index(i)] : 0.0;
-      impact_case_.qdd_given[i] = to_limit;
-      off = std::max(off, std::abs(to_limit));
-    }
-    if (it > 0) off = std::max(off, held_changes(false));
-    const double loops_open = loop_changes(false);  // the loops closed again
-    if (it > 0) off = std::max(off, loops_open);
-    if (off == 0) break;
-    impact_case_.q = q;
-    solve_impact("position projection");
-    integrate(model_, q, limit_data_.qdd, 1.0, q);  // the solve's qdd is the displacement
-    for (int i = 0; i < n; ++i)
-      if (limit_reached_[i]) q[model_.position_index(i)] = limit_at(model_.bodies[i].limits, limit_reached_[i]);
-    body_motion(model_, q, qd, X0_, r_, v_);
-  }
+  record_impact_points();
+  project_positions(-1, false);
 
   // Velocity: the inelastic impact of the joints moving into their limits (a joint past
   // its limit but already moving back stays free), which also gives the held directions
   // back the velocities they had before the position went back (J changed with q).
-  held_changes(true);
-  loop_changes(true);  // and the loops their relative velocity 0
   for (int i = 0; i < n; ++i) {
     const bool into = limit_reached_[i] && limit_reached_[i] * qd[i] >= 0;
     if (limit_reached_[i] && !into) limit_reached_[i] = 0;
     impact_case_.prescribed[i] = limit_stop_[i] || into || moving_[i];
     impact_case_.qdd_given[i] = into ? -qd[i] : 0.0;
   }
-  impact_case_.q = q;
-  solve_impact("impact");
-  qd += limit_data_.qdd;
+  project_velocities("impact", -1);
   for (int i = 0; i < n; ++i)
     if (limit_reached_[i]) {
       qd[i] = 0;
       limit_stop_[i] = limit_reached_[i];
       case_.prescribed[i] = true;
     }
+}
+
+void Simulator::jump_onto_trajectory(int joint, double q_at, double qd_at) {
+  const int n = model_.num_rates();
+  set_impact_blocks();
+  const bool respected = (options_.effects & kConstraints) &&
+                         (!impact_case_.constraints.empty() || !model_.loops.empty() || !model_.couplings.empty());
+  if (!respected) {
+    q[model_.position_index(joint)] = q_at;
+    qd[joint] = qd_at;
+    return;
+  }
+  const Eigen::VectorXd q_before = q, qd_before = qd;
+  try {
+    // The held quantities and velocities before the jump; then the joint on its trajectory
+    // and the free joints moved back to them (the prescribed joints and those resting on
+    // a stop kept): the least motion, in the joint-space inertia's metric, that does.
+    record_impact_points();
+    q[model_.position_index(joint)] = q_at;
+    qd[joint] = qd_at;
+    for (int i = 0; i < n; ++i) {
+      impact_case_.prescribed[i] = i == joint || limit_stop_[i] || moving_[i];
+      impact_target_[i] = q[model_.position_index(i)];
+    }
+    project_positions(joint, true);
+    impact_case_.qdd_given.setZero();
+    project_velocities("impulse", joint);
+  } catch (...) {
+    q = q_before;
+    qd = qd_before;
+    throw;
+  }
 }
 
 }  // namespace achd

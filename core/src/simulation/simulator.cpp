@@ -63,6 +63,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   impact_case_.qdd_given = case_.qdd_given;
   impact_case_.prescribed = case_.prescribed;
   impact_case_.constraints.reserve(links);
+  impact_target_ = Eigen::VectorXd::Zero(n);
   X0_.resize(n);
   r_.assign(n, Vector3::Zero());
   v_.assign(n, Vector6::Zero());

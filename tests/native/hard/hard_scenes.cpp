@@ -32,9 +32,13 @@
 //     others solved exactly (z drifted 4.5 mm without an event when the plain variable
 //     damping spread the lost motion over every column). "Outside events" excludes, per
 //     direction, the time from its limited or released event to its resumed one, and the
-//     stabilisation's settling time after its resumed event and after the start (kSettle:
-//     a direction resumed while moving is re-anchored where it is, and its speed decays as
-//     (1 + w t) e^-w t, as the scene's start, whose driven base moves at t = 0).
+//     stabilisation's settling time after its resumed event (kSettle: a direction resumed
+//     while moving is re-anchored where it is, and its speed decays as (1 + w t) e^-w t).
+//     The start is not excluded: the base moves at t = 0, and its jump onto the
+//     trajectory is an impulse the holds respect (the other joints start moving so that
+//     the tip is at rest), so the holds are kept from the first step (the tip moved
+//     9.0e-4 m in the first 0.2 s when the jump kicked it and the stabilisation took it
+//     back; 7e-14 m now).
 // The CPU time is std::clock's: this process's, which a loaded machine's other work does
 // not count.
 #include <gtest/gtest.h>
@@ -57,7 +61,7 @@ constexpr double kSettle = 0.2;
 
 struct Figures {
   double residual = 0, energy_drift = 0, cpu_per_s = 0;
-  double residual_outside_events = 0;  // per direction: neither lost nor within kSettle of the start or its resumption
+  double residual_outside_events = 0;  // per direction: neither lost nor within kSettle of its resumption
   std::size_t events = 0;
   std::int64_t substeps = 0, stiff_substeps = 0;
 };
@@ -73,7 +77,10 @@ Figures run_scene(const char* file) {
   Figures f;
   // per link and direction: lost (limited or released), and since when it is followed
   std::vector<std::array<bool, kNumDirections>> lost(sim.model().num_links());
+  // since when (its resumed event); from the start, which is consistent: the driven base
+  // jumps onto its trajectory as an impulse the held directions respect
   std::vector<std::array<double, kNumDirections>> followed_since(sim.model().num_links());
+  for (auto& since : followed_since) since.fill(-kSettle);
   std::size_t seen = 0;
   const std::clock_t start = std::clock();
   for (std::int64_t k = 0; k < scene.steps(); ++k) {
@@ -90,7 +97,7 @@ Figures run_scene(const char* file) {
       const auto r = sim.residuals(set.link);
       for (int d = 0; d < kNumDirections; ++d) {
         f.residual = std::max(f.residual, std::abs(r[d]));
-        if (!lost[set.link][d] && sim.t - followed_since[set.link][d] > kSettle)
+        if (!lost[set.link][d] && sim.t - followed_since[set.link][d] >= kSettle)
           f.residual_outside_events = std::max(f.residual_outside_events, std::abs(r[d]));
       }
     }

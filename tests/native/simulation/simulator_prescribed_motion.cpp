@@ -5,6 +5,7 @@
 // bad motions are named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -198,6 +199,58 @@ TEST(PrescribedMotion, LimitStopsLeaveAPrescribedJointAlone) {
     EXPECT_TRUE(pan_listed) << name;
     EXPECT_LT(sim.max_residuals()[2], 1e-6) << name;
   }
+}
+
+// The jump onto a trajectory is an inelastic one the held directions respect: the LWR
+// holds its tip in 6D, and its base joint is prescribed on a sine whose position and
+// velocity at t = 0 are 0.2 rad and 0.38 rad/s away from the state's. After prescribe()
+// the base is on the trajectory to the bit, the tip's pose and velocity are those before
+// the jump (within 1e-12), the other joints moved to make that so, and the holds keep the
+// tip to 1e-9 from the first step (no start transient to wait out). A jump the held
+// directions do not see (the base joint turns about the vertical, only z held) moves no
+// other joint; a motion not finite at t (its velocity overflows) changes nothing.
+TEST(PrescribedMotion, AJumpOntoTheTrajectoryKeepsTheHeldDirections) {
+  const Model m = lwr();
+  const int tip = m.link_index("lwr_link_7");
+  Simulator sim(m);
+  sim.reset(lwr_q0(), {});
+  for (int k = 0; k < kNumDirections; ++k) sim.set_direction(k, DirectionMode::Hold);
+  const Eigen::VectorXd q0 = sim.q;
+  const Transform before = forward_kinematics(m, sim.q)[tip];
+  const JointMotion base = sine(0.5, 0.2, 0.3, 0);
+  sim.prescribe(0, base);
+  EXPECT_EQ(sim.q[0], 0.5);
+  EXPECT_EQ(sim.qd[0], sample(base, 0).qd);
+  const Transform after = forward_kinematics(m, sim.q)[tip];
+  EXPECT_LT((after.p - before.p).norm(), 1e-12);
+  EXPECT_LT(Eigen::AngleAxisd(after.R * before.R.transpose()).angle(), 1e-12);
+  EXPECT_LT(link_velocities(m, sim.q, sim.qd)[tip].norm(), 1e-12) << "the tip at rest";
+  EXPECT_GT((sim.q - q0).tail(6).cwiseAbs().maxCoeff(), 1e-2) << "the free joints moved";
+  double worst = 0;
+  for (int k = 0; k < 200; ++k) {
+    sim.step(1e-3);
+    for (double r : sim.residuals()) worst = std::max(worst, std::abs(r));
+  }
+  EXPECT_LT(worst, 1e-9) << "held from the first step";
+
+  Simulator z_only(m);
+  z_only.reset(lwr_q0(), {});
+  z_only.set_direction(2, DirectionMode::Hold);
+  z_only.prescribe(0, ramp(0.3, 0.5));
+  EXPECT_EQ(z_only.qd[0], 0.5);
+  EXPECT_LT(z_only.qd.tail(6).cwiseAbs().maxCoeff(), 1e-12) << "the base's turn moves the tip along no held direction";
+
+  JointMotion overflowing = sine(0.3, 1e300, 1e10, 0);
+  const Eigen::VectorXd q_held = z_only.q, qd_held = z_only.qd;
+  try {
+    z_only.prescribe(1, overflowing);
+    ADD_FAILURE() << "a motion whose velocity overflows was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("lwr_joint_2"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(z_only.prescribed(1));
+  EXPECT_EQ(z_only.q, q_held);
+  EXPECT_EQ(z_only.qd, qd_held);
 }
 
 TEST(PrescribedMotion, ReleaseAndResetFreeTheJoint) {
