@@ -206,7 +206,7 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
     for (int k = 0; k < s.columns; ++k) has_Y[s.column + k] = met;
   }
   // M_k = Lambda C_k + Y_k^T; E_0 += Phi_0 C_k; G_k += C_k^T g
-  double M[6 * kMaxConstraintColumns];
+  double M[6 * (kMaxConstraintColumns + 1)];
   for (int k = 0; k < m; ++k) {
     const double* ck = C + 6 * k;
     double* mk = M + 6 * k;
@@ -218,15 +218,46 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
     store_pairs(e, add_columns_times(load_pairs(e), Phi, ck, 6));
     d.G0[k] += dot6(ck, g);
   }
-  // K_kl += C_k^T M_l (+ Y_k C_l), l <= k, mirrored
-  for (int l = 0; l < m; ++l)
-    for (int k = l; k < m; ++k) {
-      double x = dot6(C + 6 * k, M + 6 * l);
-      if (has_Y[k]) x += dot6(Y + 6 * k, C + 6 * l);
-      const double v = d.K(k, l) + x;
-      d.K(k, l) = d.K(l, k) = v;
-      probe += v * 0.0;
+  // K_kl += C_k^T M_l (+ Y_k C_l), l <= k, mirrored. Row k against two columns l, l + 1 at
+  // a time: M interleaved by pairs of columns (pair j's row r at Mp + 12 j + 2 r, a zero
+  // column past m), C_k's entries splatted, each lane summing the six products in dot6's
+  // order, so that every entry is dot6's to the bit; K is symmetric here, and K(l..l+1, k)
+  // is a pair of column k.
+  for (int r = 0; r < 6; ++r) M[6 * m + r] = 0;
+  double Mp[6 * (kMaxConstraintColumns + 1)];
+  for (int j = 0; 2 * j < m; ++j)
+    for (int r = 0; r < 6; r += 2) {
+      const Pair a = load_pair(M + 12 * j + r), b = load_pair(M + 12 * j + 6 + r);
+      store_pair(Mp + 12 * j + 2 * r, low_lanes(a, b));
+      store_pair(Mp + 12 * j + 2 * r + 2, high_lanes(a, b));
     }
+  Pair probes = splat(0);
+  for (int k = 0; k < m; ++k) {
+    const double* ck = C + 6 * k;
+    const Pair c0 = splat(ck[0]), c1 = splat(ck[1]), c2 = splat(ck[2]), c3 = splat(ck[3]), c4 = splat(ck[4]),
+               c5 = splat(ck[5]);
+    double* Kk = &d.K(0, k);
+    for (int l = 0; l <= k; l += 2) {
+      const double* mp = Mp + 6 * l;
+      const Pair even = (c0 * load_pair(mp) + c2 * load_pair(mp + 4)) + c4 * load_pair(mp + 8);
+      const Pair odd = (c1 * load_pair(mp + 2) + c3 * load_pair(mp + 6)) + c5 * load_pair(mp + 10);
+      Pair x = even + odd;
+      const bool two = l < k;  // else l = k: the diagonal alone
+      if (has_Y[k]) x = Pair{x[0] + dot6(Y + 6 * k, C + 6 * l), two ? x[1] + dot6(Y + 6 * k, C + 6 * l + 6) : 0.0};
+      if (two) {
+        const Pair v = load_pair(Kk + l) + x;
+        store_pair(Kk + l, v);
+        d.K(k, l) = v[0];
+        d.K(k, l + 1) = v[1];
+        probes += v * splat(0);
+      } else {
+        const double v = Kk[l] + x[0];
+        Kk[l] = v;
+        probe += v * 0.0;
+      }
+    }
+  }
+  probe += probes[0] + probes[1];
   return probe;
 }
 
