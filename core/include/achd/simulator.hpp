@@ -240,6 +240,7 @@ class Simulator : public SimulationState {
   void set_impact_blocks();
   double held_changes(bool velocity);
   double loop_changes(bool velocity);
+  double coupling_changes(bool velocity);  // each coupling's error, its beta the change -e
   void record_impact_points();  // each set's point state now (and the body motion)
   // `moved`: q already moved (the held quantities and loops count from the first iteration)
   void project_positions(int joint, bool moved);

@@ -31,8 +31,9 @@
 // joints back (jump_onto_trajectory): the position projection and the impulse with every
 // prescribed joint (this one included) and every joint resting on a stop kept (dq = dqd =
 // 0), beta the held quantities' and velocities' change since before the jump, so that
-// the held directions keep where and how fast they were and the loops stay closed. A jump
-// the held directions do not see changes no other joint. Without them (or with
+// the held directions keep where and how fast they were, the loops stay closed and a
+// coupled joint's followers follow it. A jump the held directions do not see changes no
+// other joint. Without them (or with
 // constraints off) the joint's q and qd are simply set.
 #include <algorithm>
 #include <cmath>
@@ -45,6 +46,7 @@
 #include "direction_sets.hpp"
 #include "held_directions.hpp"
 #include "integrators.hpp"
+#include "joint_couplings.hpp"
 #include "loop_closure.hpp"
 #include "tip_kinematics.hpp"
 
@@ -176,6 +178,17 @@ double Simulator::loop_changes(bool velocity) {
   return off;
 }
 
+double Simulator::coupling_changes(bool velocity) {
+  double off = 0;
+  for (size_t j = 0; j < model_.couplings.size(); ++j) {
+    const JointCoupling& c = model_.couplings[j];
+    const double e = velocity ? coupling_rate_error(model_, c, qd) : coupling_position_error(model_, c, q);
+    impact_case_.coupling_beta[j] = -e;
+    off = std::max(off, std::abs(e));
+  }
+  return off;
+}
+
 void Simulator::record_impact_points() {
   const std::vector<LinkDirections>& sets = directions_->sets();
   body_motion(model_, q, qd, X0_, r_, v_);
@@ -197,6 +210,7 @@ void Simulator::project_positions(int joint, bool moved) {
     if (it > 0 || moved) off = std::max(off, held_changes(false));
     const double loops_open = loop_changes(false);  // the loops closed again
     if (it > 0 || moved) off = std::max(off, loops_open);
+    if (moved) off = std::max(off, coupling_changes(false));  // a moved leader's followers too
     if (off == 0) break;
     impact_case_.q = q;
     solve_impact("position projection", joint);
@@ -236,6 +250,7 @@ void Simulator::stop_at_limits() {
   if (!reached) return;
   integrator_->stage = -1;  // a failure here is no integrator stage's
   set_impact_blocks();
+  impact_case_.coupling_beta.setZero();  // a stop leaves the couplings' errors as they are
   // Position: back on the limit with the held quantities unchanged (and the loops closed);
   // a prescribed joint keeps its trajectory through an impact: dq_i = dqd_i = 0.
   for (int i = 0; i < n; ++i) {
@@ -288,6 +303,7 @@ void Simulator::jump_onto_trajectory(int joint, double q_at, double qd_at) {
     }
     project_positions(joint, true);
     impact_case_.qdd_given.setZero();
+    coupling_changes(true);
     project_velocities("impulse", joint);
   } catch (...) {
     q = q_before;

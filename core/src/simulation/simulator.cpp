@@ -60,6 +60,7 @@ Simulator::Simulator(const Model& model, const SimulatorOptions& options)
   moving_.assign(n, 0);
   impact_case_ = Case::zeros(model_);
   impact_case_.loop_beta = Eigen::VectorXd::Zero(model_.num_loop_columns());
+  impact_case_.coupling_beta = Eigen::VectorXd::Zero(model_.couplings.size());
   impact_case_.qdd_given = case_.qdd_given;
   impact_case_.prescribed = case_.prescribed;
   impact_case_.constraints.reserve(links);

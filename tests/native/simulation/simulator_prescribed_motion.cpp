@@ -208,7 +208,8 @@ TEST(PrescribedMotion, LimitStopsLeaveAPrescribedJointAlone) {
 // the jump (within 1e-12), the other joints moved to make that so, and the holds keep the
 // tip to 1e-9 from the first step (no start transient to wait out). A jump the held
 // directions do not see (the base joint turns about the vertical, only z held) moves no
-// other joint; a motion not finite at t (its velocity overflows) changes nothing.
+// other joint; a coupled joint's follower follows its leader's jump; a motion not finite
+// at t (its velocity overflows) changes nothing.
 TEST(PrescribedMotion, AJumpOntoTheTrajectoryKeepsTheHeldDirections) {
   const Model m = lwr();
   const int tip = m.link_index("lwr_link_7");
@@ -239,6 +240,19 @@ TEST(PrescribedMotion, AJumpOntoTheTrajectoryKeepsTheHeldDirections) {
   z_only.prescribe(0, ramp(0.3, 0.5));
   EXPECT_EQ(z_only.qd[0], 0.5);
   EXPECT_LT(z_only.qd.tail(6).cwiseAbs().maxCoeff(), 1e-12) << "the base's turn moves the tip along no held direction";
+
+  // A coupled joint's follower follows its leader's jump: the Panda-like arm's right
+  // finger mimics the left one (multiplier 1), which is put on a ramp already open.
+  const Model panda = load_urdf_file((kRoot / "robots/panda_fingers.urdf").string(), "panda_link0", "");
+  ASSERT_EQ(panda.couplings.size(), 1u);
+  const int leader = panda.couplings[0].leader, follower = panda.couplings[0].follower;
+  Simulator fingers(panda);
+  fingers.reset(Eigen::VectorXd::Zero(panda.num_positions()), {});
+  fingers.prescribe(leader, ramp(0.02, 0.05));
+  EXPECT_EQ(fingers.q[leader], 0.02);
+  EXPECT_EQ(fingers.qd[leader], 0.05);
+  EXPECT_NEAR(fingers.q[follower], 0.02, 1e-12);
+  EXPECT_NEAR(fingers.qd[follower], 0.05, 1e-12);
 
   JointMotion overflowing = sine(0.3, 1e300, 1e10, 0);
   const Eigen::VectorXd q_held = z_only.q, qd_held = z_only.qd;
