@@ -95,9 +95,9 @@ void first_legs_coupling(const Model& model, Data& d, const ConstraintSource& s,
 // Y_s (NC x 6, row k at Y + 6 k) over the common path of a_s and b; false (Y untouched)
 // when they have none.
 template <int NC>
-bool first_leg_and_unit_coupling(const Model& model, const Data& d, const ConstraintSource& s, int b, double* Y) {
+bool first_leg_and_unit_coupling(const Model& model, const Data& d, const ConstraintSource& s, double* Y) {
   const Data::Workspace& w = d.workspace;
-  const int a = common_ancestor(model, s.body, b);
+  const int a = s.meet;  // b = s.body_b: where the two legs meet (add_source)
   if (a < 0) return false;
   double y[NC][6] = {};
   for (int i = a; i >= 0; i = model.bodies[i].parent) {
@@ -183,7 +183,6 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
     });
   int branch[kMaxConstraintColumns];
   for (size_t s = 0; s < w.sources.size(); ++s) branch[s] = branch_of(model, w.sources[s].body);
-  const int branch_b = branch_of(model, b);
   for (size_t s = 0; s < w.sources.size(); ++s)
     for (size_t t = s + 1; t < w.sources.size(); ++t)
       if (branch[s] >= 0 && branch[s] == branch[t])
@@ -198,10 +197,9 @@ double shared_second_body_sweep(const Model& model, Data& d, const Case& c, cons
   // Y (row k at Y + 6 k), 0 for the blocks whose first leg does not meet b's path
   double Y[6 * kMaxConstraintColumns];
   bool has_Y[kMaxConstraintColumns];
-  for (size_t i = 0; i < w.sources.size(); ++i) {
-    const ConstraintSource& s = w.sources[i];
-    const bool met = branch_b >= 0 && branch[i] == branch_b && with_constraint_count(s.columns, [&](auto n) {
-      return first_leg_and_unit_coupling<decltype(n)::value>(model, d, s, b, Y + 6 * s.column);
+  for (const ConstraintSource& s : w.sources) {
+    const bool met = with_constraint_count(s.columns, [&](auto n) {
+      return first_leg_and_unit_coupling<decltype(n)::value>(model, d, s, Y + 6 * s.column);
     });
     for (int k = 0; k < s.columns; ++k) has_Y[s.column + k] = met;
   }
