@@ -313,8 +313,8 @@ double smallest_held_eigenvalue(const CouplingMatrix& K, const bool* gives_way, 
 // The columns that give way (solve_held_first), as few as leave the held ones H clear of
 // the singular region: first, for each damped eigen-direction, its largest component
 // among the columns not yet giving way (a yielding column, one that asks for motion,
-// where its component is at least half that: a push into the boundary gives way before
-// the holds beside it); then, while K_HH still has an eigenvalue within
+// where its component is at least kPushShare of that: a push into the boundary gives
+// way before the holds beside it); then, while K_HH still has an eigenvalue within
 // 4 eps, the largest component of K_HH's lowest eigen-direction. Below 2 eps the held
 // ones' exact solve would blend into the plain damping, and every column would carry
 // part of the lost motion without an event; choosing at twice that leaves room for the
@@ -336,7 +336,7 @@ double choose_giving_columns(const Data& data, double eps, bool* gives_way) {
   for (Eigen::Index j = 0; j < data.damped.cols() && nl < nc - 1; ++j) {
     int column = largest(j, ~std::uint64_t{0});
     const int yielding = largest(j, data.workspace.yielding);
-    if (yielding >= 0 && std::abs(data.damped(yielding, j)) >= 0.5 * std::abs(data.damped(column, j)))
+    if (yielding >= 0 && std::abs(data.damped(yielding, j)) >= kPushShare * std::abs(data.damped(column, j)))
       column = yielding;
     gives_way[column] = true;
     ++nl;

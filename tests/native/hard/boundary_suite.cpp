@@ -8,10 +8,14 @@
 // Every held direction stays within 1e-6 (m or rad) outside its events: from 0.5 s (the
 // start's transient) at every step where it is neither limited nor released nor within
 // 0.2 s of its resumption (measured with the default dormand_prince: 1e-13 to 2e-9).
-// With one or two held directions none is released; with three, where the pushed
-// direction's loss also takes a held combination with it, a few are (the UR5 pushed
-// along y holding z, ry and rz: 20 releases in 60 s), and the solve gives way first in
-// the pushed column (coupling_solve.cpp).
+// With one or two held directions none is released. With three, the solve gives way
+// first in the pushed column wherever it carries kPushShare of the lost combination
+// (coupling_solve.hpp), and a held one only where the held ones are lost without it: at
+// most kMaxHeldReleases in 60 s (a pushed column given way only where it carried half
+// of the lost combination released held ones 3 to 131 times). The few left are held
+// directions whose K, not their Jacobian, nears the singular region (the UR5 pushed along
+// y holding z, ry and rz releases rz at 0.46 s where the held rows of its Jacobian, scaled
+// by kind, keep a smallest singular value of about a third of their largest).
 // The mixed chain's prismatic joint j2 extends without bound under the default limits
 // ('report': to 1000 m in 60 s), so it has no workspace boundary there; its suite runs
 // with limits 'clamp', where its URDF limits (j2 in [-0.1, 0.3] m) make the boundary.
@@ -57,6 +61,9 @@ std::string name_of(const BoundaryCase& c) {
   for (int k : c.held) held += std::string(" ") + direction_name(k);
   return c.robot + " pushed " + direction_name(c.pushed) + ", held" + held;
 }
+
+// Releases of held directions allowed in one 60 s run with three held (none with fewer).
+constexpr std::size_t kMaxHeldReleases = 5;
 
 // The stabilisation's settling time at the default w: a held error decays to 1e-6 of
 // itself within it (simulator_options.hpp).
@@ -125,6 +132,7 @@ TEST_P(BoundarySuite, RunsSixtySecondsReportsTheLossAndKeepsTheOtherHeldDirectio
   EXPECT_LE(worst, 1e-6) << name_of(bc) << ": a held direction outside its events";
   std::size_t held_released = 0;  // releases of a held direction (not the pushed one)
   for (const DirectionEvent& e : events) held_released += e.direction != bc.pushed && e.kind == DirectionEventKind::Released;
+  EXPECT_LE(held_released, bc.held.size() < 3 ? 0 : kMaxHeldReleases) << name_of(bc) << ": held directions released";
   std::cout << name_of(bc) << ": " << events.size() << " events (" << held_released
             << " releases of a held direction), first t = " << events.front().t
             << ", last t = " << events.back().t << "; worst held residual outside events " << worst << "\n";
