@@ -25,8 +25,8 @@ void Simulator::evaluate(const SimulationState& x, double w_n, double zeta, Data
   if (!x.q.allFinite() || !x.qd.allFinite())
     throw Error("the stage's state is not finite (" + non_finite_joint(model_, x.q, x.qd) + ")");
   // The poses straight into the solve's Data, which takes them (Data::Workspace::poses_given);
-  // the links' velocities only where a held direction's or a loop's beta reads them (a
-  // free chain's: 7% of its evaluation).
+  // the links' velocities only where a held direction's or a loop's beta reads them (the
+  // 200-joint chain falling free: 2.2% of its instructions).
   if (case_.constraints.empty() && model_.loops.empty()) body_poses(model_, x.q, out.X0, out.r);
   else body_motion(model_, x.q, x.qd, out.X0, out.r, v_);
   const std::vector<LinkDirections>& sets = directions_->sets();
